@@ -1,0 +1,118 @@
+//! The crate's one error type.
+
+use thiserror::Error;
+
+/// What is wrong with one input field.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum InputProblem {
+    /// A number that is NaN or infinite.
+    #[error("a non-finite number")]
+    NonFinite,
+    /// A rational weight that is zero or negative (or an interval weight reaching ≤ 0).
+    #[error("a weight that is not positive")]
+    NonPositiveWeight,
+    /// A list of the wrong length.
+    #[error("{found} entries where {expected} are needed")]
+    WrongCount {
+        /// How many entries the field needs.
+        expected: usize,
+        /// How many it has.
+        found: usize,
+    },
+    /// An interval `[lo, hi]` with `lo > hi`.
+    #[error("an inverted interval [{lo}, {hi}]")]
+    InvertedInterval {
+        /// Lower bound given.
+        lo: f64,
+        /// Upper bound given.
+        hi: f64,
+    },
+    /// A parameter domain of zero or negative width.
+    #[error("an empty parameter domain [{lo}, {hi}]")]
+    EmptyDomain {
+        /// Lower bound given.
+        lo: f64,
+        /// Upper bound given.
+        hi: f64,
+    },
+    /// A degree of zero (or a negative exponent) where at least one is needed.
+    #[error("degree {0} (at least 1 is needed in each direction)")]
+    BadDegree(i64),
+    /// A surface kind the scene format does not know.
+    #[error("unknown surface kind `{0}`")]
+    UnknownKind(String),
+    /// A field the scene format does not know.
+    #[error("unknown field `{0}`")]
+    UnknownField(String),
+    /// A required field is missing.
+    #[error("missing field")]
+    Missing,
+    /// A value of the wrong JSON type or shape.
+    #[error("wrong shape: {0}")]
+    WrongShape(String),
+    /// A patch whose control net is degenerate (all control points coincide, so it has no normal).
+    #[error("a degenerate patch (control points span no surface)")]
+    Degenerate,
+}
+
+/// Every error `ssitrace` reports. Variants carry the data needed to locate the problem.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// Bad input: names the surface (0-based index in the scene, if known) and the field.
+    #[error("surface {}: field `{field}`: {problem}", surface.map(|s| s.to_string()).unwrap_or_else(|| "?".into()))]
+    InvalidInput {
+        /// Index of the surface in the scene, when the input came from a scene.
+        surface: Option<usize>,
+        /// Name of the offending field (e.g. `points[3][1]`, `weights`, `domain`).
+        field: String,
+        /// What is wrong with it.
+        problem: InputProblem,
+    },
+    /// The scene file is not valid JSON or not of the documented shape.
+    #[error("scene is not valid: {0}")]
+    Scene(String),
+    /// Reading or writing a file failed.
+    #[error("i/o error on {path}: {message}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+    /// Newton refinement onto the intersection did not converge.
+    #[error("Newton refinement did not converge after {iterations} iterations (residual {residual:e}) near {near:?}")]
+    NewtonFailed {
+        /// Iterations done.
+        iterations: usize,
+        /// Last residual |P − Q|.
+        residual: f64,
+        /// Parameters (σ, t, u, v) where it stopped.
+        near: [f64; 4],
+    },
+}
+
+impl Error {
+    /// Shorthand for an [`Error::InvalidInput`] with no surface index yet.
+    pub fn input(field: impl Into<String>, problem: InputProblem) -> Self {
+        Error::InvalidInput {
+            surface: None,
+            field: field.into(),
+            problem,
+        }
+    }
+
+    /// The same error attributed to surface `index` of a scene (input errors only).
+    pub fn in_surface(self, index: usize) -> Self {
+        match self {
+            Error::InvalidInput { field, problem, .. } => Error::InvalidInput {
+                surface: Some(index),
+                field,
+                problem,
+            },
+            other => other,
+        }
+    }
+}
+
+/// Result with the crate's [`Error`].
+pub type Result<T> = std::result::Result<T, Error>;

@@ -1,0 +1,5 @@
+//! Geometry: surfaces, rational Bézier patches, power-basis conversion, rigorous bounds.
+
+pub mod surface;
+
+pub use surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};

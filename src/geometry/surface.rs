@@ -1,0 +1,92 @@
+//! The floating-point surface trait the marcher works on.
+
+use nalgebra::Vector3;
+
+/// A 3-vector of `f64`.
+pub type Vec3 = Vector3<f64>;
+
+/// A rectangular parameter domain `[u0, u1] × [v0, v1]` with `u0 < u1`, `v0 < v1`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Domain {
+    /// `[u0, u1]`.
+    pub u: [f64; 2],
+    /// `[v0, v1]`.
+    pub v: [f64; 2],
+}
+
+impl Domain {
+    /// The unit square `[0,1]²`.
+    pub const UNIT: Domain = Domain {
+        u: [0.0, 1.0],
+        v: [0.0, 1.0],
+    };
+
+    /// The domain `[u0,u1] × [v0,v1]` (not checked; see the scene parser for validation).
+    pub const fn new(u0: f64, u1: f64, v0: f64, v1: f64) -> Self {
+        Domain {
+            u: [u0, u1],
+            v: [v0, v1],
+        }
+    }
+
+    /// Whether `(u, v)` lies in the closed domain, allowing `tol` outside.
+    pub fn contains(&self, u: f64, v: f64, tol: f64) -> bool {
+        u >= self.u[0] - tol && u <= self.u[1] + tol && v >= self.v[0] - tol && v <= self.v[1] + tol
+    }
+
+    /// Width of the larger side.
+    pub fn size(&self) -> f64 {
+        (self.u[1] - self.u[0]).max(self.v[1] - self.v[0])
+    }
+}
+
+/// A surface point with its first and second partial derivatives.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceDerivs {
+    /// The point S(u, v).
+    pub p: Vec3,
+    /// ∂S/∂u.
+    pub su: Vec3,
+    /// ∂S/∂v.
+    pub sv: Vec3,
+    /// ∂²S/∂u².
+    pub suu: Vec3,
+    /// ∂²S/∂u∂v.
+    pub suv: Vec3,
+    /// ∂²S/∂v².
+    pub svv: Vec3,
+}
+
+impl SurfaceDerivs {
+    /// The (unnormalised) normal `S_u × S_v`.
+    pub fn normal(&self) -> Vec3 {
+        self.su.cross(&self.sv)
+    }
+}
+
+/// A parametric surface evaluated in `f64`, with derivatives up to second order.
+///
+/// The marcher runs on anything implementing this: rational Bézier patches (through their
+/// midpoint control net) and analytic surfaces in tests.
+pub trait ParametricSurface {
+    /// The parameter domain.
+    fn domain(&self) -> Domain;
+    /// Point and partial derivatives at `(u, v)`; `(u, v)` may lie slightly outside the domain.
+    fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs;
+    /// The point S(u, v).
+    fn point(&self, u: f64, v: f64) -> Vec3 {
+        self.derivs(u, v).p
+    }
+}
+
+impl<T: ParametricSurface + ?Sized> ParametricSurface for &T {
+    fn domain(&self) -> Domain {
+        (**self).domain()
+    }
+    fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs {
+        (**self).derivs(u, v)
+    }
+    fn point(&self, u: f64, v: f64) -> Vec3 {
+        (**self).point(u, v)
+    }
+}

@@ -1,0 +1,92 @@
+//! The result of intersecting two surfaces: branches of curve points and events.
+//!
+//! This is the data behind the result JSON (see the README for the versioned format).
+
+use serde::{Deserialize, Serialize};
+
+/// One point of a traced branch, in both parameter domains and in model space.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CurvePoint {
+    /// Parameters `[σ, t]` on the first surface P.
+    pub p: [f64; 2],
+    /// Parameters `[u, v]` on the second surface Q.
+    pub q: [f64; 2],
+    /// Model-space point (the midpoint of P(σ,t) and Q(u,v)).
+    pub xyz: [f64; 3],
+}
+
+/// How a branch ended (at one of its two ends).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EndReason {
+    /// Reached the boundary of surface 0 (P) or 1 (Q).
+    Boundary {
+        /// Which surface's boundary (0 = P, 1 = Q).
+        surface: usize,
+    },
+    /// Came back to its start: a closed loop, traced once.
+    ClosedLoop,
+    /// Reached a point where the surface normals are parallel (tangency / singular point).
+    Singular,
+    /// Newton refinement failed (the step could not be corrected onto the curve).
+    NewtonFailed,
+    /// Hit the point budget without another end condition.
+    PointLimit,
+}
+
+/// Overall status of a branch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BranchStatus {
+    /// A closed loop traced exactly once.
+    Closed,
+    /// An open branch whose both ends are regular ends (boundary or singular point).
+    Open,
+    /// Tracing stopped for a reason that leaves the branch possibly incomplete.
+    Incomplete,
+}
+
+/// A traced branch: points ordered along the curve.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Branch {
+    /// Index in the result.
+    pub id: usize,
+    /// Overall status.
+    pub status: BranchStatus,
+    /// How the branch ended at its start and at its end (for a closed loop both are `ClosedLoop`).
+    pub ends: [EndReason; 2],
+    /// The points, in order along the branch.
+    pub points: Vec<CurvePoint>,
+}
+
+/// Kinds of noteworthy points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EventKind {
+    /// Normals parallel: a tangential contact, branch point or singular point.
+    Singular,
+    /// A branch meets a domain boundary.
+    BoundaryEnd,
+}
+
+/// A noteworthy point found while tracing.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Event {
+    /// What it is.
+    pub kind: EventKind,
+    /// Parameters on P.
+    pub p: [f64; 2],
+    /// Parameters on Q.
+    pub q: [f64; 2],
+    /// Model-space point.
+    pub xyz: [f64; 3],
+}
+
+/// All branches and events of one surface pair.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Intersection {
+    /// The traced branches.
+    pub branches: Vec<Branch>,
+    /// Noteworthy points.
+    pub events: Vec<Event>,
+}

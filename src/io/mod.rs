@@ -1,0 +1,1 @@
+//! Input and output: the scene format, result JSON, SVG pictures.

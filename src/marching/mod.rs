@@ -1,0 +1,1 @@
+//! The fast marching pre-pass: Newton refinement, circular / DQOC / tangent steps, branch tracing.
