@@ -74,7 +74,37 @@ impl Scalar for Interval {
         Interval::sqrt(self)
     }
     fn powi(self, n: i32) -> Self {
-        self.pown(n)
+        interval_powi(self, n)
+    }
+}
+
+/// `xⁿ` for an interval, tight (monotone on each sign) and rigorous.
+fn interval_powi(x: Interval, n: i32) -> Interval {
+    if x.is_empty() {
+        return x;
+    }
+    if n == 0 {
+        return point(1.0);
+    }
+    if n < 0 {
+        return point(1.0) / interval_powi(x, -n);
+    }
+    // Enclosure of aⁿ for a single number a, by repeated squaring in intervals.
+    let pow_point = |a: f64| {
+        let (mut base, mut e, mut acc) = (point(a), n as u32, point(1.0));
+        while e > 0 {
+            if e & 1 == 1 {
+                acc = acc * base;
+            }
+            base = Interval::sqr(base);
+            e >>= 1;
+        }
+        acc
+    };
+    if n % 2 == 1 {
+        interval(pow_point(x.inf()).inf(), pow_point(x.sup()).sup()).unwrap_or(Interval::ENTIRE)
+    } else {
+        interval(pow_point(x.mig()).inf(), pow_point(x.mag()).sup()).unwrap_or(Interval::ENTIRE)
     }
 }
 
@@ -105,7 +135,12 @@ mod tests {
             let x = -2.0 + 0.02 * k as f64;
             let i = poly(point(x));
             let f = poly(x);
-            assert!(i.inf() <= f && f <= i.sup(), "{x}: {f} not in [{}, {}]", i.inf(), i.sup());
+            assert!(
+                i.inf() <= f && f <= i.sup(),
+                "{x}: {f} not in [{}, {}]",
+                i.inf(),
+                i.sup()
+            );
             assert!(i.wid() < 1e-13);
         }
     }
@@ -115,6 +150,19 @@ mod tests {
         assert!(interval(1.0, 0.0).is_none());
         assert!(interval(f64::NAN, 0.0).is_none());
         assert_eq!(interval(0.0, 1.0).unwrap().wid(), 1.0);
+    }
+
+    #[test]
+    fn interval_powers_are_tight_and_enclosing() {
+        let x = interval(-1.0, 2.0).unwrap();
+        let c = x.powi(3);
+        assert!(
+            c.inf() <= -1.0 && c.inf() > -1.0 - 1e-15 && c.sup() >= 8.0 && c.sup() < 8.0 + 1e-14
+        );
+        let e = x.powi(4);
+        assert!(e.inf() == 0.0 && e.sup() >= 16.0 && e.sup() < 16.0 + 1e-13);
+        let r = point(3.0).powi(-2);
+        assert!(r.inf() <= 1.0 / 9.0 && 1.0 / 9.0 <= r.sup());
     }
 
     #[test]
