@@ -1,5 +1,7 @@
 //! Geometry: surfaces, rational Bézier patches, power-basis conversion, rigorous bounds.
 
+pub mod enclosing;
 pub mod surface;
 
+pub use enclosing::EnclosingSurface;
 pub use surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};
