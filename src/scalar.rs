@@ -94,7 +94,7 @@ fn interval_powi(x: Interval, n: i32) -> Interval {
         let (mut base, mut e, mut acc) = (point(a), n as u32, point(1.0));
         while e > 0 {
             if e & 1 == 1 {
-                acc = acc * base;
+                acc *= base;
             }
             base = Interval::sqr(base);
             e >>= 1;
