@@ -6,6 +6,7 @@
 //! (fast circular-step tracing that finds the branches) → [`validated`] (the validated Taylor ODE
 //! engine) → certified curves → [`io`] (scene files, result JSON, SVG).
 
+pub mod certified;
 pub mod error;
 pub mod geometry;
 pub mod intersection;

@@ -1,0 +1,164 @@
+//! The intersection ODE: the curve P(σ,t) = Q(u,v) parametrised by model-space arc length.
+//!
+//! For transversal intersections (N^P × N^Q ≠ 0), with c the unit tangent
+//! c = (N^P × N^Q)/|N^P × N^Q|, the parameter velocities are
+//!
+//! ```text
+//! σ' = det(c, P_t, N^P)/|N^P|²    t' = det(P_σ, c, N^P)/|N^P|²
+//! u' = det(c, Q_v, N^Q)/|N^Q|²    v' = det(Q_u, c, N^Q)/|N^Q|²
+//! ```
+//!
+//! which follow from c = P_σ σ' + P_t t' = Q_u u' + Q_v v'. The field is written once over
+//! [`Scalar`], so it runs in `f64`, in intervals and in Taylor series. Along it P − Q is constant
+//! (a first integral): a solution that starts on the intersection stays on it.
+
+use crate::Scalar;
+
+/// A surface whose point and first partial derivatives can be evaluated in any [`Scalar`].
+pub trait ScalarSurface {
+    /// `[S(u,v), ∂S/∂u, ∂S/∂v]` evaluated in the scalar type `T` (rigorous when `T` is).
+    fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3];
+}
+
+/// Cross product.
+pub fn cross<T: Scalar>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Dot product.
+pub fn dot<T: Scalar>(a: &[T; 3], b: &[T; 3]) -> T {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Sum of squares `a·a` (with `sqr`, so intervals stay non-negative).
+pub fn norm_sqr<T: Scalar>(a: &[T; 3]) -> T {
+    a[0].sqr() + a[1].sqr() + a[2].sqr()
+}
+
+/// Determinant `det(a, b, c) = a·(b×c)`.
+pub fn det<T: Scalar>(a: &[T; 3], b: &[T; 3], c: &[T; 3]) -> T {
+    dot(a, &cross(b, c))
+}
+
+/// Quantities of the transversal field at one point, for callers that need more than y'.
+#[derive(Debug, Clone, Copy)]
+pub struct FieldPoint<T> {
+    /// `(σ', t', u', v')`.
+    pub velocity: [T; 4],
+    /// The unit model-space tangent c.
+    pub tangent: [T; 3],
+    /// `|N^P × N^Q|²` (zero at tangential / singular points).
+    pub cross_norm_sqr: T,
+}
+
+/// The transversal intersection field at `y = (σ, t, u, v)`, with direction `orientation` = ±1
+/// (the sign applied to c).
+pub fn transversal_field<T, P, Q>(p: &P, q: &Q, y: &[T; 4], orientation: f64) -> FieldPoint<T>
+where
+    T: Scalar,
+    P: ScalarSurface + ?Sized,
+    Q: ScalarSurface + ?Sized,
+{
+    let [_, ps, pt] = p.first_order(y[0], y[1]);
+    let [_, qu, qv] = q.first_order(y[2], y[3]);
+    let np = cross(&ps, &pt);
+    let nq = cross(&qu, &qv);
+    let m = cross(&np, &nq);
+    let m2 = norm_sqr(&m);
+    let scale = T::from_f64(orientation) / m2.sqrt();
+    let c = [m[0] * scale, m[1] * scale, m[2] * scale];
+    let np2 = norm_sqr(&np);
+    let nq2 = norm_sqr(&nq);
+    FieldPoint {
+        velocity: [
+            det(&c, &pt, &np) / np2,
+            det(&ps, &c, &np) / np2,
+            det(&c, &qv, &nq) / nq2,
+            det(&qu, &c, &nq) / nq2,
+        ],
+        tangent: c,
+        cross_norm_sqr: m2,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::point;
+    use inari::Interval;
+
+    /// z = a·(u² + v²) + d.
+    struct Bowl {
+        a: f64,
+        d: f64,
+    }
+
+    impl ScalarSurface for Bowl {
+        fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3] {
+            let (o, z) = (T::one(), T::zero());
+            let a = T::from_f64(self.a);
+            let two_a = T::from_f64(2.0 * self.a);
+            [
+                [u, v, a * (u.sqr() + v.sqr()) + T::from_f64(self.d)],
+                [o, z, two_a * u],
+                [z, o, two_a * v],
+            ]
+        }
+    }
+
+    fn rk4(p: &Bowl, q: &Bowl, y: [f64; 4], h: f64) -> [f64; 4] {
+        let f = |y: &[f64; 4]| transversal_field(p, q, y, 1.0).velocity;
+        let add = |y: &[f64; 4], k: &[f64; 4], s: f64| std::array::from_fn(|i| y[i] + s * k[i]);
+        let k1 = f(&y);
+        let k2 = f(&add(&y, &k1, h / 2.0));
+        let k3 = f(&add(&y, &k2, h / 2.0));
+        let k4 = f(&add(&y, &k3, h));
+        std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
+    }
+
+    #[test]
+    fn circle_is_traced_at_unit_speed_and_closes_after_its_length() {
+        // Paraboloid z = u² + v² − 0.25 against the plane z = 0: circle of radius 0.5.
+        let p = Bowl { a: 1.0, d: -0.25 };
+        let q = Bowl { a: 0.0, d: 0.0 };
+        let mut y = [0.5, 0.0, 0.5, 0.0];
+        let n = 2000;
+        let h = std::f64::consts::PI / n as f64; // 2πr / n with r = 0.5
+        for _ in 0..n {
+            let f = transversal_field(&p, &q, &y, 1.0);
+            // unit speed in model space: |c| = 1 and |P_σ σ' + P_t t'| = 1 on the plane of P
+            let speed = (f.velocity[0].powi(2) + f.velocity[1].powi(2)).sqrt();
+            assert!(speed <= 1.0 + 1e-12);
+            y = rk4(&p, &q, y, h);
+            assert!((y[0].hypot(y[1]) - 0.5).abs() < 1e-9);
+            assert!((y[0] - y[2]).abs() < 1e-9 && (y[1] - y[3]).abs() < 1e-9);
+        }
+        assert!((y[0] - 0.5).abs() < 1e-9 && y[1].abs() < 1e-9, "{y:?}");
+    }
+
+    #[test]
+    fn interval_field_encloses_f64_field() {
+        let p = Bowl { a: 1.0, d: -0.25 };
+        let q = Bowl { a: -0.5, d: 0.1 };
+        for k in 0..50 {
+            let s = -0.7 + 0.03 * k as f64;
+            let y = [s, 0.3, 0.2, s * 0.5];
+            let f = transversal_field(&p, &q, &y, -1.0).velocity;
+            let yi: [Interval; 4] = y.map(point);
+            let fi = transversal_field(&p, &q, &yi, -1.0).velocity;
+            for i in 0..4 {
+                assert!(
+                    fi[i].contains(f[i]),
+                    "{i}: {} not in [{}, {}]",
+                    f[i],
+                    fi[i].inf(),
+                    fi[i].sup()
+                );
+            }
+        }
+    }
+}

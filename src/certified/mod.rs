@@ -1,0 +1,3 @@
+//! Certified curves: the intersection ODE on the validated engine.
+
+pub mod field;
