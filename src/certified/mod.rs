@@ -1,3 +1,4 @@
 //! Certified curves: the intersection ODE on the validated engine.
 
 pub mod field;
+pub mod krawczyk;

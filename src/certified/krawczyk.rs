@@ -1,0 +1,233 @@
+//! Certified points of the intersection: the parametric Krawczyk test on P(σ,t) − Q(u,v) = 0.
+//!
+//! One of the four parameters is held in an interval (the *fixed* coordinate); the other three
+//! are the unknowns of three equations. With X the box of unknowns, x̃ = mid X, C ≈ (mid J)⁻¹,
+//!
+//! ```text
+//! K(X) = x̃ − C·F(x̃, [p]) + (I − C·J(X, [p]))·(X − x̃)
+//! ```
+//!
+//! If K(X) ⊂ int X then for every value of the fixed coordinate in its interval there is exactly
+//! one zero in X, and it lies in K(X) ∩ X (Krawczyk 1969; Moore's proof carries over to interval
+//! parameters because F and J are enclosed over the parameter interval). Iterating X ← K(X) ∩ X
+//! contracts the box onto the curve: this is how enclosures are pulled back onto P = Q.
+
+use super::field::ScalarSurface;
+use crate::scalar::{interval, point};
+use inari::Interval;
+use nalgebra::Matrix3;
+
+/// A box in `(σ, t, u, v)`.
+pub type ParamBox = [Interval; 4];
+
+/// Outcome of [`krawczyk`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum KrawczykResult {
+    /// Proven: for every value of the fixed coordinate in its interval the curve meets the box
+    /// in exactly one point, and all those points lie in `enclosure` (a sub-box of the input).
+    Proven {
+        /// The contracted box.
+        enclosure: ParamBox,
+        /// Krawczyk iterations used.
+        iterations: usize,
+    },
+    /// Not proven (the box may or may not contain a curve point): the reason.
+    NotProven(&'static str),
+}
+
+/// Runs the parametric Krawczyk test and contraction on `y`, holding coordinate `fixed` (0..4)
+/// in its interval. At most `max_iter` iterations; stops early when the widths stop shrinking.
+pub fn krawczyk<P, Q>(p: &P, q: &Q, y: ParamBox, fixed: usize, max_iter: usize) -> KrawczykResult
+where
+    P: ScalarSurface + ?Sized,
+    Q: ScalarSurface + ?Sized,
+{
+    if fixed > 3 || y.iter().any(|c| c.is_empty()) {
+        return KrawczykResult::NotProven("invalid box or fixed coordinate");
+    }
+    let free: [usize; 3] = match fixed {
+        0 => [1, 2, 3],
+        1 => [0, 2, 3],
+        2 => [0, 1, 3],
+        _ => [0, 1, 2],
+    };
+    let mut y = y;
+    let mut proven = false;
+    for it in 0..max_iter.max(1) {
+        // Interval Jacobian over the whole box (columns: the free unknowns).
+        let [_, ps, pt] = p.first_order(y[0], y[1]);
+        let [_, qu, qv] = q.first_order(y[2], y[3]);
+        let neg = |a: [Interval; 3]| a.map(|x| -x);
+        let cols_all = [ps, pt, neg(qu), neg(qv)];
+        let jac: [[Interval; 3]; 3] = free.map(|k| cols_all[k]); // jac[col][row]
+                                                                 // Midpoint inverse in f64 (any C works; a good one makes the test succeed).
+        let mid = Matrix3::from_fn(|r, c| jac[c][r].mid());
+        let Some(cinv) = mid.try_inverse() else {
+            return KrawczykResult::NotProven("singular Jacobian (tangential or singular point)");
+        };
+        let c: [[Interval; 3]; 3] =
+            std::array::from_fn(|r| std::array::from_fn(|k| point(cinv[(r, k)])));
+        // F at the midpoint of the free coordinates, the fixed one kept as its interval.
+        let mut ymid = y;
+        for &k in &free {
+            ymid[k] = point(y[k].mid());
+        }
+        let [pm, ..] = p.first_order(ymid[0], ymid[1]);
+        let [qm, ..] = q.first_order(ymid[2], ymid[3]);
+        let f: [Interval; 3] = std::array::from_fn(|r| pm[r] - qm[r]);
+        let mut kx = [Interval::EMPTY; 3];
+        for r in 0..3 {
+            let cf = c[r][0] * f[0] + c[r][1] * f[1] + c[r][2] * f[2];
+            let mut acc = ymid[free[r]] - cf;
+            for (col, &k) in free.iter().enumerate() {
+                // (I − C·J)[r][col]
+                let cj = c[r][0] * jac[col][0] + c[r][1] * jac[col][1] + c[r][2] * jac[col][2];
+                let ident = if r == col { point(1.0) } else { point(0.0) };
+                acc += (ident - cj) * (y[k] - ymid[k]);
+            }
+            kx[r] = acc;
+        }
+        let inside = (0..3).all(|r| kx[r].interior(y[free[r]]));
+        proven |= inside;
+        let mut next = y;
+        for r in 0..3 {
+            next[free[r]] = kx[r].intersection(y[free[r]]);
+        }
+        if next.iter().any(|c| c.is_empty()) {
+            return KrawczykResult::NotProven(
+                "the box holds no curve point (Krawczyk image disjoint)",
+            );
+        }
+        let shrink = (0..3).all(|r| next[free[r]].wid() >= 0.9 * y[free[r]].wid());
+        y = next;
+        if proven && (shrink || it + 1 == max_iter.max(1)) {
+            return KrawczykResult::Proven {
+                enclosure: y,
+                iterations: it + 1,
+            };
+        }
+    }
+    if proven {
+        KrawczykResult::Proven {
+            enclosure: y,
+            iterations: max_iter,
+        }
+    } else {
+        KrawczykResult::NotProven(
+            "Krawczyk image not inside the box (box too large or near-singular)",
+        )
+    }
+}
+
+/// The coordinate to hold fixed at a curve point with parameter velocity `velocity`: the one
+/// moving fastest relative to `scales` (so the remaining 3×3 Jacobian is best conditioned).
+pub fn best_fixed_coordinate(velocity: &[f64; 4], scales: &[f64; 4]) -> usize {
+    (0..4)
+        .max_by(|&a, &b| {
+            let ra = (velocity[a] / scales[a]).abs();
+            let rb = (velocity[b] / scales[b]).abs();
+            ra.total_cmp(&rb)
+        })
+        .unwrap_or(0)
+}
+
+/// A certified box around an approximate curve point `approx`: coordinate `fixed` is held at
+/// exactly its value, the others get radius `radius`; `None` if the proof fails.
+pub fn certify_point<P, Q>(
+    p: &P,
+    q: &Q,
+    approx: [f64; 4],
+    fixed: usize,
+    radius: f64,
+) -> Option<ParamBox>
+where
+    P: ScalarSurface + ?Sized,
+    Q: ScalarSurface + ?Sized,
+{
+    let mut y = [Interval::EMPTY; 4];
+    for k in 0..4 {
+        y[k] = if k == fixed {
+            point(approx[k])
+        } else {
+            interval(approx[k] - radius, approx[k] + radius)?
+        };
+    }
+    match krawczyk(p, q, y, fixed, 8) {
+        KrawczykResult::Proven { enclosure, .. } => Some(enclosure),
+        KrawczykResult::NotProven(_) => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scalar;
+
+    /// z = a·(u² + v²) + d.
+    struct Bowl {
+        a: f64,
+        d: f64,
+    }
+
+    impl ScalarSurface for Bowl {
+        fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3] {
+            let (o, z) = (T::one(), T::zero());
+            let two_a = T::from_f64(2.0 * self.a);
+            [
+                [
+                    u,
+                    v,
+                    T::from_f64(self.a) * (u.sqr() + v.sqr()) + T::from_f64(self.d),
+                ],
+                [o, z, two_a * u],
+                [z, o, two_a * v],
+            ]
+        }
+    }
+
+    #[test]
+    fn certified_box_contains_the_true_curve_point_and_is_tight() {
+        // Circle of radius 0.5 in the plane z = 0 (P a bowl, Q the plane).
+        let p = Bowl { a: 1.0, d: -0.25 };
+        let q = Bowl { a: 0.0, d: 0.0 };
+        for k in 0..40 {
+            let th = 0.05 + 0.15 * k as f64;
+            let (x, y) = (0.5 * th.cos(), 0.5 * th.sin());
+            let approx = [x + 1e-7, y - 1e-7, x, y];
+            let fixed = best_fixed_coordinate(&[-y, x, -y, x], &[1.0; 4]);
+            let b = certify_point(&p, &q, approx, fixed, 1e-4).expect("proof");
+            // The true point with the fixed coordinate's value: (σ,t) on the circle, (u,v) = (σ,t).
+            let fv = approx[fixed];
+            let other = (0.25 - fv * fv)
+                .sqrt()
+                .copysign(if fixed % 2 == 0 { y } else { x });
+            let truth = if fixed % 2 == 0 {
+                [fv, other]
+            } else {
+                [other, fv]
+            };
+            for (i, t) in [truth[0], truth[1], truth[0], truth[1]].iter().enumerate() {
+                assert!(
+                    b[i].inf() <= *t + 1e-15 && *t - 1e-15 <= b[i].sup(),
+                    "coord {i}"
+                );
+                assert!(b[i].wid() < 1e-12, "coord {i} width {}", b[i].wid());
+            }
+        }
+    }
+
+    #[test]
+    fn box_off_the_curve_is_not_proven() {
+        let p = Bowl { a: 1.0, d: -0.25 };
+        let q = Bowl { a: 0.0, d: 0.0 };
+        assert!(certify_point(&p, &q, [0.0, 0.0, 0.0, 0.0], 0, 1e-3).is_none());
+    }
+
+    #[test]
+    fn tangential_point_is_not_proven() {
+        // Bowl z = u² + v² touches the plane z = 0 at the origin only.
+        let p = Bowl { a: 1.0, d: 0.0 };
+        let q = Bowl { a: 0.0, d: 0.0 };
+        assert!(certify_point(&p, &q, [0.0, 0.0, 0.0, 0.0], 0, 1e-3).is_none());
+    }
+}
