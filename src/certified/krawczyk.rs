@@ -200,8 +200,8 @@ mod tests {
             let fv = approx[fixed];
             let other = (0.25 - fv * fv)
                 .sqrt()
-                .copysign(if fixed % 2 == 0 { y } else { x });
-            let truth = if fixed % 2 == 0 {
+                .copysign(if fixed.is_multiple_of(2) { y } else { x });
+            let truth = if fixed.is_multiple_of(2) {
                 [fv, other]
             } else {
                 [other, fv]
