@@ -14,10 +14,12 @@
 
 use crate::Scalar;
 
-/// A surface whose point and first partial derivatives can be evaluated in any [`Scalar`].
+/// A surface whose point and partial derivatives can be evaluated in any [`Scalar`].
 pub trait ScalarSurface {
     /// `[S(u,v), ∂S/∂u, ∂S/∂v]` evaluated in the scalar type `T` (rigorous when `T` is).
     fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3];
+    /// `[S, S_u, S_v, S_uu, S_uv, S_vv]` evaluated in `T` (rigorous when `T` is).
+    fn second_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 6];
 }
 
 /// Cross product.
@@ -88,27 +90,9 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::certified::fixtures::Bowl;
     use crate::scalar::point;
     use inari::Interval;
-
-    /// z = a·(u² + v²) + d.
-    struct Bowl {
-        a: f64,
-        d: f64,
-    }
-
-    impl ScalarSurface for Bowl {
-        fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3] {
-            let (o, z) = (T::one(), T::zero());
-            let a = T::from_f64(self.a);
-            let two_a = T::from_f64(2.0 * self.a);
-            [
-                [u, v, a * (u.sqr() + v.sqr()) + T::from_f64(self.d)],
-                [o, z, two_a * u],
-                [z, o, two_a * v],
-            ]
-        }
-    }
 
     fn rk4(p: &Bowl, q: &Bowl, y: [f64; 4], h: f64) -> [f64; 4] {
         let f = |y: &[f64; 4]| transversal_field(p, q, y, 1.0).velocity;
@@ -123,8 +107,8 @@ mod tests {
     #[test]
     fn circle_is_traced_at_unit_speed_and_closes_after_its_length() {
         // Paraboloid z = u² + v² − 0.25 against the plane z = 0: circle of radius 0.5.
-        let p = Bowl { a: 1.0, d: -0.25 };
-        let q = Bowl { a: 0.0, d: 0.0 };
+        let p = Bowl::new(1.0, -0.25);
+        let q = Bowl::new(0.0, 0.0);
         let mut y = [0.5, 0.0, 0.5, 0.0];
         let n = 2000;
         let h = std::f64::consts::PI / n as f64; // 2πr / n with r = 0.5
@@ -142,8 +126,8 @@ mod tests {
 
     #[test]
     fn interval_field_encloses_f64_field() {
-        let p = Bowl { a: 1.0, d: -0.25 };
-        let q = Bowl { a: -0.5, d: 0.1 };
+        let p = Bowl::new(1.0, -0.25);
+        let q = Bowl::new(-0.5, 0.1);
         for k in 0..50 {
             let s = -0.7 + 0.03 * k as f64;
             let y = [s, 0.3, 0.2, s * 0.5];

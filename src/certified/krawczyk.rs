@@ -161,35 +161,13 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Scalar;
-
-    /// z = a·(u² + v²) + d.
-    struct Bowl {
-        a: f64,
-        d: f64,
-    }
-
-    impl ScalarSurface for Bowl {
-        fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3] {
-            let (o, z) = (T::one(), T::zero());
-            let two_a = T::from_f64(2.0 * self.a);
-            [
-                [
-                    u,
-                    v,
-                    T::from_f64(self.a) * (u.sqr() + v.sqr()) + T::from_f64(self.d),
-                ],
-                [o, z, two_a * u],
-                [z, o, two_a * v],
-            ]
-        }
-    }
+    use crate::certified::fixtures::Bowl;
 
     #[test]
     fn certified_box_contains_the_true_curve_point_and_is_tight() {
         // Circle of radius 0.5 in the plane z = 0 (P a bowl, Q the plane).
-        let p = Bowl { a: 1.0, d: -0.25 };
-        let q = Bowl { a: 0.0, d: 0.0 };
+        let p = Bowl::new(1.0, -0.25);
+        let q = Bowl::new(0.0, 0.0);
         for k in 0..40 {
             let th = 0.05 + 0.15 * k as f64;
             let (x, y) = (0.5 * th.cos(), 0.5 * th.sin());
@@ -218,16 +196,16 @@ mod tests {
 
     #[test]
     fn box_off_the_curve_is_not_proven() {
-        let p = Bowl { a: 1.0, d: -0.25 };
-        let q = Bowl { a: 0.0, d: 0.0 };
+        let p = Bowl::new(1.0, -0.25);
+        let q = Bowl::new(0.0, 0.0);
         assert!(certify_point(&p, &q, [0.0, 0.0, 0.0, 0.0], 0, 1e-3).is_none());
     }
 
     #[test]
     fn tangential_point_is_not_proven() {
         // Bowl z = u² + v² touches the plane z = 0 at the origin only.
-        let p = Bowl { a: 1.0, d: 0.0 };
-        let q = Bowl { a: 0.0, d: 0.0 };
+        let p = Bowl::new(1.0, 0.0);
+        let q = Bowl::new(0.0, 0.0);
         assert!(certify_point(&p, &q, [0.0, 0.0, 0.0, 0.0], 0, 1e-3).is_none());
     }
 }

@@ -2,3 +2,7 @@
 
 pub mod field;
 pub mod krawczyk;
+pub mod tangential;
+
+#[cfg(test)]
+pub(crate) mod fixtures;
