@@ -1,5 +1,6 @@
 //! Geometry: surfaces, rational Bézier patches, power-basis conversion, rigorous bounds.
 
+pub mod analytic;
 pub mod surface;
 
 pub use surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};
