@@ -13,7 +13,9 @@
 //!   start tangent (within 60°), and the accumulated turning of the tangent in P's parameter domain
 //!   is within `rotation_tolerance` of `2πk`, `k ≠ 0` (the rotation index of a loop). A pass near
 //!   the start on another part of the curve (close branches, a branch point) fails the tangent or
-//!   the turning test and does not stop the march.
+//!   the turning test and does not stop the march. The parameters must also return (within twice
+//!   the local parameter speed times the distance), so a loop in model space that is open in a
+//!   parameter domain (a periodic surface cut at a seam) is not closed.
 //! - **Singular point**: `|N^P × N^Q| < singular_sine |N^P||N^Q|`. Below `watch_sine` the step is
 //!   shrunk in proportion to the sine, so the marcher creeps up to a singular point instead of
 //!   stepping across it.
@@ -107,6 +109,11 @@ fn signed_angle(a: [f64; 2], b: [f64; 2]) -> f64 {
     } else {
         cross.atan2(dot)
     }
+}
+
+/// Euclidean distance of two parameter 4-tuples.
+fn param_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
 }
 
 /// Whether `turning` is within `tol` of `2πk` for an integer `k ≠ 0`.
@@ -277,7 +284,13 @@ where
             let to_start = start.frame.xyz - cur.frame.xyz;
             let dist = to_start.norm();
             let turn_to_start = signed_angle(cur.frame.tangent_p, start.frame.tangent_p);
+            // The parameters must come back too (not only the model point): the start's
+            // parameters are at most twice as far as the local parameter speed allows.
+            let param_speed = prev.as_ref().map_or(f64::INFINITY, |pv| {
+                param_distance(&pv.x, &cur.x) / (pv.frame.xyz - cur.frame.xyz).norm()
+            });
             if dist <= 1.5 * pred.arc
+                && param_distance(&start.x, &cur.x) <= 2.0 * param_speed * dist + 1e-9
                 && to_start.dot(&cur.frame.tangent) > 0.5 * dist
                 && cur.frame.tangent.dot(&start.frame.tangent) > 0.5
                 && is_full_turn(half.turning + turn_to_start, opts.rotation_tolerance)
