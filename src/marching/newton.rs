@@ -32,13 +32,17 @@ pub enum Constraint {
 pub struct Refined {
     /// `(σ, t, u, v)` on the intersection.
     pub x: [f64; 4],
-    /// Corrections applied (at least 1: the guess itself is never accepted unchecked).
+    /// Corrections applied, the last one being at most `tol` long (so at least 1).
     pub iterations: usize,
     /// `|P(σ,t) − Q(u,v)|` at the end.
     pub residual: f64,
 }
 
 /// Refines `guess` onto `P = Q` under `constraint`.
+///
+/// Iterations count corrections until one moves the point by at most `tol` (model units) and
+/// leaves `|P − Q| ≤ tol` (the usual "correction below tolerance" rule: a prediction already
+/// within `tol` takes one iteration, the confirming one).
 ///
 /// Guarantees on `Ok`: `|P − Q| ≤ tol` and the constraint residual `≤ tol` at the returned point,
 /// reached within `max_iter` corrections. Fails with [`Error::NewtonFailed`] (never panics) when the
@@ -100,14 +104,17 @@ where
         if !x.iter().all(|c| c.is_finite()) {
             return Err(fail(it, f64::NAN, &x));
         }
-        // Check the corrected point.
+        // Check the corrected point: converged when the correction itself was at most `tol`
+        // in model space and the corrected point satisfies the equations within `tol`.
         let pp = p.point(x[0], x[1]);
-        residual = (pp - q.point(x[2], x[3])).norm();
+        let qq = q.point(x[2], x[3]);
+        let moved = (pp - dp.p).norm().max((qq - dq.p).norm());
+        residual = (pp - qq).norm();
         let c_res = match constraint {
             Constraint::Plane { point, normal } => normal.dot(&(pp - point)).abs(),
             Constraint::Fixed { index, value } => (x[index] - value).abs(),
         };
-        if residual <= tol && c_res <= tol.max(1e-15) {
+        if moved <= tol && residual <= tol && c_res <= tol.max(1e-15) {
             return Ok(Refined {
                 x: [x[0], x[1], x[2], x[3]],
                 iterations: it,

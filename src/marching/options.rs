@@ -21,14 +21,16 @@ pub struct MarchOptions {
     pub method: StepMethod,
     /// At most this many points per branch (the start counts); reaching it ends with `PointLimit`.
     pub max_points: usize,
-    /// Newton stops when `|P − Q|` and the constraint residual are below this (model units).
+    /// Newton stops when a correction moves the point by at most this and `|P − Q|` and the
+    /// constraint residual are below it (model units).
     pub tolerance: f64,
     /// Newton gives up after this many corrections.
     pub max_newton_iterations: usize,
     /// A point is singular when `|N^P × N^Q| < singular_sine · |N^P| |N^Q|`.
     pub singular_sine: f64,
-    /// Below this sine of the normal angle the step is shrunk in proportion, so that the marcher
-    /// approaches a singular point gradually instead of jumping over it.
+    /// Below this sine of the normal angle, while it decreases, the step is limited to half the
+    /// distance at which it would reach zero, so the marcher approaches a singular point
+    /// geometrically instead of jumping over it.
     pub watch_sine: f64,
     /// Consecutive unit tangents with `|t₀ · t₁| > 1 − parallel_tolerance` are treated as
     /// parallel and a tangent step replaces the circular one.
@@ -50,7 +52,7 @@ impl Default for MarchOptions {
             max_points: 20_000,
             tolerance: 1e-10,
             max_newton_iterations: 12,
-            singular_sine: 1e-3,
+            singular_sine: 1e-6,
             watch_sine: 0.05,
             parallel_tolerance: 1e-9,
             first_step_fraction: 0.01,

@@ -17,8 +17,9 @@
 //!   the local parameter speed times the distance), so a loop in model space that is open in a
 //!   parameter domain (a periodic surface cut at a seam) is not closed.
 //! - **Singular point**: `|N^P × N^Q| < singular_sine |N^P||N^Q|`. Below `watch_sine` the step is
-//!   shrunk in proportion to the sine, so the marcher creeps up to a singular point instead of
-//!   stepping across it.
+//!   limited (while the sine decreases) to half the distance at which the sine would vanish at its
+//!   current rate, so the marcher approaches a singular point geometrically instead of stepping
+//!   across it.
 //! - **Point limit** and **Newton failure** end the half with that reason.
 
 use super::circle_step::circular_step;
@@ -113,7 +114,11 @@ fn signed_angle(a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// Euclidean distance of two parameter 4-tuples.
 fn param_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// Whether `turning` is within `tol` of `2πk` for an integer `k ≠ 0`.
@@ -140,18 +145,30 @@ where
     }
 }
 
-/// First-order parameter guesses for the model-space target: `[S_u S_v] Δ = target − S` on each
-/// surface, added to the current parameters.
+/// Parameter guesses for the model-space target: on each surface, the target is inverted by
+/// three Gauss–Newton steps `[S_u S_v] Δ = target − S` from the current parameters (a foot-point
+/// projection, so the guesses keep the second-order accuracy of a circular prediction instead of
+/// adding the O(h²) error of a single linearisation).
 fn predict_parameters<S1, S2>(p: &S1, q: &S2, x: &[f64; 4], target: &Vec3) -> [f64; 4]
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
-    let dp = p.derivs(x[0], x[1]);
-    let dq = q.derivs(x[2], x[3]);
-    let a = parameter_direction(&dp, &(target - dp.p));
-    let b = parameter_direction(&dq, &(target - dq.p));
-    [x[0] + a[0], x[1] + a[1], x[2] + b[0], x[3] + b[1]]
+    let invert = |s: &dyn Fn(f64, f64) -> crate::geometry::SurfaceDerivs, mut a: [f64; 2]| {
+        for _ in 0..3 {
+            let d = s(a[0], a[1]);
+            let delta = parameter_direction(&d, &(target - d.p));
+            a = [a[0] + delta[0], a[1] + delta[1]];
+        }
+        a
+    };
+    let a = invert(&|u, v| p.derivs(u, v), [x[0], x[1]]);
+    let b = invert(&|u, v| q.derivs(u, v), [x[2], x[3]]);
+    if a.iter().chain(&b).all(|c| c.is_finite()) {
+        [a[0], a[1], b[0], b[1]]
+    } else {
+        *x
+    }
 }
 
 fn predict(prev: Option<&Node>, cur: &Node, opts: &MarchOptions, step: f64) -> StepPrediction {
@@ -276,8 +293,16 @@ where
             half.end = EndReason::PointLimit;
             return half;
         }
-        let scale = (cur.frame.sine / opts.watch_sine).min(1.0);
-        let mut step = opts.step * scale;
+        // Near a singular point (sine small and decreasing) aim at most half way to where the
+        // sine would vanish at its current rate of decrease: a geometric approach.
+        let mut step = opts.step;
+        if let Some(pv) = prev.as_ref() {
+            let chord = (cur.frame.xyz - pv.frame.xyz).norm();
+            let rate = (pv.frame.sine - cur.frame.sine) / chord;
+            if cur.frame.sine < opts.watch_sine && rate > 0.0 {
+                step = step.min(0.5 * cur.frame.sine / rate);
+            }
+        }
         let pred = predict(prev.as_ref(), &cur, opts, step);
 
         if closure && half.nodes.len() >= 2 {
