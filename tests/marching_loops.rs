@@ -1,0 +1,136 @@
+//! Seed 004 (Wu, Aléssio, Costa): closed loops traced completely and exactly once.
+//! S31/S32: two disjoint loops from the paper's start points. S11/S12: a loop through a branch
+//! point and a tangential point; the marcher stops at the first singular point on each side and
+//! reports it (crossing branch points is left to a later stage).
+
+use nalgebra::Vector3;
+use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
+use ssitrace::geometry::Domain;
+use ssitrace::intersection::{BranchStatus, EndReason, EventKind};
+use ssitrace::marching::{trace_branch, MarchOptions, StepMethod, TracedBranch};
+use std::f64::consts::PI;
+
+type V = Vector3<f64>;
+
+/// Asserts a closed loop traced exactly once: the last point is the start, the turning of the
+/// parameter tangent is ±2π, and no point between the ends comes back near the start (closer
+/// than half its arc distance from it along the loop).
+fn assert_closed_once(b: &TracedBranch, label: &str) {
+    let pts = &b.branch.points;
+    let n = pts.len();
+    assert_eq!(b.branch.status, BranchStatus::Closed, "{label}: {:?}", b.branch.ends);
+    assert_eq!(pts[0], pts[n - 1], "{label}: does not end exactly at its start");
+    assert!((b.turning.abs() - 2.0 * PI).abs() < 0.05, "{label}: turning {}", b.turning);
+    let arc: Vec<f64> = pts
+        .windows(2)
+        .scan(0.0, |s, w| {
+            *s += (V::from(w[1].xyz) - V::from(w[0].xyz)).norm();
+            Some(*s)
+        })
+        .collect();
+    let total = arc[n - 2];
+    let p0 = V::from(pts[0].xyz);
+    for i in 1..n - 1 {
+        let along = arc[i - 1].min(total - arc[i - 1]);
+        assert!(
+            (V::from(pts[i].xyz) - p0).norm() > 0.5 * along,
+            "{label}: point {i} of {n} revisits the start region"
+        );
+    }
+    // Each parameter point appears once: no two non-adjacent points (other than the closing
+    // copy) coincide in P's domain.
+    for i in 0..n - 1 {
+        for j in i + 2..n - 1 {
+            let d = ((pts[i].p[0] - pts[j].p[0]).powi(2) + (pts[i].p[1] - pts[j].p[1]).powi(2)).sqrt();
+            assert!(d > 1e-6 || (i == 0 && j == n - 2), "{label}: points {i} and {j} coincide");
+        }
+    }
+}
+
+#[test]
+fn s31_s32_two_disjoint_loops_close_exactly_once() {
+    let s31 = AnalyticSurface::new(Domain::new(-1.5, 1.5, -1.5, 1.5), |u: Jet2, v: Jet2| {
+        [u, v, 3.0 * (u * u + v * v)]
+    });
+    let s32 = AnalyticSurface::new(Domain::new(-1.5, 1.5, -1.5, 6.0), |s: Jet2, w: Jet2| {
+        [s, 5.0 * (s * s + w * w) - 1.0, w + 1.0]
+    });
+    // On the curve: y = 5(x² + (z − 1)²) − 1 with z = 3(x² + y²).
+    let on = |x: &[f64; 3]| {
+        let z = 3.0 * (x[0] * x[0] + x[1] * x[1]);
+        (x[1] - 5.0 * (x[0] * x[0] + (z - 1.0).powi(2)) + 1.0).abs().max((x[2] - z).abs())
+    };
+    let mut loops = Vec::new();
+    for (u, v) in [(-0.32, -0.45), (-0.02, 0.73)] {
+        let start = [u, v, u, 3.0 * (u * u + v * v) - 1.0];
+        for method in [StepMethod::Circular, StepMethod::Dqoc, StepMethod::Tangent] {
+            let opts = MarchOptions {
+                step: 0.1,
+                method,
+                ..MarchOptions::default()
+            };
+            let b = trace_branch(&s31, &s32, start, &opts).expect("the paper's start refines");
+            let worst = b.branch.points.iter().map(|p| on(&p.xyz)).fold(0.0, f64::max);
+            println!(
+                "S31/S32 from ({u:+.2}, {v:+.2}) {method:?}: {} points, status {:?}, turning {:+.4}, max off-curve {worst:.1e}",
+                b.branch.points.len(),
+                b.branch.status,
+                b.turning
+            );
+            assert!(worst < 1e-9);
+            assert_closed_once(&b, &format!("({u},{v}) {method:?}"));
+            if method == StepMethod::Circular {
+                loops.push(b);
+            }
+        }
+    }
+    // The two loops are different curves.
+    let dmin = loops[0]
+        .branch
+        .points
+        .iter()
+        .flat_map(|a| loops[1].branch.points.iter().map(move |b| (V::from(a.xyz) - V::from(b.xyz)).norm()))
+        .fold(f64::INFINITY, f64::min);
+    println!("min distance between the two loops: {dmin:.4}");
+    assert!(dmin > 0.05);
+}
+
+#[test]
+fn s11_s12_loop_through_branch_and_tangential_points_stops_and_reports() {
+    // The curve lies in |v − 1| ≤ 3/(2√2) (discriminant of h as a quadratic in u²), so this domain
+    // contains all of it.
+    let d = Domain::new(-2.0, 2.0, -0.5, 2.5);
+    let s11 = AnalyticSurface::new(d, |u: Jet2, v: Jet2| {
+        [u, v, 0.2 * u.powi(4) + 0.1 * v.powi(4)]
+    });
+    let s12 = AnalyticSurface::new(d, |s: Jet2, w: Jet2| {
+        [s, w, 0.3 * s * s * w - 0.1 * w * w + 0.2 * w.powi(3)]
+    });
+    // Singular points of h = 0.2u⁴ + 0.1v⁴ − 0.3u²v + 0.1v² − 0.2v³ = 0 (gradient zero):
+    // the tangential point (0, 0) and the branch point (0, 1).
+    let singular = [V::new(0.0, 0.0, 0.0), V::new(0.0, 1.0, 0.1)];
+    let opts = MarchOptions {
+        step: 0.1,
+        ..MarchOptions::default()
+    };
+    let b = trace_branch(&s11, &s12, [1.20, 0.97, 1.20, 0.97], &opts).expect("refines");
+    let sing: Vec<[f64; 3]> = b
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::Singular)
+        .map(|e| e.xyz)
+        .collect();
+    println!(
+        "S11/S12 from (1.20, 0.97): {} points, ends {:?}, singular events {sing:?}",
+        b.branch.points.len(),
+        b.branch.ends
+    );
+    assert_eq!(b.branch.ends, [EndReason::Singular, EndReason::Singular]);
+    assert_eq!(sing.len(), 2);
+    for e in &sing {
+        let dist = singular.iter().map(|s| (V::from(*e) - s).norm()).fold(f64::INFINITY, f64::min);
+        assert!(dist < 0.01, "event {e:?} is not at a singular point");
+    }
+    // The two ends are different singular points: the branch runs from one to the other.
+    assert!((V::from(sing[0]) - V::from(sing[1])).norm() > 0.5);
+}
