@@ -13,9 +13,14 @@ use ssitrace::marching::tangent_step::tangent_step;
 use ssitrace::marching::{trace_branch, MarchOptions, StepMethod};
 
 type V = Vector3<f64>;
+/// A curve with its derivative.
+type Curve = fn(f64) -> (V, V);
 
 fn ex1(t: f64) -> (V, V) {
-    (V::new(t, t * t, t * t * t), V::new(1.0, 2.0 * t, 3.0 * t * t))
+    (
+        V::new(t, t * t, t * t * t),
+        V::new(1.0, 2.0 * t, 3.0 * t * t),
+    )
 }
 fn ex2(t: f64) -> (V, V) {
     (
@@ -32,7 +37,7 @@ fn ex3(t: f64) -> (V, V) {
 
 /// Distance from `a` to the curve, minimising over `t ∈ [lo, hi]` (dense sampling, then golden
 /// section around the best sample).
-fn dist_to_curve(curve: fn(f64) -> (V, V), a: &V, lo: f64, hi: f64) -> f64 {
+fn dist_to_curve(curve: Curve, a: &V, lo: f64, hi: f64) -> f64 {
     let d = |t: f64| (curve(t).0 - a).norm();
     let n = 2000;
     let h = (hi - lo) / n as f64;
@@ -55,12 +60,14 @@ fn dist_to_curve(curve: fn(f64) -> (V, V), a: &V, lo: f64, hi: f64) -> f64 {
 
 #[test]
 fn dqoc_agrees_with_circular_step_and_tracks_the_curves() {
-    let examples: [(&str, fn(f64) -> (V, V), [f64; 3]); 3] = [
+    let examples: [(&str, Curve, [f64; 3]); 3] = [
         ("1: (t,t²,t³)", ex1, [-0.8, 0.1, 0.7]),
         ("2: (t,t²,t²+t⁴)", ex2, [-0.6, 0.2, 0.9]),
         ("3: (cos t,sin t,cos 2t)", ex3, [0.3, 1.5, 2.6]),
     ];
-    println!("example                   t_k    L    |circ−dqoc|   dist circ   dist dqoc   dist tangent");
+    println!(
+        "example                   t_k    L    |circ−dqoc|   dist circ   dist dqoc   dist tangent"
+    );
     for (name, curve, ts) in examples {
         for &tk in &ts {
             for &l in &[0.05, 0.1] {
@@ -84,7 +91,10 @@ fn dqoc_agrees_with_circular_step_and_tracks_the_curves() {
                     "{name:<24} {tk:+.2}  {l:.2}   {diff:.1e}     {dc:.2e}    {dq:.2e}    {dtan:.2e}"
                 );
                 // The circle follows the curve to second order: much closer than the tangent.
-                assert!(dc < 0.5 * dtan, "{name} t={tk} L={l}: circle {dc} vs tangent {dtan}");
+                assert!(
+                    dc < 0.5 * dtan,
+                    "{name} t={tk} L={l}: circle {dc} vs tangent {dtan}"
+                );
             }
         }
     }
@@ -112,9 +122,8 @@ fn marching_on_the_example_surfaces_with_both_methods() {
     });
 
     let on1 = |x: &[f64; 3]| ((x[1] - x[0] * x[0]).abs()).max((x[2] - x[0].powi(3)).abs());
-    let on2 = |x: &[f64; 3]| {
-        ((x[1] - x[0] * x[0]).abs()).max((x[2] - x[0] * x[0] - x[0].powi(4)).abs())
-    };
+    let on2 =
+        |x: &[f64; 3]| ((x[1] - x[0] * x[0]).abs()).max((x[2] - x[0] * x[0] - x[0].powi(4)).abs());
     let on3 = |x: &[f64; 3]| {
         ((x[0] * x[0] + x[1] * x[1] - 1.0).abs()).max((x[2] - x[0] * x[0] + x[1] * x[1]).abs())
     };
@@ -138,7 +147,11 @@ fn marching_on_the_example_surfaces_with_both_methods() {
             b3.branch.ends
         );
         let worst = |b: &ssitrace::marching::TracedBranch, on: &dyn Fn(&[f64; 3]) -> f64| {
-            b.branch.points.iter().map(|c| on(&c.xyz)).fold(0.0, f64::max)
+            b.branch
+                .points
+                .iter()
+                .map(|c| on(&c.xyz))
+                .fold(0.0, f64::max)
         };
         assert!(worst(&b1, &on1) < 1e-9);
         assert!(worst(&b2, &on2) < 1e-9);
@@ -147,12 +160,23 @@ fn marching_on_the_example_surfaces_with_both_methods() {
         // both ends land exactly on it.
         assert_eq!(b3.branch.status, BranchStatus::Open);
         assert_eq!(b3.branch.ends, [EndReason::Boundary { surface: 0 }; 2]);
-        for end in [b3.branch.points.first().unwrap(), b3.branch.points.last().unwrap()] {
+        for end in [
+            b3.branch.points.first().unwrap(),
+            b3.branch.points.last().unwrap(),
+        ] {
             assert_eq!(end.p[0].abs(), pi);
         }
-        assert!(b2.branch.ends.iter().all(|e| matches!(e, EndReason::Boundary { .. })));
+        assert!(b2
+            .branch
+            .ends
+            .iter()
+            .all(|e| matches!(e, EndReason::Boundary { .. })));
         // Example 1 meets the line x = z = 0 at the origin (a singular point) on one side.
-        assert!(b1.branch.ends.contains(&EndReason::Singular), "{:?}", b1.branch.ends);
+        assert!(
+            b1.branch.ends.contains(&EndReason::Singular),
+            "{:?}",
+            b1.branch.ends
+        );
         let sing = b1
             .events
             .iter()
@@ -168,7 +192,10 @@ fn marching_on_the_example_surfaces_with_both_methods() {
             method: m,
             ..MarchOptions::default()
         };
-        trace_branch(&s3, &s4, [0.5, 0.25, 0.5, 0.3125], &o).unwrap().branch.points
+        trace_branch(&s3, &s4, [0.5, 0.25, 0.5, 0.3125], &o)
+            .unwrap()
+            .branch
+            .points
     };
     let (pc, pd) = (run(StepMethod::Circular), run(StepMethod::Dqoc));
     assert_eq!(pc.len(), pd.len());

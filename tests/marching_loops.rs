@@ -18,9 +18,22 @@ type V = Vector3<f64>;
 fn assert_closed_once(b: &TracedBranch, label: &str) {
     let pts = &b.branch.points;
     let n = pts.len();
-    assert_eq!(b.branch.status, BranchStatus::Closed, "{label}: {:?}", b.branch.ends);
-    assert_eq!(pts[0], pts[n - 1], "{label}: does not end exactly at its start");
-    assert!((b.turning.abs() - 2.0 * PI).abs() < 0.05, "{label}: turning {}", b.turning);
+    assert_eq!(
+        b.branch.status,
+        BranchStatus::Closed,
+        "{label}: {:?}",
+        b.branch.ends
+    );
+    assert_eq!(
+        pts[0],
+        pts[n - 1],
+        "{label}: does not end exactly at its start"
+    );
+    assert!(
+        (b.turning.abs() - 2.0 * PI).abs() < 0.05,
+        "{label}: turning {}",
+        b.turning
+    );
     let arc: Vec<f64> = pts
         .windows(2)
         .scan(0.0, |s, w| {
@@ -41,8 +54,12 @@ fn assert_closed_once(b: &TracedBranch, label: &str) {
     // copy) coincide in P's domain.
     for i in 0..n - 1 {
         for j in i + 2..n - 1 {
-            let d = ((pts[i].p[0] - pts[j].p[0]).powi(2) + (pts[i].p[1] - pts[j].p[1]).powi(2)).sqrt();
-            assert!(d > 1e-6 || (i == 0 && j == n - 2), "{label}: points {i} and {j} coincide");
+            let d =
+                ((pts[i].p[0] - pts[j].p[0]).powi(2) + (pts[i].p[1] - pts[j].p[1]).powi(2)).sqrt();
+            assert!(
+                d > 1e-6 || (i == 0 && j == n - 2),
+                "{label}: points {i} and {j} coincide"
+            );
         }
     }
 }
@@ -58,7 +75,9 @@ fn s31_s32_two_disjoint_loops_close_exactly_once() {
     // On the curve: y = 5(x² + (z − 1)²) − 1 with z = 3(x² + y²).
     let on = |x: &[f64; 3]| {
         let z = 3.0 * (x[0] * x[0] + x[1] * x[1]);
-        (x[1] - 5.0 * (x[0] * x[0] + (z - 1.0).powi(2)) + 1.0).abs().max((x[2] - z).abs())
+        (x[1] - 5.0 * (x[0] * x[0] + (z - 1.0).powi(2)) + 1.0)
+            .abs()
+            .max((x[2] - z).abs())
     };
     let mut loops = Vec::new();
     for (u, v) in [(-0.32, -0.45), (-0.02, 0.73)] {
@@ -70,7 +89,12 @@ fn s31_s32_two_disjoint_loops_close_exactly_once() {
                 ..MarchOptions::default()
             };
             let b = trace_branch(&s31, &s32, start, &opts).expect("the paper's start refines");
-            let worst = b.branch.points.iter().map(|p| on(&p.xyz)).fold(0.0, f64::max);
+            let worst = b
+                .branch
+                .points
+                .iter()
+                .map(|p| on(&p.xyz))
+                .fold(0.0, f64::max);
             println!(
                 "S31/S32 from ({u:+.2}, {v:+.2}) {method:?}: {} points, status {:?}, turning {:+.4}, max off-curve {worst:.1e}",
                 b.branch.points.len(),
@@ -89,7 +113,13 @@ fn s31_s32_two_disjoint_loops_close_exactly_once() {
         .branch
         .points
         .iter()
-        .flat_map(|a| loops[1].branch.points.iter().map(move |b| (V::from(a.xyz) - V::from(b.xyz)).norm()))
+        .flat_map(|a| {
+            loops[1]
+                .branch
+                .points
+                .iter()
+                .map(move |b| (V::from(a.xyz) - V::from(b.xyz)).norm())
+        })
         .fold(f64::INFINITY, f64::min);
     println!("min distance between the two loops: {dmin:.4}");
     assert!(dmin > 0.05);
@@ -128,7 +158,10 @@ fn s11_s12_loop_through_branch_and_tangential_points_stops_and_reports() {
     assert_eq!(b.branch.ends, [EndReason::Singular, EndReason::Singular]);
     assert_eq!(sing.len(), 2);
     for e in &sing {
-        let dist = singular.iter().map(|s| (V::from(*e) - s).norm()).fold(f64::INFINITY, f64::min);
+        let dist = singular
+            .iter()
+            .map(|s| (V::from(*e) - s).norm())
+            .fold(f64::INFINITY, f64::min);
         assert!(dist < 0.01, "event {e:?} is not at a singular point");
     }
     // The two ends are different singular points: the branch runs from one to the other.

@@ -27,7 +27,11 @@ fn f_curve(s: Jet2) -> [Jet2; 3] {
 
 fn g_curve(s: Jet2) -> [Jet2; 3] {
     let (p, m) = (1.0 + s, 1.0 - s);
-    [p * p.sqrt() / 3.0, m * m.sqrt() / 3.0, s * (1.0 / 2f64.sqrt())]
+    [
+        p * p.sqrt() / 3.0,
+        m * m.sqrt() / 3.0,
+        s * (1.0 / 2f64.sqrt()),
+    ]
 }
 
 fn h_curve(s: Jet2) -> [Jet2; 3] {
@@ -56,10 +60,18 @@ fn distances(curve: fn(Jet2) -> [Jet2; 3], s0: f64, l: f64) -> (f64, f64, f64) {
 
 #[test]
 fn curves_are_arc_length_parametrised() {
-    for (name, c) in [("F", f_curve as fn(Jet2) -> [Jet2; 3]), ("G", g_curve), ("H", h_curve)] {
+    for (name, c) in [
+        ("F", f_curve as fn(Jet2) -> [Jet2; 3]),
+        ("G", g_curve),
+        ("H", h_curve),
+    ] {
         for s in [-0.6, -0.5, -0.3, 0.0, 0.4, 0.6] {
             let (_, t, _) = eval(c, s);
-            assert!((t.norm() - 1.0).abs() < 1e-14, "{name}({s}): |α'| = {}", t.norm());
+            assert!(
+                (t.norm() - 1.0).abs() < 1e-14,
+                "{name}({s}): |α'| = {}",
+                t.norm()
+            );
         }
     }
 }
@@ -81,7 +93,9 @@ fn table2_parabola_and_osculating_circle_errors() {
         ("H", 0.5, 0.05, 0.000013, 0.000012),
         ("H", 0.5, 0.10, 0.000105, 0.000092),
     ];
-    println!("curve   s0     L   |  d_p ours   d_p paper |  d_g ours   d_g paper |  d_c (approx circle)");
+    println!(
+        "curve   s0     L   |  d_p ours   d_p paper |  d_g ours   d_g paper |  d_c (approx circle)"
+    );
     let mut mismatches = Vec::new();
     for (name, s0, l, dp_paper, dg_paper) in printed {
         let c: fn(Jet2) -> [Jet2; 3] = match name {
@@ -104,7 +118,10 @@ fn table2_parabola_and_osculating_circle_errors() {
         assert!(dg < dp, "{name} {s0} {l}: d_g {dg} !< d_p {dp}");
         // The approximate circle (from the point one step back) has an error of the same order
         // L³ as the parabola's, a small factor larger (it only tends to the osculating circle).
-        assert!(dc < 4.0 * dp, "{name} {s0} {l}: approximate circle off by {dc}");
+        assert!(
+            dc < 4.0 * dp,
+            "{name} {s0} {l}: approximate circle off by {dc}"
+        );
     }
     println!("mismatches after rounding to 6 decimals: {mismatches:?}");
     assert!(mismatches.is_empty());

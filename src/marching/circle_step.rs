@@ -45,7 +45,7 @@ pub fn approximate_circle(
     let radius = cq.norm();
     let axis = cp.cross(&cq);
     let an = axis.norm();
-    if !(an > 1e-14 * cp.norm() * radius) || !radius.is_finite() {
+    if an.is_nan() || an <= 1e-14 * cp.norm() * radius || !radius.is_finite() {
         return None;
     }
     Some(ApproxCircle {
