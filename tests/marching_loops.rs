@@ -167,3 +167,67 @@ fn s11_s12_loop_through_branch_and_tangential_points_stops_and_reports() {
     // The two ends are different singular points: the branch runs from one to the other.
     assert!((V::from(sing[0]) - V::from(sing[1])).norm() > 0.5);
 }
+
+/// A thin ellipse u²/0.5² + v²/0.012² = 1 (graph z = that − 1 against z = 0): marching along the
+/// lower side passes the start (on the upper side) at distance 0.024 < 2L/3 = 0.033, where the
+/// distance-only rule of seed 000 would stop after half a loop. The tangent and turning tests
+/// reject that pass; the loop closes once, over its full perimeter.
+#[test]
+fn thin_ellipse_is_not_closed_by_the_near_pass() {
+    let (a, b) = (0.5, 0.012);
+    let d = Domain::new(-1.0, 1.0, -1.0, 1.0);
+    let graph = AnalyticSurface::new(d, move |u: Jet2, v: Jet2| {
+        [u, v, u * u / (a * a) + v * v / (b * b) - 1.0]
+    });
+    let plane = AnalyticSurface::new(d, |r: Jet2, s: Jet2| [r, s, Jet2::constant(0.0)]);
+    let l = 0.05;
+    for method in [StepMethod::Circular, StepMethod::Dqoc, StepMethod::Tangent] {
+        let opts = MarchOptions {
+            step: l,
+            method,
+            ..MarchOptions::default()
+        };
+        let tr = trace_branch(&graph, &plane, [0.0, b, 0.0, b], &opts).unwrap();
+        let pts = &tr.branch.points;
+        let arc: f64 = pts
+            .windows(2)
+            .map(|w| (V::from(w[1].xyz) - V::from(w[0].xyz)).norm())
+            .sum();
+        // Ramanujan's perimeter.
+        let h = ((a - b) / (a + b)).powi(2);
+        let perimeter = PI * (a + b) * (1.0 + 3.0 * h / (10.0 + (4.0 - 3.0 * h).sqrt()));
+        // The naive rule would have fired here: a point within 2L/3 of the start, mid-loop.
+        let naive = pts[1..pts.len() - 1]
+            .iter()
+            .enumerate()
+            .skip(5)
+            .find(|(_, p)| (V::from(p.xyz) - V::from(pts[0].xyz)).norm() < 2.0 * l / 3.0)
+            .map(|(i, _)| i + 1);
+        println!(
+            "thin ellipse {method:?}: {} points, status {:?}, arc {arc:.5} (perimeter {perimeter:.5}), turning {:+.4}, distance-only rule would stop at point {naive:?}",
+            pts.len(),
+            tr.branch.status,
+            tr.turning
+        );
+        if method == StepMethod::Tangent {
+            // The fixed-length tangent step cannot turn round a tip of radius b²/a = 3·10⁻⁴
+            // (even halved three times); the failure is reported, not hidden or mis-closed.
+            println!("   tangent steps end {:?}", tr.branch.ends);
+            assert!(tr.branch.ends.contains(&EndReason::NewtonFailed));
+            assert_eq!(tr.branch.status, BranchStatus::Incomplete);
+            continue;
+        }
+        assert!(naive.is_some(), "the test does not exercise a near pass");
+        assert_closed_once_loosely(&tr);
+        assert!((arc - perimeter).abs() < 0.01 * perimeter);
+    }
+}
+
+/// Closed, ends on its start, turning ±2π (the revisit check of `assert_closed_once` does not
+/// apply: the two sides of a thin ellipse are legitimately close).
+fn assert_closed_once_loosely(b: &TracedBranch) {
+    let pts = &b.branch.points;
+    assert_eq!(b.branch.status, BranchStatus::Closed);
+    assert_eq!(pts[0], pts[pts.len() - 1]);
+    assert!((b.turning.abs() - 2.0 * PI).abs() < 0.05, "turning {}", b.turning);
+}
