@@ -229,5 +229,9 @@ fn assert_closed_once_loosely(b: &TracedBranch) {
     let pts = &b.branch.points;
     assert_eq!(b.branch.status, BranchStatus::Closed);
     assert_eq!(pts[0], pts[pts.len() - 1]);
-    assert!((b.turning.abs() - 2.0 * PI).abs() < 0.05, "turning {}", b.turning);
+    assert!(
+        (b.turning.abs() - 2.0 * PI).abs() < 0.05,
+        "turning {}",
+        b.turning
+    );
 }

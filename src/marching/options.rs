@@ -38,7 +38,7 @@ pub struct MarchOptions {
     /// The first step of each half-branch is `first_step_fraction · L` along the tangent.
     pub first_step_fraction: f64,
     /// Closing a loop needs `|Σ turning − 2πk| < rotation_tolerance` for an integer `k ≠ 0`
-    /// (turning of the tangent in the parameter domain of P, radians).
+    /// (turning of the tangent in the parameter domain of P or of Q, radians).
     pub rotation_tolerance: f64,
     /// Parameter tolerance for "on the domain boundary" / "inside the domain".
     pub domain_tolerance: f64,

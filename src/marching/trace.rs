@@ -10,8 +10,9 @@
 //! - **Closed loop**: the start point is taken as the next point (the last step is shortened or
 //!   stretched to land exactly on it) only when all of these hold: it is within 1.5 predicted steps,
 //!   it lies ahead (the chord to it is within 60° of the tangent), the tangent agrees with the
-//!   start tangent (within 60°), and the accumulated turning of the tangent in P's parameter domain
-//!   is within `rotation_tolerance` of `2πk`, `k ≠ 0` (the rotation index of a loop). A pass near
+//!   start tangent (within 60°), and the accumulated turning of the tangent in P's or in Q's
+//!   parameter domain is within `rotation_tolerance` of `2πk`, `k ≠ 0` (the rotation index of a
+//!   loop; either domain suffices, so a degenerate parametrisation of one surface does no harm). A pass near
 //!   the start on another part of the curve (close branches, a branch point) fails the tangent or
 //!   the turning test and does not stop the march. The parameters must also return (within twice
 //!   the local parameter speed times the distance), so a loop in model space that is open in a
@@ -59,6 +60,8 @@ pub struct TracedBranch {
     pub events: Vec<Event>,
     /// Total signed turning (radians) of the tangent in P's parameter domain along the branch.
     pub turning: f64,
+    /// The same in Q's parameter domain.
+    pub turning_q: f64,
     /// Counts.
     pub stats: MarchStats,
 }
@@ -74,7 +77,8 @@ struct Half {
     nodes: Vec<Node>,
     end: EndReason,
     events: Vec<Event>,
-    turning: f64,
+    /// Turning in P's and in Q's parameter domain.
+    turning: [f64; 2],
     retried: usize,
 }
 
@@ -119,6 +123,19 @@ fn param_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
         .map(|(x, y)| (x - y) * (x - y))
         .sum::<f64>()
         .sqrt()
+}
+
+/// Turning of the parameter tangents from frame `a` to frame `b`, in P's and Q's domains.
+fn turn(a: &CurveFrame, b: &CurveFrame) -> [f64; 2] {
+    [
+        signed_angle(a.tangent_p, b.tangent_p),
+        signed_angle(a.tangent_q, b.tangent_q),
+    ]
+}
+
+fn add_turn(acc: &mut [f64; 2], t: [f64; 2]) {
+    acc[0] += t[0];
+    acc[1] += t[1];
 }
 
 /// Whether `turning` is within `tol` of `2πk` for an integer `k ≠ 0`.
@@ -283,7 +300,7 @@ where
         nodes: Vec::new(),
         end: EndReason::PointLimit,
         events: Vec::new(),
-        turning: 0.0,
+        turning: [0.0, 0.0],
         retried: 0,
     };
     let mut prev: Option<Node> = None;
@@ -308,7 +325,11 @@ where
         if closure && half.nodes.len() >= 2 {
             let to_start = start.frame.xyz - cur.frame.xyz;
             let dist = to_start.norm();
-            let turn_to_start = signed_angle(cur.frame.tangent_p, start.frame.tangent_p);
+            let turn_to_start = turn(&cur.frame, &start.frame);
+            let total = [
+                half.turning[0] + turn_to_start[0],
+                half.turning[1] + turn_to_start[1],
+            ];
             // The parameters must come back too (not only the model point): the start's
             // parameters are at most twice as far as the local parameter speed allows.
             let param_speed = prev.as_ref().map_or(f64::INFINITY, |pv| {
@@ -318,9 +339,10 @@ where
                 && param_distance(&start.x, &cur.x) <= 2.0 * param_speed * dist + 1e-9
                 && to_start.dot(&cur.frame.tangent) > 0.5 * dist
                 && cur.frame.tangent.dot(&start.frame.tangent) > 0.5
-                && is_full_turn(half.turning + turn_to_start, opts.rotation_tolerance)
+                && (is_full_turn(total[0], opts.rotation_tolerance)
+                    || is_full_turn(total[1], opts.rotation_tolerance))
             {
-                half.turning += turn_to_start;
+                half.turning = total;
                 let mut closing = *start;
                 closing.iterations = 0;
                 half.nodes.push(closing);
@@ -372,7 +394,7 @@ where
         if !inside(&r.x, &dp, &dq, opts.domain_tolerance) {
             match land_on_boundary(p, q, &cur, r.x, opts) {
                 Some((node, surface)) => {
-                    half.turning += signed_angle(cur.frame.tangent_p, node.frame.tangent_p);
+                    add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
                     half.events.push(make_event(EventKind::BoundaryEnd, &node));
                     half.nodes.push(node);
                     half.end = EndReason::Boundary { surface };
@@ -384,7 +406,7 @@ where
 
         let chord = p.point(r.x[0], r.x[1]) - cur.frame.xyz;
         let node = node_at(p, q, r.x, r.iterations, Some(chord));
-        half.turning += signed_angle(cur.frame.tangent_p, node.frame.tangent_p);
+        add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
         half.nodes.push(node);
         if node.frame.sine < opts.singular_sine {
             half.events.push(make_event(EventKind::Singular, &node));
@@ -573,7 +595,7 @@ where
 
     // Join: reversed backward half, start, forward half.
     let mut nodes: Vec<Node> = Vec::new();
-    let mut turning = 0.0;
+    let mut turning = [0.0, 0.0];
     let mut retried = 0;
     if let Some(b) = &back {
         for n in b.nodes.iter().rev() {
@@ -582,7 +604,7 @@ where
                 ..*n
             });
         }
-        turning -= b.turning;
+        turning = [turning[0] - b.turning[0], turning[1] - b.turning[1]];
         retried += b.retried;
         events.extend(b.events.iter().copied());
     }
@@ -590,7 +612,7 @@ where
         Some((st, f)) => {
             nodes.push(*st);
             nodes.extend(f.nodes.iter().copied());
-            turning += f.turning;
+            add_turn(&mut turning, f.turning);
             retried += f.retried;
             events.extend(f.events.iter().copied());
             f.end
@@ -629,7 +651,8 @@ where
             .map(|n| [n.frame.tangent.x, n.frame.tangent.y, n.frame.tangent.z])
             .collect(),
         events,
-        turning,
+        turning: turning[0],
+        turning_q: turning[1],
         stats: MarchStats {
             points: nodes.len(),
             newton_histogram: histogram,
