@@ -1,5 +1,6 @@
 //! Geometry: surfaces, rational Bézier patches, power-basis conversion, rigorous bounds.
 
+pub mod analytic;
 pub mod enclosing;
 pub mod surface;
 
