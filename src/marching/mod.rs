@@ -8,6 +8,7 @@
 
 pub mod circle_step;
 pub mod dqoc_step;
+pub mod intersect;
 pub mod newton;
 pub mod options;
 pub mod start_points;

@@ -1,0 +1,182 @@
+//! All branches of the intersection of two patches: start-point search, then one trace per branch.
+//!
+//! Boundary start points are traced first (they begin and end every open branch), then interior
+//! candidates (closed loops, and arcs cut off by singular points). A start point that lies on a
+//! branch already traced is skipped, so no branch is traced twice.
+
+use super::start_points::{find_start_points, SearchOptions, SearchReport, StartPoint};
+use super::{trace_branch, MarchOptions};
+use crate::geometry::{Domain, EnclosingSurface};
+use crate::intersection::{Branch, Event, Intersection};
+use std::time::Instant;
+
+/// Counts and timings of one [`intersect`] run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct IntersectStats {
+    /// Boundary start points found.
+    pub boundary_starts: usize,
+    /// Interior candidates found.
+    pub interior_candidates: usize,
+    /// Start points skipped because a traced branch already passes through them.
+    pub skipped_covered: usize,
+    /// Start points from which tracing failed (Newton could not refine them).
+    pub failed_starts: usize,
+    /// Leaf boxes of the search where Newton found no point (undecided regions).
+    pub undecided_leaves: usize,
+    /// The search ran out of its leaf budget.
+    pub search_truncated: bool,
+    /// Points over all branches.
+    pub points: usize,
+    /// Seconds spent in the start-point search.
+    pub search_seconds: f64,
+    /// Seconds spent marching.
+    pub march_seconds: f64,
+}
+
+/// The branches, events and statistics of one surface pair.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct IntersectOutcome {
+    /// Branches and events.
+    pub intersection: Intersection,
+    /// Counts and timings.
+    pub stats: IntersectStats,
+}
+
+/// Finds and traces every branch of `P ∩ Q` that the start-point search reaches.
+///
+/// Each branch is traced once: a start point closer to an already traced branch than a third of
+/// the step (in model space, and within 2 % of the domains in parameters) is skipped. Events of
+/// all branches are merged, duplicates (the same point reached from two sides) removed.
+pub fn intersect<P, Q>(
+    p: &P,
+    q: &Q,
+    march: &MarchOptions,
+    search: &SearchOptions,
+) -> IntersectOutcome
+where
+    P: EnclosingSurface,
+    Q: EnclosingSurface,
+{
+    let t0 = Instant::now();
+    let report: SearchReport = find_start_points(p, q, search);
+    let t1 = Instant::now();
+    let mut stats = IntersectStats {
+        boundary_starts: report.boundary.len(),
+        interior_candidates: report.interior.len(),
+        undecided_leaves: report.undecided,
+        search_truncated: report.truncated,
+        search_seconds: (t1 - t0).as_secs_f64(),
+        ..Default::default()
+    };
+    let scales = param_scales(p.domain(), q.domain());
+    let radius = march.step / 3.0;
+    let mut branches: Vec<Branch> = Vec::new();
+    let mut events: Vec<Event> = Vec::new();
+    let starts: Vec<StartPoint> = report
+        .boundary
+        .iter()
+        .chain(&report.interior)
+        .copied()
+        .collect();
+    for start in starts {
+        if branches
+            .iter()
+            .any(|b| covers(b, &start.params, p, radius, &scales))
+        {
+            stats.skipped_covered += 1;
+            continue;
+        }
+        match trace_branch(p, q, start.params, march) {
+            Ok(traced) => {
+                let mut branch = traced.branch;
+                branch.id = branches.len();
+                stats.points += branch.points.len();
+                for e in traced.events {
+                    let dup = events.iter().any(|f| {
+                        f.kind == e.kind && dist3(&f.xyz, &e.xyz) <= 1e-6 * (1.0 + norm3(&e.xyz))
+                    });
+                    if !dup {
+                        events.push(e);
+                    }
+                }
+                branches.push(branch);
+            }
+            Err(_) => stats.failed_starts += 1,
+        }
+    }
+    stats.march_seconds = t1.elapsed().as_secs_f64();
+    IntersectOutcome {
+        intersection: Intersection { branches, events },
+        stats,
+    }
+}
+
+fn param_scales(dp: Domain, dq: Domain) -> [f64; 4] {
+    [
+        dp.u[1] - dp.u[0],
+        dp.v[1] - dp.v[0],
+        dq.u[1] - dq.u[0],
+        dq.v[1] - dq.v[0],
+    ]
+}
+
+fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn norm3(a: &[f64; 3]) -> f64 {
+    dist3(a, &[0.0; 3])
+}
+
+/// Whether the curve point with parameters `x` lies on `branch`: within `radius` of one of its
+/// chords in model space, with parameters within 2 % of the domain sizes of that chord's ends.
+fn covers<P: EnclosingSurface>(
+    branch: &Branch,
+    x: &[f64; 4],
+    p: &P,
+    radius: f64,
+    scales: &[f64; 4],
+) -> bool {
+    let pt = p.point(x[0], x[1]);
+    let c = [pt.x, pt.y, pt.z];
+    let near_params =
+        |y: &[f64; 4]| (0..4).all(|i| (x[i] - y[i]).abs() <= 0.02 * scales[i] + 1e-12);
+    let params = |k: usize| {
+        let cp = &branch.points[k];
+        [cp.p[0], cp.p[1], cp.q[0], cp.q[1]]
+    };
+    let n = branch.points.len();
+    (0..n).any(|k| {
+        let a = &branch.points[k].xyz;
+        let b = &branch.points[(k + 1).min(n - 1)].xyz;
+        segment_distance(&c, a, b) <= radius
+            && (near_params(&params(k)) || near_params(&params((k + 1).min(n - 1))))
+    })
+}
+
+/// Distance from point `c` to the segment `[a, b]`.
+fn segment_distance(c: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    let ab: [f64; 3] = std::array::from_fn(|i| b[i] - a[i]);
+    let ac: [f64; 3] = std::array::from_fn(|i| c[i] - a[i]);
+    let len2 = ab.iter().map(|x| x * x).sum::<f64>();
+    let t = if len2 > 0.0 {
+        (ab.iter().zip(&ac).map(|(x, y)| x * y).sum::<f64>() / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let foot: [f64; 3] = std::array::from_fn(|i| a[i] + t * ab[i]);
+    dist3(c, &foot)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn segment_distance_matches_closed_form() {
+        let (a, b) = ([0.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
+        assert_eq!(segment_distance(&[1.0, 1.0, 0.0], &a, &b), 1.0);
+        assert_eq!(segment_distance(&[3.0, 0.0, 0.0], &a, &b), 1.0);
+        assert_eq!(segment_distance(&[-1.0, 0.0, 0.0], &a, &a), 1.0);
+    }
+}
