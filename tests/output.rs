@@ -373,3 +373,86 @@ fn svg_draws_overlay_boxes_and_survives_bad_numbers() {
     lens.sort();
     assert_eq!(lens, vec![60, 61, 61]);
 }
+
+/// Closed forms of two example scenes (see the README): the three Fig. 7 ellipses
+/// `3u² + v² = 0.5, 0.6, 0.7` on z = 0, and the bicubic pair's branch σ = 1/2.
+fn closed_form_examples() -> Intersection {
+    let mut branches: Vec<Branch> = [0.5f64, 0.6, 0.7]
+        .iter()
+        .enumerate()
+        .map(|(k, w)| Branch {
+            id: k,
+            status: BranchStatus::Closed,
+            ends: [EndReason::ClosedLoop, EndReason::ClosedLoop],
+            points: (0..80)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * i as f64 / 80.0;
+                    let (u, v) = ((w / 3.0).sqrt() * a.cos(), w.sqrt() * a.sin());
+                    CurvePoint {
+                        p: [u, v],
+                        q: [u, v],
+                        xyz: [u, v, 0.0],
+                    }
+                })
+                .collect(),
+        })
+        .collect();
+    // z(t): the cubic Bézier with values (3/32, 3/8, 13/64, 9/64).
+    let c = [3.0 / 32.0, 3.0 / 8.0, 13.0 / 64.0, 9.0 / 64.0];
+    let z = |t: f64| {
+        let s = 1.0 - t;
+        c[0] * s * s * s + 3.0 * c[1] * s * s * t + 3.0 * c[2] * s * t * t + c[3] * t * t * t
+    };
+    branches.push(Branch {
+        id: 3,
+        status: BranchStatus::Open,
+        ends: [
+            EndReason::Boundary { surface: 0 },
+            EndReason::Boundary { surface: 0 },
+        ],
+        points: (0..=50)
+            .map(|i| {
+                let t = i as f64 / 50.0;
+                CurvePoint {
+                    p: [0.5, t],
+                    q: [(t + 0.25) / 1.5, (z(t) + 1.0) / 2.0],
+                    xyz: [0.5, t, z(t)],
+                }
+            })
+            .collect(),
+    });
+    Intersection {
+        branches,
+        events: vec![],
+    }
+}
+
+#[test]
+fn svg_of_several_loops_and_a_branch() {
+    let result = closed_form_examples();
+    let doms = [
+        Domain::new(-1.0, 1.0, -1.0, 1.0),
+        Domain::new(-1.0, 1.0, -1.0, 1.0),
+    ];
+    let svg = render_svg(&result, doms, "three ellipses and a bicubic branch").unwrap();
+    if let Ok(dir) = std::env::var("SSITRACE_SVG_DIR") {
+        std::fs::write(std::path::Path::new(&dir).join("closed_forms.svg"), &svg).unwrap();
+    }
+    assert_xml_ish(&svg);
+    for k in 0..3 {
+        let lines = polylines_in(&svg, &hex(branch_colour(k)));
+        assert_eq!(lines.len(), 3, "loop {k}");
+        assert!(lines.iter().all(|l| l.len() == 81 && l[0] == l[80]));
+    }
+    // The ellipses are nested: in P's panel, loop k's horizontal extent grows with k.
+    let widths: Vec<f64> = (0..3)
+        .map(|k| {
+            let l = &polylines_in(&svg, &hex(branch_colour(k)))[0];
+            let xs = l.iter().map(|p| p.0);
+            xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
+        })
+        .collect();
+    assert!(widths[0] < widths[1] && widths[1] < widths[2], "{widths:?}");
+    assert_eq!(polylines_in(&svg, &hex(branch_colour(3))).len(), 3);
+    assert!(svg.contains("4 branch(es), 3 closed loop(s), 0 event(s)"));
+}

@@ -170,10 +170,49 @@ fn branch_path(b: &Branch, pts: Vec<Pt>) -> Vec<Pt> {
     pts
 }
 
+/// A point of `path` for the branch label: of a dozen candidates along the path, the one
+/// farthest (in pixels) from the labels already placed in this panel, which it joins.
+fn label_position(chart: &Chart<'_, '_>, path: &[Pt], placed: &mut Vec<(i32, i32)>) -> Pt {
+    let n = path.len();
+    let candidates = (0..12).map(|k| path[(k * n / 12 + n / 24).min(n - 1)]);
+    let (xs, ys) = chart.plotting_area().get_pixel_range();
+    let score = |p: &Pt| {
+        let (x, y) = chart.backend_coord(p);
+        // The label runs about 80 px right of and 20 px above its point: keep it inside.
+        if x + 80 > xs.end || y - 20 < ys.start {
+            return -1.0;
+        }
+        placed
+            .iter()
+            .map(|(a, b)| {
+                let (dx, dy) = (f64::from(x - a), f64::from(y - b));
+                dx * dx + dy * dy
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut best = path[n / 2];
+    let mut best_score = score(&best);
+    for c in candidates {
+        let sc = score(&c);
+        if sc > best_score {
+            best = c;
+            best_score = sc;
+        }
+    }
+    placed.push(chart.backend_coord(&best));
+    best
+}
+
 type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// Draws one branch (line, end markers, label) into a chart.
-fn draw_branch(chart: &mut Chart<'_, '_>, index: usize, b: &Branch, pts: Vec<Pt>) -> Result<()> {
+fn draw_branch(
+    chart: &mut Chart<'_, '_>,
+    index: usize,
+    b: &Branch,
+    pts: Vec<Pt>,
+    placed_labels: &mut Vec<(i32, i32)>,
+) -> Result<()> {
     let colour = branch_colour(index);
     let closed = b.status == BranchStatus::Closed;
     let path = branch_path(b, pts);
@@ -205,7 +244,7 @@ fn draw_branch(chart: &mut Chart<'_, '_>, index: usize, b: &Branch, pts: Vec<Pt>
             draw_end_marker(chart, *end, at, colour)?;
         }
     }
-    let label_at = path[path.len() / 2];
+    let label_at = label_position(chart, &path, placed_labels);
     let label = if closed {
         format!("b{} (loop)", b.id)
     } else {
@@ -309,8 +348,9 @@ fn draw_param_panel(
             BLACK.stroke_width(2),
         )))
         .map_err(render_err)?;
+    let mut labels = Vec::new();
     for (k, b) in result.branches.iter().enumerate() {
-        draw_branch(&mut chart, k, b, points_of(b))?;
+        draw_branch(&mut chart, k, b, points_of(b), &mut labels)?;
     }
     for e in &result.events {
         draw_event_marker(&mut chart, e.kind, event_at(e))?;
@@ -415,9 +455,10 @@ fn draw_model_panel(
             )
             .map_err(render_err)?;
     }
+    let mut labels = Vec::new();
     for (k, b) in result.branches.iter().enumerate() {
         let pts = b.points.iter().map(|c| isometric(c.xyz)).collect();
-        draw_branch(&mut chart, k, b, pts)?;
+        draw_branch(&mut chart, k, b, pts, &mut labels)?;
     }
     for e in &result.events {
         draw_event_marker(&mut chart, e.kind, isometric(e.xyz))?;
