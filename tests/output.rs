@@ -264,6 +264,14 @@ fn domain_frames(svg: &str) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// Filled black polygons (event markers and the legend's marker keys).
+fn black_polygons(svg: &str) -> usize {
+    svg.split("<polygon")
+        .skip(1)
+        .filter(|t| t[..t.find("/>").unwrap_or(t.len())].contains("fill=\"#000000\""))
+        .count()
+}
+
 fn assert_xml_ish(svg: &str) {
     assert!(
         svg.trim_start().starts_with("<svg"),
@@ -328,6 +336,14 @@ fn svg_shows_each_branch_in_each_panel() {
     // Labels: once per panel.
     assert_eq!(svg.matches(">\nb0\n</text>").count(), 3);
     assert_eq!(svg.matches(">\nb1 (loop)\n</text>").count(), 3);
+    // The singular event: one black filled marker per panel, beyond the legend's keys
+    // (which an empty result also has).
+    let empty = render_svg(&Intersection::default(), domains(), "empty").unwrap();
+    assert_eq!(
+        black_polygons(&svg),
+        black_polygons(&empty) + 3,
+        "event markers"
+    );
     assert!(svg.contains("2 branch(es), 1 closed loop(s), 1 event(s)"));
     assert!(svg.contains("b0: open: boundary of P → singular point, 41 points"));
 }
