@@ -89,6 +89,12 @@ pub enum Error {
         /// Parameters (σ, t, u, v) where it stopped.
         near: [f64; 4],
     },
+    /// A result JSON document that is not of the documented `ssitrace-result` shape.
+    #[error("result JSON is not valid: {0}")]
+    ResultFormat(String),
+    /// Drawing a picture failed.
+    #[error("rendering failed: {0}")]
+    Render(String),
 }
 
 impl Error {

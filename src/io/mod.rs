@@ -1,1 +1,4 @@
 //! Input and output: the scene format, result JSON, SVG pictures.
+
+pub mod result_json;
+pub mod svg;

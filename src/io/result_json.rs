@@ -1,0 +1,339 @@
+//! The versioned result JSON (`"format": "ssitrace-result"`, `"version": 1`).
+//!
+//! The document is the public contract described in the README:
+//!
+//! ```json
+//! {"format": "ssitrace-result", "version": 1, "scene": "name or null", "method": "march",
+//!  "branches": [{"id": 0, "status": "open",
+//!                "ends": [{"kind": "boundary", "surface": 0}, {"kind": "singular"}],
+//!                "points": [{"p": [0.5, 0.0], "q": [0.5, 0.25], "xyz": [0.5, 0.0, 0.1]}]}],
+//!  "events": [{"kind": "singular", "p": [0.5, 1.0], "q": [1.0, 0.5], "xyz": [0.5, 1.0, 0.0]}],
+//!  "stats": {"points": 1}}
+//! ```
+//!
+//! Extension point: a branch object may carry a `"certified"` member (the validated engine's
+//! interval enclosures). It is written from [`ResultMeta::certified`] and read back verbatim,
+//! so adding it changes nothing for readers that ignore it. Interval bounds inside it are
+//! written with [`interval_to_json`].
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use inari::Interval;
+use serde_json::{json, Map, Value};
+
+use crate::intersection::{
+    Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind, Intersection,
+};
+use crate::{Error, Result};
+
+/// The value of the `"format"` member.
+pub const FORMAT_NAME: &str = "ssitrace-result";
+/// The format version this module writes and reads.
+pub const FORMAT_VERSION: u64 = 1;
+
+/// Everything in a result document that is not the [`Intersection`] itself.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ResultMeta {
+    /// Scene name (the scene's `options.name`), written as `null` when absent.
+    pub scene: Option<String>,
+    /// Tracing method, e.g. `"march"`.
+    pub method: String,
+    /// Free-form statistics (point counts, timings, ...), written as the `"stats"` object.
+    pub stats: Map<String, Value>,
+    /// Per-branch `"certified"` objects, keyed by branch id (empty until certification exists).
+    pub certified: BTreeMap<usize, Value>,
+}
+
+impl ResultMeta {
+    /// Metadata with the given scene name and method, no stats and no certificates.
+    pub fn new(scene: Option<String>, method: impl Into<String>) -> Self {
+        ResultMeta {
+            scene,
+            method: method.into(),
+            ..ResultMeta::default()
+        }
+    }
+}
+
+/// A result document read back: the curves and the metadata.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ResultDocument {
+    /// Branches and events.
+    pub intersection: Intersection,
+    /// Scene name, method, stats and certificates.
+    pub meta: ResultMeta,
+}
+
+/// The result document for `result` as a JSON value (see the module docs for the layout).
+///
+/// Non-finite coordinates (which a correct tracer never produces) are written as `null`,
+/// which [`result_from_json`] rejects.
+pub fn result_to_json(result: &Intersection, meta: &ResultMeta) -> Value {
+    let branches: Vec<Value> = result
+        .branches
+        .iter()
+        .map(|b| {
+            let mut obj = Map::new();
+            obj.insert("id".into(), json!(b.id));
+            obj.insert("status".into(), json!(status_name(b.status)));
+            obj.insert(
+                "ends".into(),
+                Value::Array(b.ends.iter().map(|e| end_to_json(*e)).collect()),
+            );
+            obj.insert(
+                "points".into(),
+                Value::Array(b.points.iter().map(point_to_json).collect()),
+            );
+            if let Some(cert) = meta.certified.get(&b.id) {
+                obj.insert("certified".into(), cert.clone());
+            }
+            Value::Object(obj)
+        })
+        .collect();
+    let events: Vec<Value> = result.events.iter().map(event_to_json).collect();
+    json!({
+        "format": FORMAT_NAME,
+        "version": FORMAT_VERSION,
+        "scene": meta.scene,
+        "method": meta.method,
+        "branches": branches,
+        "events": events,
+        "stats": Value::Object(meta.stats.clone()),
+    })
+}
+
+/// Writes the result document for `result` to `path` (pretty-printed, trailing newline).
+///
+/// I/O failures become [`Error::Io`] naming the path.
+pub fn write_result(path: &Path, result: &Intersection, meta: &ResultMeta) -> Result<()> {
+    let doc = result_to_json(result, meta);
+    let mut text = serde_json::to_string_pretty(&doc)
+        .map_err(|e| Error::ResultFormat(format!("serialisation failed: {e}")))?;
+    text.push('\n');
+    std::fs::write(path, text).map_err(|e| Error::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })
+}
+
+/// Reads a result document back. Checks `format` and `version`, and the shape of every
+/// documented field; unknown extra members are ignored (forward compatible).
+pub fn result_from_json(doc: &Value) -> Result<ResultDocument> {
+    let obj = doc
+        .as_object()
+        .ok_or_else(|| bad("the document is not a JSON object"))?;
+    match obj.get("format").and_then(Value::as_str) {
+        Some(FORMAT_NAME) => {}
+        _ => return Err(bad("`format` is not \"ssitrace-result\"")),
+    }
+    match obj.get("version").and_then(Value::as_u64) {
+        Some(FORMAT_VERSION) => {}
+        Some(v) => return Err(bad(&format!("unsupported version {v}"))),
+        None => return Err(bad("`version` is missing or not an integer")),
+    }
+    let scene = match obj.get("scene") {
+        None | Some(Value::Null) => None,
+        Some(Value::String(s)) => Some(s.clone()),
+        Some(_) => return Err(bad("`scene` is neither a string nor null")),
+    };
+    let method = obj
+        .get("method")
+        .and_then(Value::as_str)
+        .ok_or_else(|| bad("`method` is missing or not a string"))?
+        .to_string();
+    let stats = match obj.get("stats") {
+        None => Map::new(),
+        Some(Value::Object(m)) => m.clone(),
+        Some(_) => return Err(bad("`stats` is not an object")),
+    };
+    let mut certified = BTreeMap::new();
+    let mut branches = Vec::new();
+    for (k, b) in array(obj.get("branches"), "branches")?.iter().enumerate() {
+        let branch = branch_from_json(b, k)?;
+        if let Some(cert) = b.get("certified") {
+            certified.insert(branch.id, cert.clone());
+        }
+        branches.push(branch);
+    }
+    let events = array(obj.get("events"), "events")?
+        .iter()
+        .enumerate()
+        .map(|(k, e)| event_from_json(e, k))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(ResultDocument {
+        intersection: Intersection { branches, events },
+        meta: ResultMeta {
+            scene,
+            method,
+            stats,
+            certified,
+        },
+    })
+}
+
+/// An interval as the JSON pair `[lo, hi]` of its exact `f64` bounds (`inf()`, `sup()`).
+///
+/// serde_json writes each `f64` as the shortest decimal that reads back (round to nearest)
+/// as exactly the same `f64`, so a reader parsing the numbers as binary64 recovers the
+/// outward-rounded bounds bit for bit. A reader that treats the decimal text as an exact real
+/// must first round it to the nearest binary64. Empty or unbounded intervals have no JSON
+/// form and give [`Error::ResultFormat`].
+pub fn interval_to_json(x: Interval) -> Result<Value> {
+    if x.is_empty() {
+        return Err(bad("an empty interval has no [lo, hi] form"));
+    }
+    let (lo, hi) = (x.inf(), x.sup());
+    if !lo.is_finite() || !hi.is_finite() {
+        return Err(bad("an unbounded interval has no JSON form"));
+    }
+    Ok(json!([lo, hi]))
+}
+
+/// Reads `[lo, hi]` (two finite numbers, `lo <= hi`) back into an interval.
+pub fn interval_from_json(v: &Value) -> Result<Interval> {
+    let [lo, hi] = numbers::<2>(v, "interval")?;
+    crate::scalar::interval(lo, hi)
+        .ok_or_else(|| bad(&format!("interval [{lo}, {hi}] is inverted")))
+}
+
+fn bad(msg: &str) -> Error {
+    Error::ResultFormat(msg.to_string())
+}
+
+fn status_name(s: BranchStatus) -> &'static str {
+    match s {
+        BranchStatus::Closed => "closed",
+        BranchStatus::Open => "open",
+        BranchStatus::Incomplete => "incomplete",
+    }
+}
+
+fn end_to_json(e: EndReason) -> Value {
+    match e {
+        EndReason::Boundary { surface } => json!({"kind": "boundary", "surface": surface}),
+        EndReason::ClosedLoop => json!({"kind": "closed_loop"}),
+        EndReason::Singular => json!({"kind": "singular"}),
+        EndReason::NewtonFailed => json!({"kind": "newton_failed"}),
+        EndReason::PointLimit => json!({"kind": "point_limit"}),
+    }
+}
+
+fn event_kind_name(k: EventKind) -> &'static str {
+    match k {
+        EventKind::Singular => "singular",
+        EventKind::BoundaryEnd => "boundary_end",
+    }
+}
+
+fn point_to_json(c: &CurvePoint) -> Value {
+    json!({"p": c.p, "q": c.q, "xyz": c.xyz})
+}
+
+fn event_to_json(e: &Event) -> Value {
+    json!({"kind": event_kind_name(e.kind), "p": e.p, "q": e.q, "xyz": e.xyz})
+}
+
+fn array<'a>(v: Option<&'a Value>, what: &str) -> Result<&'a Vec<Value>> {
+    v.and_then(Value::as_array)
+        .ok_or_else(|| bad(&format!("`{what}` is missing or not an array")))
+}
+
+fn numbers<const N: usize>(v: &Value, what: &str) -> Result<[f64; N]> {
+    let arr = v
+        .as_array()
+        .filter(|a| a.len() == N)
+        .ok_or_else(|| bad(&format!("`{what}` is not an array of {N} numbers")))?;
+    let mut out = [0.0; N];
+    for (o, x) in out.iter_mut().zip(arr) {
+        *o = x
+            .as_f64()
+            .filter(|f| f.is_finite())
+            .ok_or_else(|| bad(&format!("`{what}` holds a non-number")))?;
+    }
+    Ok(out)
+}
+
+fn field<'a>(v: &'a Value, name: &str, ctx: &str) -> Result<&'a Value> {
+    v.get(name)
+        .ok_or_else(|| bad(&format!("{ctx}: `{name}` is missing")))
+}
+
+fn curve_point_from_json(v: &Value, ctx: &str) -> Result<CurvePoint> {
+    Ok(CurvePoint {
+        p: numbers(field(v, "p", ctx)?, &format!("{ctx}.p"))?,
+        q: numbers(field(v, "q", ctx)?, &format!("{ctx}.q"))?,
+        xyz: numbers(field(v, "xyz", ctx)?, &format!("{ctx}.xyz"))?,
+    })
+}
+
+fn end_from_json(v: &Value, ctx: &str) -> Result<EndReason> {
+    let kind = field(v, "kind", ctx)?
+        .as_str()
+        .ok_or_else(|| bad(&format!("{ctx}: `kind` is not a string")))?;
+    Ok(match kind {
+        "boundary" => {
+            let surface = field(v, "surface", ctx)?
+                .as_u64()
+                .filter(|s| *s <= 1)
+                .ok_or_else(|| bad(&format!("{ctx}: `surface` is not 0 or 1")))?;
+            EndReason::Boundary {
+                surface: surface as usize,
+            }
+        }
+        "closed_loop" => EndReason::ClosedLoop,
+        "singular" => EndReason::Singular,
+        "newton_failed" => EndReason::NewtonFailed,
+        "point_limit" => EndReason::PointLimit,
+        other => return Err(bad(&format!("{ctx}: unknown end kind `{other}`"))),
+    })
+}
+
+fn branch_from_json(v: &Value, k: usize) -> Result<Branch> {
+    let ctx = format!("branches[{k}]");
+    let id = field(v, "id", &ctx)?
+        .as_u64()
+        .ok_or_else(|| bad(&format!("{ctx}: `id` is not a non-negative integer")))?
+        as usize;
+    let status = match field(v, "status", &ctx)?.as_str() {
+        Some("closed") => BranchStatus::Closed,
+        Some("open") => BranchStatus::Open,
+        Some("incomplete") => BranchStatus::Incomplete,
+        _ => return Err(bad(&format!("{ctx}: unknown `status`"))),
+    };
+    let ends_json = field(v, "ends", &ctx)?
+        .as_array()
+        .filter(|a| a.len() == 2)
+        .ok_or_else(|| bad(&format!("{ctx}: `ends` is not an array of 2")))?;
+    let ends = [
+        end_from_json(&ends_json[0], &format!("{ctx}.ends[0]"))?,
+        end_from_json(&ends_json[1], &format!("{ctx}.ends[1]"))?,
+    ];
+    let points = array(v.get("points"), &format!("{ctx}.points"))?
+        .iter()
+        .enumerate()
+        .map(|(i, p)| curve_point_from_json(p, &format!("{ctx}.points[{i}]")))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Branch {
+        id,
+        status,
+        ends,
+        points,
+    })
+}
+
+fn event_from_json(v: &Value, k: usize) -> Result<Event> {
+    let ctx = format!("events[{k}]");
+    let kind = match field(v, "kind", &ctx)?.as_str() {
+        Some("singular") => EventKind::Singular,
+        Some("boundary_end") => EventKind::BoundaryEnd,
+        _ => return Err(bad(&format!("{ctx}: unknown `kind`"))),
+    };
+    let c = curve_point_from_json(v, &ctx)?;
+    Ok(Event {
+        kind,
+        p: c.p,
+        q: c.q,
+        xyz: c.xyz,
+    })
+}
