@@ -12,6 +12,7 @@ pub mod geometry;
 pub mod intersection;
 pub mod io;
 pub mod marching;
+pub mod pipeline;
 pub mod scalar;
 pub mod validated;
 
