@@ -1,5 +1,10 @@
 //! Geometry: surfaces, rational Bézier patches, power-basis conversion, rigorous bounds.
 
+pub mod bezier;
+pub mod enclosure;
+pub mod power;
 pub mod surface;
 
+pub use bezier::{PatchDerivs, RationalBezierPatch};
+pub use power::PowerSurface;
 pub use surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};
