@@ -100,7 +100,12 @@ fn check_degree(degree: [usize; 2]) -> Result<usize> {
     (degree[0] + 1)
         .checked_mul(degree[1] + 1)
         .filter(|&c| c < (1 << 24))
-        .ok_or_else(|| Error::input("degree", InputProblem::WrongShape("degree too large".into())))
+        .ok_or_else(|| {
+            Error::input(
+                "degree",
+                InputProblem::WrongShape("degree too large".into()),
+            )
+        })
 }
 
 impl RationalBezierPatch {
@@ -245,7 +250,11 @@ impl RationalBezierPatch {
     }
 
     /// Build the patch from a checked net; rejects a degenerate net (all points coincide).
-    fn assemble(degree: [usize; 2], homogeneous: Vec<[Interval; 4]>, domain: Domain) -> Result<Self> {
+    fn assemble(
+        degree: [usize; 2],
+        homogeneous: Vec<[Interval; 4]>,
+        domain: Domain,
+    ) -> Result<Self> {
         let mid: Vec<[f64; 4]> = homogeneous
             .iter()
             .map(|h| [h[0].mid(), h[1].mid(), h[2].mid(), h[3].mid()])
@@ -347,7 +356,11 @@ const STACK_DEGREE: usize = 15;
 /// Writes `deg + 1` entries into each of `b`, `d1`, `d2` (which must be at least that long).
 fn bernstein<S: Scalar>(deg: usize, t: S, b: &mut [S], d1: &mut [S], d2: &mut [S]) {
     let one_minus = S::one() - t;
-    for x in b[..=deg].iter_mut().chain(&mut d1[..=deg]).chain(&mut d2[..=deg]) {
+    for x in b[..=deg]
+        .iter_mut()
+        .chain(&mut d1[..=deg])
+        .chain(&mut d2[..=deg])
+    {
         *x = S::zero();
     }
     b[0] = S::one();
@@ -419,6 +432,7 @@ fn homogeneous_derivs<S: Scalar>(
     }
 }
 
+#[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
 /// Sum the tensor product of the u- and v-basis (values, first, second derivatives) with the net.
 fn tensor_derivs<S: Scalar>(
     [m, n]: [usize; 2],
@@ -453,6 +467,7 @@ fn tensor_derivs<S: Scalar>(
 }
 
 /// Homogeneous point only.
+#[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
 fn homogeneous_point<S: Scalar>(
     [m, n]: [usize; 2],
     s: S,

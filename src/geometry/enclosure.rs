@@ -26,13 +26,17 @@ fn restrict_curve(net: &[[Interval; 4]], a: Interval, b: Interval) -> Vec<[Inter
     let mut out = Vec::with_capacity(deg + 1);
     let mut work = net.to_vec();
     for k in 0..=deg {
-        // Blossom with deg − k copies of a and k copies of b; level l uses parameter t_l.
+        // Blossom with deg − k copies of a and k copies of b; level l uses parameter t_l. The
+        // affine combination (1 − t)·Pᵢ + t·Pᵢ₊₁ is exact for t = 0 and t = 1, so restricting to
+        // the whole range reproduces the net without rounding.
         work.copy_from_slice(net);
         for level in 0..deg {
             let t = if level < deg - k { a } else { b };
+            let one_minus = point(1.0) - t;
             for i in 0..deg - level {
-                for c in 0..4 {
-                    work[i][c] = work[i][c] + t * (work[i + 1][c] - work[i][c]);
+                let next = work[i + 1];
+                for (x, y) in work[i].iter_mut().zip(next) {
+                    *x = one_minus * *x + t * y;
                 }
             }
         }
@@ -51,7 +55,7 @@ fn normalised(x: f64, [lo, hi]: [f64; 2]) -> Interval {
 fn hull_of_net(net: &[[Interval; 4]]) -> Option<[Interval; 3]> {
     let mut out: Option<[Interval; 3]> = None;
     for h in net {
-        if !(h[3].inf() > 0.0) {
+        if h[3].is_empty() || h[3].inf() <= 0.0 {
             return None;
         }
         let p = [h[0] / h[3], h[1] / h[3], h[2] / h[3]];
@@ -167,7 +171,14 @@ mod tests {
     #[test]
     fn restricting_a_curve_to_its_own_range_is_the_identity() {
         let net: Vec<[Interval; 4]> = (0..4)
-            .map(|i| [point(i as f64), point((i * i) as f64), point(1.0), point(1.0)])
+            .map(|i| {
+                [
+                    point(i as f64),
+                    point((i * i) as f64),
+                    point(1.0),
+                    point(1.0),
+                ]
+            })
             .collect();
         let same = restrict_curve(&net, point(0.0), point(1.0));
         for (a, b) in net.iter().zip(&same) {

@@ -2,10 +2,11 @@
 //! Bézier form.
 //!
 //! A [`PowerSurface`] is `(x/w, y/w, z/w)` where each of `x, y, z, w` is a sum of terms
-//! `c·uⁱ·vʲ` over the declared domain `[u0,u1] × [v0,v1]`. Conversion substitutes
-//! `u = u0 + (u1 − u0)·s`, `v = v0 + (v1 − v0)·r`, expands in intervals and changes basis with
-//! `sᵏ = Σ_{i≥k} C(i,k)/C(m,k) · Bᵢᵐ(s)`, all in [`Interval`] arithmetic, so the resulting
-//! Bézier net encloses the exact Bernstein coefficients.
+//! `c·uⁱ·vʲ` over the declared domain `[u0,u1] × [v0,v1]`. Conversion is exact up to outward
+//! rounding: each monomial `uⁱ` (after the substitution `u = u0 + (u1 − u0)·s`) has the
+//! Bernstein coefficients given by its blossom at the domain ends (see `monomial_bernstein`),
+//! summed per term in [`Interval`] arithmetic, so the resulting Bézier net encloses the exact
+//! Bernstein coefficients. (Expanding `(u0 + h·s)ⁱ` in powers of `s` first would cancel badly.)
 
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::bezier::{check_domain, RationalBezierPatch};
@@ -46,22 +47,32 @@ fn binomials(n: usize) -> Vec<Vec<Interval>> {
     c
 }
 
-/// Change the power-basis polynomial `Σ a_i xⁱ` (x the declared parameter) first to the
-/// normalised variable `t`, `x = x0 + h·t`, then to the Bernstein basis of degree `deg`.
-fn power_to_bernstein_1d(a: &[Interval], x0: Interval, h: Interval, c: &[Vec<Interval>]) -> Vec<Interval> {
-    let deg = a.len() - 1;
-    // b_k = Σ_{i≥k} a_i C(i,k) x0^{i−k} h^k.
-    let b: Vec<Interval> = (0..=deg)
-        .map(|k| {
-            let hk = h.powi(k as i32);
-            (k..=deg).fold(point(0.0), |acc, i| {
-                acc + a[i] * c[i][k] * x0.powi((i - k) as i32) * hk
-            })
-        })
-        .collect();
-    // Bernstein coefficient e_i = Σ_{k≤i} C(i,k)/C(deg,k) b_k.
+/// Bernstein coefficients of the monomials `xⁱ` (`i ≤ deg`) on `[lo, hi]` in degree `deg`:
+/// `table[i][k]`, as rigorous intervals.
+///
+/// They are values of the blossom of `xⁱ` written in degree `deg`, the symmetric mean of the
+/// products of `i` of its `deg` arguments, at `deg − k` copies of `lo` and `k` copies of `hi`:
+/// `Σ_j C(k, j)·C(deg − k, i − j)·hiʲ·loⁱ⁻ʲ / C(deg, i)`. Every term has the sign of
+/// `hiʲ·loⁱ⁻ʲ`, so nothing cancels (unlike expanding `(lo + (hi − lo)·t)ⁱ` in powers of `t`).
+fn monomial_bernstein(deg: usize, lo: f64, hi: f64, c: &[Vec<Interval>]) -> Vec<Vec<Interval>> {
+    let (lo, hi) = (point(lo), point(hi));
     (0..=deg)
-        .map(|i| (0..=i).fold(point(0.0), |acc, k| acc + c[i][k] / c[deg][k] * b[k]))
+        .map(|i| {
+            (0..=deg)
+                .map(|k| {
+                    let sum =
+                        (0..=i.min(k))
+                            .filter(|&j| i - j <= deg - k)
+                            .fold(point(0.0), |acc, j| {
+                                acc + c[k][j]
+                                    * c[deg - k][i - j]
+                                    * hi.powi(j as i32)
+                                    * lo.powi((i - j) as i32)
+                            });
+                    sum / c[deg][i]
+                })
+                .collect()
+        })
         .collect()
 }
 
@@ -69,7 +80,12 @@ impl PowerSurface {
     /// The degree `[m, n]` the Bézier form will have: the largest exponent of `u` and of `v`
     /// over all components, at least 1.
     pub fn degree(&self) -> [usize; 2] {
-        let all = self.x.iter().chain(&self.y).chain(&self.z).chain(self.w.iter().flatten());
+        let all = self
+            .x
+            .iter()
+            .chain(&self.y)
+            .chain(&self.z)
+            .chain(self.w.iter().flatten());
         let (mut m, mut n) = (1, 1);
         for &(i, j, _) in all {
             m = m.max(i as usize);
@@ -83,7 +99,10 @@ impl PowerSurface {
     fn check_terms(name: &str, terms: &[PowerTerm]) -> Result<()> {
         for (k, &(i, j, c)) in terms.iter().enumerate() {
             if !c.is_finite() {
-                return Err(Error::input(format!("{name}[{k}][2]"), InputProblem::NonFinite));
+                return Err(Error::input(
+                    format!("{name}[{k}][2]"),
+                    InputProblem::NonFinite,
+                ));
             }
             for (e, idx) in [(i, 0), (j, 1)] {
                 if e > MAX_POWER_DEGREE {
@@ -99,26 +118,24 @@ impl PowerSurface {
         Ok(())
     }
 
-    /// Bernstein coefficients (degree `[m, n]`, index `i*(n+1)+j`) of one component.
-    fn bernstein(&self, terms: &[PowerTerm], [m, n]: [usize; 2], c: &[Vec<Interval>]) -> Vec<Interval> {
-        let d = &self.domain;
-        let (u0, hu) = (point(d.u[0]), point(d.u[1]) - point(d.u[0]));
-        let (v0, hv) = (point(d.v[0]), point(d.v[1]) - point(d.v[0]));
-        let mut a = vec![vec![point(0.0); n + 1]; m + 1];
+    /// Bernstein coefficients (degree `[m, n]`, index `i*(n+1)+j`) of one component, from the
+    /// monomial tables `eu` (in u) and `ev` (in v).
+    fn bernstein(
+        terms: &[PowerTerm],
+        [m, n]: [usize; 2],
+        eu: &[Vec<Interval>],
+        ev: &[Vec<Interval>],
+    ) -> Vec<Interval> {
+        let mut out = vec![point(0.0); (m + 1) * (n + 1)];
         for &(i, j, coef) in terms {
-            a[i as usize][j as usize] = a[i as usize][j as usize] + point(coef);
-        }
-        // Convert each u-column (fixed power of v), then each row.
-        let mut cols = vec![vec![point(0.0); n + 1]; m + 1];
-        for j in 0..=n {
-            let col: Vec<Interval> = (0..=m).map(|i| a[i][j]).collect();
-            for (i, e) in power_to_bernstein_1d(&col, u0, hu, c).into_iter().enumerate() {
-                cols[i][j] = e;
+            let (ru, rv) = (&eu[i as usize], &ev[j as usize]);
+            let coef = point(coef);
+            for k in 0..=m {
+                let ck = coef * ru[k];
+                for l in 0..=n {
+                    out[k * (n + 1) + l] += ck * rv[l];
+                }
             }
-        }
-        let mut out = Vec::with_capacity((m + 1) * (n + 1));
-        for row in &cols {
-            out.extend(power_to_bernstein_1d(row, v0, hv, c));
         }
         out
     }
@@ -138,17 +155,22 @@ impl PowerSurface {
         check_domain(&self.domain)?;
         let degree = self.degree();
         let c = binomials(degree[0].max(degree[1]));
-        let xs = self.bernstein(&self.x, degree, &c);
-        let ys = self.bernstein(&self.y, degree, &c);
-        let zs = self.bernstein(&self.z, degree, &c);
+        let d = &self.domain;
+        let eu = monomial_bernstein(degree[0], d.u[0], d.u[1], &c);
+        let ev = monomial_bernstein(degree[1], d.v[0], d.v[1], &c);
+        let xs = Self::bernstein(&self.x, degree, &eu, &ev);
+        let ys = Self::bernstein(&self.y, degree, &eu, &ev);
+        let zs = Self::bernstein(&self.z, degree, &eu, &ev);
         let ws = match &self.w {
-            Some(w) => self.bernstein(w, degree, &c),
+            Some(w) => Self::bernstein(w, degree, &eu, &ev),
             None => vec![point(1.0); xs.len()],
         };
-        if ws.iter().any(|w| !(w.inf() > 0.0)) {
+        if ws.iter().any(|w| w.is_empty() || w.inf() <= 0.0) {
             return Err(Error::input("w", InputProblem::NonPositiveWeight));
         }
-        let net = (0..xs.len()).map(|k| [xs[k], ys[k], zs[k], ws[k]]).collect();
+        let net = (0..xs.len())
+            .map(|k| [xs[k], ys[k], zs[k], ws[k]])
+            .collect();
         RationalBezierPatch::from_homogeneous(degree, net, self.domain)
     }
 

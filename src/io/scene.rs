@@ -87,11 +87,13 @@ fn shape(field: &str, what: &str) -> Error {
 }
 
 fn object<'a>(v: &'a Value, field: &str) -> Result<&'a Map<String, Value>> {
-    v.as_object().ok_or_else(|| shape(field, "expected an object"))
+    v.as_object()
+        .ok_or_else(|| shape(field, "expected an object"))
 }
 
 fn array<'a>(v: &'a Value, field: &str) -> Result<&'a Vec<Value>> {
-    v.as_array().ok_or_else(|| shape(field, "expected an array"))
+    v.as_array()
+        .ok_or_else(|| shape(field, "expected an array"))
 }
 
 /// Reject keys outside `allowed`; the error names `prefix` + key.
@@ -131,7 +133,10 @@ fn interval_value(v: &Value, field: &str) -> Result<Interval> {
         .as_array()
         .ok_or_else(|| shape(field, "expected a number or an interval [lo, hi]"))?;
     if a.len() != 2 {
-        return Err(shape(field, "an interval needs exactly two bounds [lo, hi]"));
+        return Err(shape(
+            field,
+            "an interval needs exactly two bounds [lo, hi]",
+        ));
     }
     let lo = number(&a[0], field)?;
     let hi = number(&a[1], field)?;
@@ -363,7 +368,13 @@ fn patch_json(p: &RationalBezierPatch) -> Value {
     let net = p.cartesian();
     let points: Vec<Value> = net
         .iter()
-        .map(|c| json!([interval_json(c[0]), interval_json(c[1]), interval_json(c[2])]))
+        .map(|c| {
+            json!([
+                interval_json(c[0]),
+                interval_json(c[1]),
+                interval_json(c[2])
+            ])
+        })
         .collect();
     let d = p.domain();
     let mut out = json!({
@@ -405,8 +416,8 @@ impl Scene {
 
     /// Parse a scene from JSON text; text that is not JSON gives [`Error::Scene`].
     pub fn from_json_str(text: &str) -> Result<Scene> {
-        let v: Value = serde_json::from_str(text)
-            .map_err(|e| Error::Scene(format!("invalid JSON: {e}")))?;
+        let v: Value =
+            serde_json::from_str(text).map_err(|e| Error::Scene(format!("invalid JSON: {e}")))?;
         Self::from_json_value(&v)
     }
 
