@@ -22,27 +22,37 @@ use inari::Interval;
 /// intervals enclosing the exact range ends. Rigorous: each output encloses the exact control
 /// point `blossom(a, …, a, b, …, b)`.
 fn restrict_curve(net: &[[Interval; 4]], a: Interval, b: Interval) -> Vec<[Interval; 4]> {
-    let deg = net.len() - 1;
-    let mut out = Vec::with_capacity(deg + 1);
-    let mut work = net.to_vec();
-    for k in 0..=deg {
-        // Blossom with deg − k copies of a and k copies of b; level l uses parameter t_l. The
-        // affine combination (1 − t)·Pᵢ + t·Pᵢ₊₁ is exact for t = 0 and t = 1, so restricting to
-        // the whole range reproduces the net without rounding.
-        work.copy_from_slice(net);
-        for level in 0..deg {
-            let t = if level < deg - k { a } else { b };
-            let one_minus = point(1.0) - t;
-            for i in 0..deg - level {
-                let next = work[i + 1];
-                for (x, y) in work[i].iter_mut().zip(next) {
-                    *x = one_minus * *x + t * y;
-                }
+    // One de Casteljau level at parameter t: (1 − t)·Pᵢ + t·Pᵢ₊₁, exact for t = 0 and t = 1, so
+    // restricting to the whole range reproduces the net without rounding.
+    let level = |pts: &mut Vec<[Interval; 4]>, t: Interval| {
+        let one_minus = point(1.0) - t;
+        for i in 0..pts.len() - 1 {
+            let next = pts[i + 1];
+            for (x, y) in pts[i].iter_mut().zip(next) {
+                *x = one_minus * *x + t * y;
             }
         }
-        out.push(work[0]);
+        pts.pop();
+    };
+    let deg = net.len() - 1;
+    // The de Casteljau triangle at a: levels_a[l] holds the blossoms (a^l, ·) of the net.
+    let mut levels_a = Vec::with_capacity(deg + 1);
+    let mut work = net.to_vec();
+    levels_a.push(work.clone());
+    for _ in 0..deg {
+        level(&mut work, a);
+        levels_a.push(work.clone());
     }
-    out
+    // Control point k is blossom(a^(deg−k), b^k): k further levels at b from level deg − k.
+    (0..=deg)
+        .map(|k| {
+            let mut pts = levels_a[deg - k].clone();
+            for _ in 0..k {
+                level(&mut pts, b);
+            }
+            pts[0]
+        })
+        .collect()
 }
 
 /// The interval `(x − lo) / (hi − lo)` enclosing the normalised parameter of `x`.
