@@ -799,3 +799,26 @@ fn parametric_surface_impl_uses_declared_parameters() {
     let n = d.normal();
     assert!((n.norm() - d.su.norm() * d.sv.norm()).abs() < 1e-12);
 }
+
+#[test]
+fn enclosures_extend_rigorously_beyond_the_domain() {
+    // The quarter-circle weights (1, 1/√2, 1) keep the denominator positive for every t, so the
+    // extrapolated net stays valid; samples of the polynomial extension must be enclosed.
+    let s = quarter_cylinder(1.0, 1.0, Domain::UNIT);
+    let (u, v) = (interval(0.8, 1.3).unwrap(), interval(-0.2, 0.1).unwrap());
+    let enc = s.enclose(u, v);
+    assert!(s.hull_bound(u, v).is_some());
+    for a in 0..=10 {
+        for b in 0..=10 {
+            let (x, y) = (0.8 + 0.05 * a as f64, -0.2 + 0.03 * b as f64);
+            let p = s.eval(point(x), point(y));
+            // Still on the cylinder: the rational arc continues around the circle.
+            let q = s.point_f64(x, y);
+            assert!((q[0].hypot(q[1]) - 1.0).abs() < 1e-14);
+            assert!((0..3).all(|k| !p[k].intersection(enc[k]).is_empty()));
+        }
+    }
+    // The sub-patch over the extrapolated box evaluates like the patch.
+    let sub = s.subpatch(u, v).unwrap();
+    assert!(close(sub.point_f64(1.2, 0.0), s.point_f64(1.2, 0.0), 1e-13));
+}

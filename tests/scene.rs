@@ -113,6 +113,21 @@ fn options_and_optional_fields_have_defaults() {
 }
 
 #[test]
+fn integral_floats_are_accepted_as_degrees_and_exponents() {
+    let v = edited(|v| {
+        v["surfaces"][0]["degree"] = json!([2.0, 1.0]);
+        v["surfaces"][1]["x"] = json!([[1.0, 0.0, 2]]);
+    });
+    let scene = parse(&v).unwrap();
+    assert_eq!(scene, parse(&valid()).unwrap());
+    let v = edited(|v| v["surfaces"][0]["degree"] = json!([-3.0, 1]));
+    assert_eq!(
+        input_error(&v),
+        (Some(0), "degree[0]".into(), InputProblem::BadDegree(-3))
+    );
+}
+
+#[test]
 fn intervals_are_accepted_for_coordinates_and_weights() {
     let v = edited(|v| {
         v["surfaces"][0]["points"][0] = json!([[0.99, 1.01], 0, [0, 0.1]]);

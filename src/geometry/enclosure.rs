@@ -134,9 +134,15 @@ impl RationalBezierPatch {
         hull_of_net(&self.subnet(u, v))
     }
 
-    /// Naive interval evaluation of the rational form over the box (rigorous).
+    /// Naive interval evaluation of the rational form over the box (rigorous). Where the
+    /// denominator is exactly zero (possible only outside the domain) the result is the whole
+    /// line rather than the empty set interval division would give.
     pub fn naive_bound(&self, u: Interval, v: Interval) -> [Interval; 3] {
-        self.eval::<Interval>(u, v)
+        let p = self.eval::<Interval>(u, v);
+        if u.is_empty() || v.is_empty() {
+            return p;
+        }
+        p.map(|x| if x.is_empty() { Interval::ENTIRE } else { x })
     }
 
     /// A rigorous enclosure of `{S(u, v) : u ∈ u, v ∈ v}` for every patch of the interval net:
@@ -167,7 +173,9 @@ impl RationalBezierPatch {
     }
 
     /// Rigorous enclosures of the point and all first and second partials over the box (naive
-    /// interval evaluation of the derivative formulas).
+    /// interval evaluation of the derivative formulas). Inside the domain the denominator is
+    /// positive; outside it, a denominator enclosing zero gives unbounded (or, if exactly zero,
+    /// empty) components, so callers should keep boxes inside the domain.
     pub fn enclose_derivs(&self, u: Interval, v: Interval) -> PatchDerivs<Interval> {
         self.eval_derivs::<Interval>(u, v)
     }

@@ -143,14 +143,24 @@ fn interval_value(v: &Value, field: &str) -> Result<Interval> {
     interval(lo, hi).ok_or_else(|| Error::input(field, InputProblem::InvertedInterval { lo, hi }))
 }
 
-/// A non-negative integer (degrees and exponents); negative integers are [`InputProblem::BadDegree`].
+/// A non-negative integer (degrees and exponents; integral floats such as `2.0` are accepted);
+/// negative integers are [`InputProblem::BadDegree`].
 fn count(v: &Value, field: &str) -> Result<usize> {
     if let Some(n) = v.as_u64() {
         return usize::try_from(n).map_err(|_| shape(field, "integer too large"));
     }
-    match v.as_i64() {
-        Some(n) => Err(Error::input(field, InputProblem::BadDegree(n))),
-        None => Err(shape(field, "expected a non-negative integer")),
+    if let Some(n) = v.as_i64() {
+        return Err(Error::input(field, InputProblem::BadDegree(n)));
+    }
+    match v.as_f64() {
+        Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => {
+            if x < 0.0 {
+                Err(Error::input(field, InputProblem::BadDegree(x as i64)))
+            } else {
+                Ok(x as usize)
+            }
+        }
+        _ => Err(shape(field, "expected a non-negative integer")),
     }
 }
 
