@@ -316,8 +316,8 @@ impl RationalBezierPatch {
     /// the interval net and all parameters in `u × v`).
     pub fn eval<S: Scalar>(&self, u: S, v: S) -> [S; 3] {
         let (s, r, _, _) = self.normalise(u, v);
-        let h = homogeneous_point(self.degree, s, r, |k, c| {
-            S::from_interval(self.homogeneous[k][c])
+        let h = homogeneous_point(self.degree, s, r, |k| {
+            self.homogeneous[k].map(S::from_interval)
         });
         let inv_w = S::one() / h[3];
         [h[0] * inv_w, h[1] * inv_w, h[2] * inv_w]
@@ -327,8 +327,8 @@ impl RationalBezierPatch {
     /// (intervals: rigorous enclosures). Uses only [`Scalar`] operations, no branching on values.
     pub fn eval_derivs<S: Scalar>(&self, u: S, v: S) -> PatchDerivs<S> {
         let (s, r, ku, kv) = self.normalise(u, v);
-        let h = homogeneous_derivs(self.degree, s, r, |k, c| {
-            S::from_interval(self.homogeneous[k][c])
+        let h = homogeneous_derivs(self.degree, s, r, |k| {
+            self.homogeneous[k].map(S::from_interval)
         });
         rational_derivs(&h, ku, kv)
     }
@@ -336,14 +336,14 @@ impl RationalBezierPatch {
     /// Fast `f64` point and derivatives from the midpoint net (non-rigorous).
     pub fn derivs_f64(&self, u: f64, v: f64) -> PatchDerivs<f64> {
         let (s, r, ku, kv) = self.normalise(u, v);
-        let h = homogeneous_derivs(self.degree, s, r, |k, c| self.mid[k][c]);
+        let h = homogeneous_derivs(self.degree, s, r, |k| self.mid[k]);
         rational_derivs(&h, ku, kv)
     }
 
     /// Fast `f64` point from the midpoint net (non-rigorous).
     pub fn point_f64(&self, u: f64, v: f64) -> [f64; 3] {
         let (s, r, _, _) = self.normalise(u, v);
-        let h = homogeneous_point(self.degree, s, r, |k, c| self.mid[k][c]);
+        let h = homogeneous_point(self.degree, s, r, |k| self.mid[k]);
         [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
     }
 }
@@ -412,7 +412,7 @@ fn homogeneous_derivs<S: Scalar>(
     degree: [usize; 2],
     s: S,
     r: S,
-    coeff: impl Fn(usize, usize) -> S,
+    coeff: impl Fn(usize) -> [S; 4],
 ) -> [[S; 4]; 6] {
     let [m, n] = degree;
     if m.max(n) <= STACK_DEGREE {
@@ -438,7 +438,7 @@ fn tensor_derivs<S: Scalar>(
     [m, n]: [usize; 2],
     [bu, du, ddu]: [&[S]; 3],
     [bv, dv, ddv]: [&[S]; 3],
-    coeff: impl Fn(usize, usize) -> S,
+    coeff: impl Fn(usize) -> [S; 4],
 ) -> [[S; 4]; 6] {
     let z = S::zero();
     let mut out = [[z; 4]; 6];
@@ -446,9 +446,9 @@ fn tensor_derivs<S: Scalar>(
         // Row sums over j of the basis in v and its derivatives.
         let mut row = [[z; 4]; 3];
         for j in 0..=n {
-            let k = i * (n + 1) + j;
+            let p = coeff(i * (n + 1) + j);
             for c in 0..4 {
-                let p = coeff(k, c);
+                let p = p[c];
                 row[0][c] = row[0][c] + bv[j] * p;
                 row[1][c] = row[1][c] + dv[j] * p;
                 row[2][c] = row[2][c] + ddv[j] * p;
@@ -472,7 +472,7 @@ fn homogeneous_point<S: Scalar>(
     [m, n]: [usize; 2],
     s: S,
     r: S,
-    coeff: impl Fn(usize, usize) -> S,
+    coeff: impl Fn(usize) -> [S; 4],
 ) -> [S; 4] {
     let z = S::zero();
     let sum = |bu: &[S], bv: &[S]| {
@@ -480,9 +480,9 @@ fn homogeneous_point<S: Scalar>(
         for i in 0..=m {
             let mut row = [z; 4];
             for j in 0..=n {
-                let k = i * (n + 1) + j;
-                for (c, x) in row.iter_mut().enumerate() {
-                    *x = *x + bv[j] * coeff(k, c);
+                let p = coeff(i * (n + 1) + j);
+                for (x, p) in row.iter_mut().zip(p) {
+                    *x = *x + bv[j] * p;
                 }
             }
             for c in 0..4 {
