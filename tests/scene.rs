@@ -549,3 +549,17 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn absurd_degrees_are_rejected_without_overflow() {
+    for deg in [
+        json!([u64::MAX, 1]),
+        json!([1e14, 1e14]),
+        json!([4294967296u64, 4294967296u64]),
+    ] {
+        let v = edited(|v| v["surfaces"][0]["degree"] = deg.clone());
+        let (s, f, _) = input_error(&v);
+        assert_eq!(s, Some(0));
+        assert!(f == "degree" || f == "points", "{f}");
+    }
+}

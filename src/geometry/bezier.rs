@@ -97,8 +97,9 @@ fn check_degree(degree: [usize; 2]) -> Result<usize> {
             ));
         }
     }
-    (degree[0] + 1)
-        .checked_mul(degree[1] + 1)
+    let [m, n] = degree.map(|d| d.checked_add(1));
+    m.zip(n)
+        .and_then(|(m, n)| m.checked_mul(n))
         .filter(|&c| c < (1 << 24))
         .ok_or_else(|| {
             Error::input(
