@@ -14,7 +14,11 @@ use std::time::Instant;
 const DEMO_SCENE: &str = include_str!("../scenes/wu_andrade_fig7.json");
 
 #[derive(Parser)]
-#[command(name = "ssitrace", version, about = "Surface/surface intersection curves of rational Bézier patches")]
+#[command(
+    name = "ssitrace",
+    version,
+    about = "Surface/surface intersection curves of rational Bézier patches"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -109,7 +113,11 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
         println!("result written to {}", path.display());
     }
     if let Some(path) = &outputs.svg {
-        let title = scene.options.name.clone().unwrap_or_else(|| "ssitrace".into());
+        let title = scene
+            .options
+            .name
+            .clone()
+            .unwrap_or_else(|| "ssitrace".into());
         let domains = [scene.surfaces[0].domain(), scene.surfaces[1].domain()];
         write_svg(path, &outcome.intersection, domains, &title)?;
         println!("picture written to {}", path.display());
@@ -127,10 +135,19 @@ fn end_name(e: &EndReason) -> String {
     }
 }
 
-fn print_summary(scene: &Scene, outcome: &ssitrace::marching::intersect::IntersectOutcome, seconds: f64) {
+fn print_summary(
+    scene: &Scene,
+    outcome: &ssitrace::marching::intersect::IntersectOutcome,
+    seconds: f64,
+) {
     let name = scene.options.name.as_deref().unwrap_or("scene");
     let ix = &outcome.intersection;
-    println!("{name}: {} branch(es), {} event(s), {:.1} ms", ix.branches.len(), ix.events.len(), seconds * 1e3);
+    println!(
+        "{name}: {} branch(es), {} event(s), {:.1} ms",
+        ix.branches.len(),
+        ix.events.len(),
+        seconds * 1e3
+    );
     for b in &ix.branches {
         let status = match b.status {
             BranchStatus::Closed => "closed loop",
@@ -142,10 +159,17 @@ fn print_summary(scene: &Scene, outcome: &ssitrace::marching::intersect::Interse
         } else {
             format!(" from {} to {}", end_name(&b.ends[0]), end_name(&b.ends[1]))
         };
-        println!("  branch {}: {status}{desc}, {} points", b.id, b.points.len());
+        println!(
+            "  branch {}: {status}{desc}, {} points",
+            b.id,
+            b.points.len()
+        );
     }
     for e in &ix.events {
-        println!("  event {:?} at xyz = ({:.6}, {:.6}, {:.6})", e.kind, e.xyz[0], e.xyz[1], e.xyz[2]);
+        println!(
+            "  event {:?} at xyz = ({:.6}, {:.6}, {:.6})",
+            e.kind, e.xyz[0], e.xyz[1], e.xyz[2]
+        );
     }
     let s = &outcome.stats;
     if s.undecided_leaves > 0 || s.search_truncated || s.failed_starts > 0 {

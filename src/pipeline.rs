@@ -32,7 +32,10 @@ impl RunOptions {
 /// Errors: a non-positive or non-finite step; a method that is not available yet.
 pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<(IntersectOutcome, ResultMeta)> {
     if !(opts.step.is_finite() && opts.step > 0.0) {
-        return Err(Error::Scene(format!("the step must be a positive number, not {}", opts.step)));
+        return Err(Error::Scene(format!(
+            "the step must be a positive number, not {}",
+            opts.step
+        )));
     }
     if opts.method != Method::March {
         return Err(Error::Scene(format!(

@@ -22,6 +22,17 @@ pub trait ScalarSurface {
     fn second_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 6];
 }
 
+impl ScalarSurface for crate::geometry::RationalBezierPatch {
+    fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3] {
+        let d = self.eval_derivs(u, v);
+        [d.p, d.su, d.sv]
+    }
+    fn second_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 6] {
+        let d = self.eval_derivs(u, v);
+        [d.p, d.su, d.sv, d.suu, d.suv, d.svv]
+    }
+}
+
 /// Cross product.
 pub fn cross<T: Scalar>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
     [

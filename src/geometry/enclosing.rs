@@ -22,3 +22,10 @@ impl<T: EnclosingSurface + ?Sized> EnclosingSurface for &T {
 pub fn boxes_disjoint(a: &[Interval; 3], b: &[Interval; 3]) -> bool {
     a.iter().zip(b).any(|(x, y)| x.disjoint(*y))
 }
+
+impl EnclosingSurface for super::RationalBezierPatch {
+    /// The intersection of the convex-hull bound of the sub-patch and the naive interval bound.
+    fn enclose(&self, u_box: Interval, v_box: Interval) -> [Interval; 3] {
+        super::RationalBezierPatch::enclose(self, u_box, v_box)
+    }
+}

@@ -1,8 +1,13 @@
 //! Geometry: surfaces, rational Bézier patches, power-basis conversion, rigorous bounds.
 
 pub mod analytic;
+pub mod bezier;
 pub mod enclosing;
+pub mod enclosure;
+pub mod power;
 pub mod surface;
 
+pub use bezier::{PatchDerivs, RationalBezierPatch};
 pub use enclosing::EnclosingSurface;
+pub use power::PowerSurface;
 pub use surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};

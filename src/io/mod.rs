@@ -1,4 +1,5 @@
 //! Input and output: the scene format, result JSON, SVG pictures.
 
 pub mod result_json;
+pub mod scene;
 pub mod svg;

@@ -1,0 +1,566 @@
+//! Tensor-product rational Bézier patches with interval control data.
+//!
+//! A patch of degree `(m, n)` maps its declared domain `[u0,u1] × [v0,v1]` to space through the
+//! normalised parameters `s = (u − u0)/(u1 − u0)`, `r = (v − v0)/(v1 − v0)`:
+//!
+//! ```text
+//! S(u, v) = Σᵢ Σⱼ Bᵢᵐ(s) Bⱼⁿ(r) wᵢⱼ Pᵢⱼ  /  Σᵢ Σⱼ Bᵢᵐ(s) Bⱼⁿ(r) wᵢⱼ
+//! ```
+//!
+//! The control net is stored in homogeneous form `(w·x, w·y, w·z, w)`, each entry an
+//! [`Interval`], so "interval Bézier surfaces" (uncertain control data) are first-class: every
+//! rigorous operation encloses every patch whose exact control data lie in the intervals.
+
+use crate::error::{Error, InputProblem, Result};
+use crate::geometry::surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};
+use crate::scalar::Scalar;
+use inari::Interval;
+
+/// A surface point with all first and second partial derivatives, over any [`Scalar`].
+///
+/// Derivatives are with respect to the declared parameters `(u, v)` of the patch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchDerivs<S> {
+    /// The point S(u, v).
+    pub p: [S; 3],
+    /// ∂S/∂u.
+    pub su: [S; 3],
+    /// ∂S/∂v.
+    pub sv: [S; 3],
+    /// ∂²S/∂u².
+    pub suu: [S; 3],
+    /// ∂²S/∂u∂v.
+    pub suv: [S; 3],
+    /// ∂²S/∂v².
+    pub svv: [S; 3],
+}
+
+/// A tensor-product rational Bézier patch of degree `(m, n)`, both at least 1, on a declared
+/// parameter domain, with a homogeneous interval control net.
+///
+/// Invariants (checked by every constructor): finite, non-empty control intervals; every weight
+/// interval strictly positive; a finite domain with `u0 < u1`, `v0 < v1`; control points that do
+/// not all coincide.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RationalBezierPatch {
+    degree: [usize; 2],
+    /// `(w·x, w·y, w·z, w)` per control point, index `i*(n+1)+j`.
+    homogeneous: Vec<[Interval; 4]>,
+    /// Midpoints of `homogeneous`, the net used by the fast `f64` evaluation.
+    mid: Vec<[f64; 4]>,
+    /// The Cartesian control data `(x, y, z, w)` as given to [`RationalBezierPatch::new`], kept so
+    /// that writing the patch out reproduces the input exactly.
+    cartesian: Option<Vec<[Interval; 4]>>,
+    domain: Domain,
+}
+
+/// Whether `x` is a non-empty interval with finite bounds; the typed problem otherwise.
+pub(crate) fn check_interval(x: Interval) -> std::result::Result<(), InputProblem> {
+    if x.is_empty() {
+        return Err(InputProblem::InvertedInterval {
+            lo: f64::NAN,
+            hi: f64::NAN,
+        });
+    }
+    if !x.inf().is_finite() || !x.sup().is_finite() {
+        return Err(InputProblem::NonFinite);
+    }
+    Ok(())
+}
+
+/// Validate a domain: finite bounds and positive width in both directions.
+pub(crate) fn check_domain(domain: &Domain) -> Result<()> {
+    for (k, [lo, hi]) in [domain.u, domain.v].into_iter().enumerate() {
+        if !lo.is_finite() || !hi.is_finite() {
+            return Err(Error::input(
+                format!("domain[{k}]"),
+                InputProblem::NonFinite,
+            ));
+        }
+        if lo >= hi {
+            return Err(Error::input(
+                format!("domain[{k}]"),
+                InputProblem::EmptyDomain { lo, hi },
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Validate a degree and return the number of control points it needs.
+fn check_degree(degree: [usize; 2]) -> Result<usize> {
+    for (k, d) in degree.into_iter().enumerate() {
+        if d == 0 {
+            return Err(Error::input(
+                format!("degree[{k}]"),
+                InputProblem::BadDegree(0),
+            ));
+        }
+    }
+    let [m, n] = degree.map(|d| d.checked_add(1));
+    m.zip(n)
+        .and_then(|(m, n)| m.checked_mul(n))
+        .filter(|&c| c < (1 << 24))
+        .ok_or_else(|| {
+            Error::input(
+                "degree",
+                InputProblem::WrongShape("degree too large".into()),
+            )
+        })
+}
+
+impl RationalBezierPatch {
+    /// A patch from Cartesian control points `(x, y, z)` and optional weights (all 1 if `None`),
+    /// index `i*(n+1)+j`. The homogeneous net is computed in interval arithmetic, so it encloses
+    /// the exact products `w·x`.
+    ///
+    /// Errors ([`Error::InvalidInput`] without a surface index): `degree[k]` 0, wrong `points` /
+    /// `weights` counts, non-finite or empty intervals in `points[k][c]` / `weights[k]`, weights
+    /// not strictly positive, a bad `domain[k]`, or all control points coinciding (`points`).
+    pub fn new(
+        degree: [usize; 2],
+        points: Vec<[Interval; 3]>,
+        weights: Option<Vec<Interval>>,
+        domain: Domain,
+    ) -> Result<Self> {
+        let count = check_degree(degree)?;
+        if points.len() != count {
+            return Err(Error::input(
+                "points",
+                InputProblem::WrongCount {
+                    expected: count,
+                    found: points.len(),
+                },
+            ));
+        }
+        for (k, p) in points.iter().enumerate() {
+            for (c, x) in p.iter().enumerate() {
+                check_interval(*x).map_err(|e| Error::input(format!("points[{k}][{c}]"), e))?;
+            }
+        }
+        let weights = match weights {
+            Some(w) => {
+                if w.len() != count {
+                    return Err(Error::input(
+                        "weights",
+                        InputProblem::WrongCount {
+                            expected: count,
+                            found: w.len(),
+                        },
+                    ));
+                }
+                for (k, x) in w.iter().enumerate() {
+                    check_interval(*x).map_err(|e| Error::input(format!("weights[{k}]"), e))?;
+                    if x.inf() <= 0.0 {
+                        return Err(Error::input(
+                            format!("weights[{k}]"),
+                            InputProblem::NonPositiveWeight,
+                        ));
+                    }
+                }
+                w
+            }
+            None => vec![Interval::from_f64(1.0); count],
+        };
+        check_domain(&domain)?;
+        let cartesian: Vec<[Interval; 4]> = points
+            .iter()
+            .zip(&weights)
+            .map(|(p, &w)| [p[0], p[1], p[2], w])
+            .collect();
+        let homogeneous = cartesian
+            .iter()
+            .map(|&[x, y, z, w]| [x * w, y * w, z * w, w])
+            .collect();
+        let mut patch = Self::assemble(degree, homogeneous, domain)?;
+        patch.cartesian = Some(cartesian);
+        Ok(patch)
+    }
+
+    /// A patch from a homogeneous net `(w·x, w·y, w·z, w)`, index `i*(n+1)+j`.
+    ///
+    /// Same checks as [`RationalBezierPatch::new`]; the weight of entry `k` is reported as
+    /// `weights[k]`, its other components as `points[k][c]`.
+    pub fn from_homogeneous(
+        degree: [usize; 2],
+        hpoints: Vec<[Interval; 4]>,
+        domain: Domain,
+    ) -> Result<Self> {
+        let count = check_degree(degree)?;
+        if hpoints.len() != count {
+            return Err(Error::input(
+                "points",
+                InputProblem::WrongCount {
+                    expected: count,
+                    found: hpoints.len(),
+                },
+            ));
+        }
+        for (k, h) in hpoints.iter().enumerate() {
+            for (c, x) in h[..3].iter().enumerate() {
+                check_interval(*x).map_err(|e| Error::input(format!("points[{k}][{c}]"), e))?;
+            }
+            check_interval(h[3]).map_err(|e| Error::input(format!("weights[{k}]"), e))?;
+            if h[3].inf() <= 0.0 {
+                return Err(Error::input(
+                    format!("weights[{k}]"),
+                    InputProblem::NonPositiveWeight,
+                ));
+            }
+        }
+        check_domain(&domain)?;
+        Self::assemble(degree, hpoints, domain)
+    }
+
+    /// Convenience: a patch from exact `f64` points and optional weights (see
+    /// [`RationalBezierPatch::new`] for the checks).
+    pub fn from_f64_points(
+        degree: [usize; 2],
+        points: &[[f64; 3]],
+        weights: Option<&[f64]>,
+        domain: Domain,
+    ) -> Result<Self> {
+        let to_interval = |x: f64| {
+            if x.is_finite() {
+                Ok(Interval::from_f64(x))
+            } else {
+                Err(InputProblem::NonFinite)
+            }
+        };
+        let mut pts = Vec::with_capacity(points.len());
+        for (k, p) in points.iter().enumerate() {
+            let mut q = [Interval::from_f64(0.0); 3];
+            for c in 0..3 {
+                q[c] =
+                    to_interval(p[c]).map_err(|e| Error::input(format!("points[{k}][{c}]"), e))?;
+            }
+            pts.push(q);
+        }
+        let ws = match weights {
+            Some(ws) => Some(
+                ws.iter()
+                    .enumerate()
+                    .map(|(k, &w)| {
+                        to_interval(w).map_err(|e| Error::input(format!("weights[{k}]"), e))
+                    })
+                    .collect::<Result<Vec<_>>>()?,
+            ),
+            None => None,
+        };
+        Self::new(degree, pts, ws, domain)
+    }
+
+    /// Build the patch from a checked net; rejects a degenerate net (all points coincide).
+    fn assemble(
+        degree: [usize; 2],
+        homogeneous: Vec<[Interval; 4]>,
+        domain: Domain,
+    ) -> Result<Self> {
+        let mid: Vec<[f64; 4]> = homogeneous
+            .iter()
+            .map(|h| [h[0].mid(), h[1].mid(), h[2].mid(), h[3].mid()])
+            .collect();
+        let project = |m: &[f64; 4]| [m[0] / m[3], m[1] / m[3], m[2] / m[3]];
+        let first = project(&mid[0]);
+        if mid.iter().all(|m| project(m) == first) {
+            return Err(Error::input("points", InputProblem::Degenerate));
+        }
+        Ok(RationalBezierPatch {
+            degree,
+            homogeneous,
+            mid,
+            cartesian: None,
+            domain,
+        })
+    }
+
+    /// The degree `[m, n]` (in u, in v).
+    pub fn degree(&self) -> [usize; 2] {
+        self.degree
+    }
+
+    /// The declared parameter domain.
+    pub fn domain(&self) -> Domain {
+        self.domain
+    }
+
+    /// The homogeneous interval control net `(w·x, w·y, w·z, w)`, index `i*(n+1)+j`.
+    pub fn homogeneous(&self) -> &[[Interval; 4]] {
+        &self.homogeneous
+    }
+
+    /// The Cartesian control data `(x, y, z, w)` per control point: exactly as given to
+    /// [`RationalBezierPatch::new`] if the patch was built that way, otherwise the rigorous
+    /// interval projection `(w·x)/w` of the homogeneous net (which encloses the exact points).
+    pub fn cartesian(&self) -> Vec<[Interval; 4]> {
+        match &self.cartesian {
+            Some(c) => c.clone(),
+            None => self
+                .homogeneous
+                .iter()
+                .map(|h| [h[0] / h[3], h[1] / h[3], h[2] / h[3], h[3]])
+                .collect(),
+        }
+    }
+
+    /// The normalised parameters `(s, r) ∈ [0,1]²` of declared parameters `(u, v)`, in `S`.
+    fn normalise<S: Scalar>(&self, u: S, v: S) -> (S, S, S, S) {
+        let d = &self.domain;
+        let du = S::from_f64(d.u[1]) - S::from_f64(d.u[0]);
+        let dv = S::from_f64(d.v[1]) - S::from_f64(d.v[0]);
+        let s = (u - S::from_f64(d.u[0])) / du;
+        let r = (v - S::from_f64(d.v[0])) / dv;
+        (s, r, S::one() / du, S::one() / dv)
+    }
+
+    /// The point S(u, v), evaluated in `S` (intervals: a rigorous enclosure over all patches of
+    /// the interval net and all parameters in `u × v`).
+    pub fn eval<S: Scalar>(&self, u: S, v: S) -> [S; 3] {
+        let (s, r, _, _) = self.normalise(u, v);
+        let h = homogeneous_point(self.degree, s, r, |k| {
+            self.homogeneous[k].map(S::from_interval)
+        });
+        let inv_w = S::one() / h[3];
+        [h[0] * inv_w, h[1] * inv_w, h[2] * inv_w]
+    }
+
+    /// The point and its first and second partials in the declared parameters, evaluated in `S`
+    /// (intervals: rigorous enclosures). Uses only [`Scalar`] operations, no branching on values.
+    pub fn eval_derivs<S: Scalar>(&self, u: S, v: S) -> PatchDerivs<S> {
+        let (s, r, ku, kv) = self.normalise(u, v);
+        let h = homogeneous_derivs(self.degree, s, r, |k| {
+            self.homogeneous[k].map(S::from_interval)
+        });
+        rational_derivs(&h, ku, kv)
+    }
+
+    /// Fast `f64` point and derivatives from the midpoint net (non-rigorous).
+    pub fn derivs_f64(&self, u: f64, v: f64) -> PatchDerivs<f64> {
+        let (s, r, ku, kv) = self.normalise(u, v);
+        let h = homogeneous_derivs(self.degree, s, r, |k| self.mid[k]);
+        rational_derivs(&h, ku, kv)
+    }
+
+    /// Fast `f64` point from the midpoint net (non-rigorous).
+    pub fn point_f64(&self, u: f64, v: f64) -> [f64; 3] {
+        let (s, r, _, _) = self.normalise(u, v);
+        let h = homogeneous_point(self.degree, s, r, |k| self.mid[k]);
+        [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+    }
+}
+
+/// Largest degree handled with stack buffers; higher degrees use heap buffers.
+const STACK_DEGREE: usize = 15;
+
+/// Bernstein basis values `B_i^deg(t)` and their first and second derivatives in `t`.
+///
+/// Writes `deg + 1` entries into each of `b`, `d1`, `d2` (which must be at least that long).
+fn bernstein<S: Scalar>(deg: usize, t: S, b: &mut [S], d1: &mut [S], d2: &mut [S]) {
+    let one_minus = S::one() - t;
+    for x in b[..=deg]
+        .iter_mut()
+        .chain(&mut d1[..=deg])
+        .chain(&mut d2[..=deg])
+    {
+        *x = S::zero();
+    }
+    b[0] = S::one();
+    // Raise the basis from level k to k + 1; entries above the current level stay zero, so the
+    // derivative formulas below can read them as zeros.
+    for k in 0..deg {
+        if deg >= 2 && k == deg - 2 {
+            // B''_i = deg(deg−1)(B_{i−2} − 2B_{i−1} + B_i), basis of level deg − 2.
+            let c = S::from_f64((deg * (deg - 1)) as f64);
+            let two = S::from_f64(2.0);
+            for i in 0..=deg {
+                let a = if i >= 2 { b[i - 2] } else { S::zero() };
+                let m = if i >= 1 { b[i - 1] } else { S::zero() };
+                d2[i] = c * (a - two * m + b[i]);
+            }
+        }
+        if k == deg - 1 {
+            // B'_i = deg(B_{i−1} − B_i), basis of level deg − 1.
+            let c = S::from_f64(deg as f64);
+            for i in 0..=deg {
+                let a = if i >= 1 { b[i - 1] } else { S::zero() };
+                d1[i] = c * (a - b[i]);
+            }
+        }
+        b[k + 1] = t * b[k];
+        for i in (1..=k).rev() {
+            b[i] = one_minus * b[i] + t * b[i - 1];
+        }
+        b[0] = one_minus * b[0];
+    }
+}
+
+/// Bernstein basis values only.
+fn bernstein_values<S: Scalar>(deg: usize, t: S, b: &mut [S]) {
+    let one_minus = S::one() - t;
+    b[0] = S::one();
+    for k in 1..=deg {
+        b[k] = t * b[k - 1];
+        for i in (1..k).rev() {
+            b[i] = one_minus * b[i] + t * b[i - 1];
+        }
+        b[0] = one_minus * b[0];
+    }
+}
+
+/// Homogeneous point and its partials in the normalised parameters `(s, r)`:
+/// `[H, H_s, H_r, H_ss, H_sr, H_rr]`, each 4 components.
+fn homogeneous_derivs<S: Scalar>(
+    degree: [usize; 2],
+    s: S,
+    r: S,
+    coeff: impl Fn(usize) -> [S; 4],
+) -> [[S; 4]; 6] {
+    let [m, n] = degree;
+    if m.max(n) <= STACK_DEGREE {
+        let z = S::zero();
+        let mut buf = [[z; STACK_DEGREE + 1]; 6];
+        let [bu, du, ddu, bv, dv, ddv] = &mut buf;
+        bernstein(m, s, bu, du, ddu);
+        bernstein(n, r, bv, dv, ddv);
+        tensor_derivs(degree, [bu, du, ddu], [bv, dv, ddv], coeff)
+    } else {
+        let z = S::zero();
+        let (mut bu, mut du, mut ddu) = (vec![z; m + 1], vec![z; m + 1], vec![z; m + 1]);
+        let (mut bv, mut dv, mut ddv) = (vec![z; n + 1], vec![z; n + 1], vec![z; n + 1]);
+        bernstein(m, s, &mut bu, &mut du, &mut ddu);
+        bernstein(n, r, &mut bv, &mut dv, &mut ddv);
+        tensor_derivs(degree, [&bu, &du, &ddu], [&bv, &dv, &ddv], coeff)
+    }
+}
+
+#[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
+/// Sum the tensor product of the u- and v-basis (values, first, second derivatives) with the net.
+fn tensor_derivs<S: Scalar>(
+    [m, n]: [usize; 2],
+    [bu, du, ddu]: [&[S]; 3],
+    [bv, dv, ddv]: [&[S]; 3],
+    coeff: impl Fn(usize) -> [S; 4],
+) -> [[S; 4]; 6] {
+    let z = S::zero();
+    let mut out = [[z; 4]; 6];
+    for i in 0..=m {
+        // Row sums over j of the basis in v and its derivatives.
+        let mut row = [[z; 4]; 3];
+        for j in 0..=n {
+            let p = coeff(i * (n + 1) + j);
+            for c in 0..4 {
+                let p = p[c];
+                row[0][c] = row[0][c] + bv[j] * p;
+                row[1][c] = row[1][c] + dv[j] * p;
+                row[2][c] = row[2][c] + ddv[j] * p;
+            }
+        }
+        for c in 0..4 {
+            out[0][c] = out[0][c] + bu[i] * row[0][c];
+            out[1][c] = out[1][c] + du[i] * row[0][c];
+            out[2][c] = out[2][c] + bu[i] * row[1][c];
+            out[3][c] = out[3][c] + ddu[i] * row[0][c];
+            out[4][c] = out[4][c] + du[i] * row[1][c];
+            out[5][c] = out[5][c] + bu[i] * row[2][c];
+        }
+    }
+    out
+}
+
+/// Homogeneous point only.
+#[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
+fn homogeneous_point<S: Scalar>(
+    [m, n]: [usize; 2],
+    s: S,
+    r: S,
+    coeff: impl Fn(usize) -> [S; 4],
+) -> [S; 4] {
+    let z = S::zero();
+    let sum = |bu: &[S], bv: &[S]| {
+        let mut out = [z; 4];
+        for i in 0..=m {
+            let mut row = [z; 4];
+            for j in 0..=n {
+                let p = coeff(i * (n + 1) + j);
+                for (x, p) in row.iter_mut().zip(p) {
+                    *x = *x + bv[j] * p;
+                }
+            }
+            for c in 0..4 {
+                out[c] = out[c] + bu[i] * row[c];
+            }
+        }
+        out
+    };
+    if m.max(n) <= STACK_DEGREE {
+        let (mut bu, mut bv) = ([z; STACK_DEGREE + 1], [z; STACK_DEGREE + 1]);
+        bernstein_values(m, s, &mut bu);
+        bernstein_values(n, r, &mut bv);
+        sum(&bu, &bv)
+    } else {
+        let (mut bu, mut bv) = (vec![z; m + 1], vec![z; n + 1]);
+        bernstein_values(m, s, &mut bu);
+        bernstein_values(n, r, &mut bv);
+        sum(&bu, &bv)
+    }
+}
+
+/// Quotient rule on the homogeneous derivatives, then the chain rule `∂/∂u = ku ∂/∂s`,
+/// `∂/∂v = kv ∂/∂r`.
+fn rational_derivs<S: Scalar>(h: &[[S; 4]; 6], ku: S, kv: S) -> PatchDerivs<S> {
+    let [n, ns, nr, nss, nsr, nrr] = h;
+    let inv_w = S::one() / n[3];
+    let (ws, wr, wss, wsr, wrr) = (ns[3], nr[3], nss[3], nsr[3], nrr[3]);
+    let z = S::zero();
+    let mut d = PatchDerivs {
+        p: [z; 3],
+        su: [z; 3],
+        sv: [z; 3],
+        suu: [z; 3],
+        suv: [z; 3],
+        svv: [z; 3],
+    };
+    let (ku2, kv2, kuv) = (ku.sqr(), kv.sqr(), ku * kv);
+    let two = S::from_f64(2.0);
+    for c in 0..3 {
+        let x = n[c] * inv_w;
+        let xs = (ns[c] - x * ws) * inv_w;
+        let xr = (nr[c] - x * wr) * inv_w;
+        let xss = (nss[c] - two * xs * ws - x * wss) * inv_w;
+        let xsr = (nsr[c] - xs * wr - xr * ws - x * wsr) * inv_w;
+        let xrr = (nrr[c] - two * xr * wr - x * wrr) * inv_w;
+        d.p[c] = x;
+        d.su[c] = xs * ku;
+        d.sv[c] = xr * kv;
+        d.suu[c] = xss * ku2;
+        d.suv[c] = xsr * kuv;
+        d.svv[c] = xrr * kv2;
+    }
+    d
+}
+
+fn vec3(a: [f64; 3]) -> Vec3 {
+    Vec3::new(a[0], a[1], a[2])
+}
+
+impl ParametricSurface for RationalBezierPatch {
+    fn domain(&self) -> Domain {
+        self.domain
+    }
+
+    fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs {
+        let d = self.derivs_f64(u, v);
+        SurfaceDerivs {
+            p: vec3(d.p),
+            su: vec3(d.su),
+            sv: vec3(d.sv),
+            suu: vec3(d.suu),
+            suv: vec3(d.suv),
+            svv: vec3(d.svv),
+        }
+    }
+
+    fn point(&self, u: f64, v: f64) -> Vec3 {
+        vec3(self.point_f64(u, v))
+    }
+}
