@@ -5,6 +5,7 @@ use ssitrace::intersection::{BranchStatus, EndReason};
 use ssitrace::io::result_json::write_result;
 use ssitrace::io::scene::{Method, Scene};
 use ssitrace::io::svg::write_svg;
+use ssitrace::marching::intersect::IntersectOutcome;
 use ssitrace::pipeline::{run_scene, RunOptions};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -107,10 +108,10 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
     let started = Instant::now();
     let (outcome, meta) = run_scene(&scene, &opts)?;
     let elapsed = started.elapsed().as_secs_f64();
-    print_summary(&scene, &outcome, elapsed);
+    say(&summary(&scene, &outcome, elapsed));
     if let Some(path) = &outputs.out {
         write_result(path, &outcome.intersection, &meta)?;
-        println!("result written to {}", path.display());
+        say(&format!("result written to {}\n", path.display()));
     }
     if let Some(path) = &outputs.svg {
         let title = scene
@@ -120,9 +121,15 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
             .unwrap_or_else(|| "ssitrace".into());
         let domains = [scene.surfaces[0].domain(), scene.surfaces[1].domain()];
         write_svg(path, &outcome.intersection, domains, &title)?;
-        println!("picture written to {}", path.display());
+        say(&format!("picture written to {}\n", path.display()));
     }
     Ok(())
+}
+
+/// Prints to standard output, ignoring a closed pipe (e.g. `ssitrace demo | head -1`).
+fn say(text: &str) {
+    use std::io::Write;
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
 }
 
 fn end_name(e: &EndReason) -> String {
@@ -135,14 +142,13 @@ fn end_name(e: &EndReason) -> String {
     }
 }
 
-fn print_summary(
-    scene: &Scene,
-    outcome: &ssitrace::marching::intersect::IntersectOutcome,
-    seconds: f64,
-) {
+fn summary(scene: &Scene, outcome: &IntersectOutcome, seconds: f64) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
     let name = scene.options.name.as_deref().unwrap_or("scene");
     let ix = &outcome.intersection;
-    println!(
+    let _ = writeln!(
+        out,
         "{name}: {} branch(es), {} event(s), {:.1} ms",
         ix.branches.len(),
         ix.events.len(),
@@ -159,25 +165,28 @@ fn print_summary(
         } else {
             format!(" from {} to {}", end_name(&b.ends[0]), end_name(&b.ends[1]))
         };
-        println!(
+        let _ = writeln!(
+            out,
             "  branch {}: {status}{desc}, {} points",
             b.id,
             b.points.len()
         );
     }
     for e in &ix.events {
-        println!(
+        let _ = writeln!(
+            out,
             "  event {:?} at xyz = ({:.6}, {:.6}, {:.6})",
             e.kind, e.xyz[0], e.xyz[1], e.xyz[2]
         );
     }
     let s = &outcome.stats;
     if s.undecided_leaves > 0 || s.search_truncated || s.failed_starts > 0 {
-        println!(
+        let _ = writeln!(out,
             "  warning: {} undecided search box(es){}, {} failed start(s): small features may be missing",
             s.undecided_leaves,
             if s.search_truncated { ", search truncated" } else { "" },
             s.failed_starts
         );
     }
+    out
 }

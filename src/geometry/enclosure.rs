@@ -62,7 +62,7 @@ fn normalised(x: f64, [lo, hi]: [f64; 2]) -> Interval {
 
 /// The bounding box of the projections `(w·x)/w` of a homogeneous net with positive weights;
 /// `None` if some weight interval is not provably positive.
-fn hull_of_net(net: &[[Interval; 4]]) -> Option<[Interval; 3]> {
+pub(crate) fn hull_of_net(net: &[[Interval; 4]]) -> Option<[Interval; 3]> {
     let mut out: Option<[Interval; 3]> = None;
     for h in net {
         if h[3].is_empty() || h[3].inf() <= 0.0 {
@@ -211,4 +211,9 @@ mod tests {
         // Cubic with x-controls 0,1,2,3 is x = 3t; at t = 0.5, x = 1.5.
         assert!(mid.iter().all(|h| h[0].contains(1.5)));
     }
+}
+
+/// Whether two interval boxes are disjoint in some coordinate (a proof that they do not meet).
+pub fn boxes_disjoint(a: &[Interval; 3], b: &[Interval; 3]) -> bool {
+    a.iter().zip(b).any(|(x, y)| x.disjoint(*y))
 }

@@ -2,12 +2,11 @@
 
 pub mod analytic;
 pub mod bezier;
-pub mod enclosing;
 pub mod enclosure;
 pub mod power;
+pub mod subdivision;
 pub mod surface;
 
 pub use bezier::{PatchDerivs, RationalBezierPatch};
-pub use enclosing::EnclosingSurface;
 pub use power::PowerSurface;
 pub use surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};

@@ -6,7 +6,7 @@
 
 use super::start_points::{find_start_points, SearchOptions, SearchReport, StartPoint};
 use super::{trace_branch, MarchOptions};
-use crate::geometry::{Domain, EnclosingSurface};
+use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use crate::intersection::{Branch, Event, Intersection};
 use std::time::Instant;
 
@@ -47,16 +47,12 @@ pub struct IntersectOutcome {
 /// Each branch is traced once: a start point closer to an already traced branch than a third of
 /// the step (in model space, and within 2 % of the domains in parameters) is skipped. Events of
 /// all branches are merged, duplicates (the same point reached from two sides) removed.
-pub fn intersect<P, Q>(
-    p: &P,
-    q: &Q,
+pub fn intersect(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
     march: &MarchOptions,
     search: &SearchOptions,
-) -> IntersectOutcome
-where
-    P: EnclosingSurface,
-    Q: EnclosingSurface,
-{
+) -> IntersectOutcome {
     let t0 = Instant::now();
     let report: SearchReport = find_start_points(p, q, search);
     let t1 = Instant::now();
@@ -130,7 +126,7 @@ fn norm3(a: &[f64; 3]) -> f64 {
 
 /// Whether the curve point with parameters `x` lies on `branch`: within `radius` of one of its
 /// chords in model space, with parameters within 2 % of the domain sizes of that chord's ends.
-fn covers<P: EnclosingSurface>(
+fn covers<P: ParametricSurface>(
     branch: &Branch,
     x: &[f64; 4],
     p: &P,

@@ -12,9 +12,9 @@
 //! no intersection. Leaves where Newton fails are counted as *undecided* and reported, never
 //! silently dropped.
 
-use crate::geometry::enclosing::{boxes_disjoint, EnclosingSurface};
-use crate::geometry::{Domain, Vec3};
-use crate::scalar::interval;
+use crate::geometry::enclosure::boxes_disjoint;
+use crate::geometry::subdivision::SubPatch;
+use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch, Vec3};
 use inari::Interval;
 use nalgebra::{Matrix3, Matrix3x4, Vector3};
 
@@ -70,21 +70,22 @@ pub struct SearchReport {
     pub interior: Vec<StartPoint>,
     /// Leaf boxes examined.
     pub leaves: usize,
-    /// Leaf boxes whose enclosures overlapped but where Newton found no point (undecided).
+    /// Leaf boxes whose enclosures overlapped even after refinement to 1/16 of the leaf size
+    /// but where Newton found no point (undecided).
     pub undecided: usize,
     /// The leaf budget ran out: some regions were not examined.
     pub truncated: bool,
 }
 
 /// Finds boundary start points and interior candidates for the intersection of `p` and `q`.
-pub fn find_start_points<P, Q>(p: &P, q: &Q, opts: &SearchOptions) -> SearchReport
-where
-    P: EnclosingSurface,
-    Q: EnclosingSurface,
-{
+pub fn find_start_points(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    opts: &SearchOptions,
+) -> SearchReport {
     let (dp, dq) = (p.domain(), q.domain());
-    let size = diameter(&p.enclose(range(dp.u), range(dp.v)))
-        .max(diameter(&q.enclose(range(dq.u), range(dq.v))))
+    let size = diameter(&p.bounding_box())
+        .max(diameter(&q.bounding_box()))
         .max(f64::MIN_POSITIVE);
     let ctx = Ctx {
         leaf: size * opts.leaf_fraction,
@@ -92,14 +93,30 @@ where
         max_leaves: opts.max_leaves,
     };
     let mut report = SearchReport::default();
-    for edge in edges(dp) {
-        search_edge(&ctx, p, q, edge, false, &mut report);
-    }
-    for edge in edges(dq) {
-        search_edge(&ctx, q, p, edge, true, &mut report);
+    for (a, b, swapped) in [(p, q, false), (q, p, true)] {
+        for (fixed_index, upper) in [(0, false), (0, true), (1, false), (1, true)] {
+            let edge = SubPatch::boundary(a, fixed_index, upper);
+            search_pairs(
+                &ctx,
+                a,
+                b,
+                edge,
+                SubPatch::whole(b),
+                Some(swapped),
+                &mut report,
+            );
+        }
     }
     dedup(&mut report.boundary, dp, dq);
-    search_interior(&ctx, p, q, &mut report);
+    search_pairs(
+        &ctx,
+        p,
+        q,
+        SubPatch::whole(p),
+        SubPatch::whole(q),
+        None,
+        &mut report,
+    );
     report
 }
 
@@ -109,61 +126,9 @@ struct Ctx {
     max_leaves: usize,
 }
 
-/// A boundary curve of a domain: parameter `fixed_index` (0 = first, 1 = second) held at `value`,
-/// the other running over `run`.
-#[derive(Debug, Clone, Copy)]
-struct Edge {
-    fixed_index: usize,
-    value: f64,
-    run: [f64; 2],
-}
-
-fn edges(d: Domain) -> [Edge; 4] {
-    [
-        Edge {
-            fixed_index: 0,
-            value: d.u[0],
-            run: d.v,
-        },
-        Edge {
-            fixed_index: 0,
-            value: d.u[1],
-            run: d.v,
-        },
-        Edge {
-            fixed_index: 1,
-            value: d.v[0],
-            run: d.u,
-        },
-        Edge {
-            fixed_index: 1,
-            value: d.v[1],
-            run: d.u,
-        },
-    ]
-}
-
-impl Edge {
-    fn params(&self, s: f64) -> (f64, f64) {
-        if self.fixed_index == 0 {
-            (self.value, s)
-        } else {
-            (s, self.value)
-        }
-    }
-    fn params_box(&self, s: Interval) -> (Interval, Interval) {
-        let fixed = interval(self.value, self.value).unwrap_or(Interval::ENTIRE);
-        if self.fixed_index == 0 {
-            (fixed, s)
-        } else {
-            (s, fixed)
-        }
-    }
-}
-
-fn range(r: [f64; 2]) -> Interval {
-    interval(r[0], r[1]).unwrap_or(Interval::ENTIRE)
-}
+/// A leaf where Newton finds nothing is subdivided further, down to this fraction of the leaf
+/// size, before it is reported as undecided (most such leaves are then excluded outright).
+const REFINE_FAILED_LEAF: f64 = 1.0 / 16.0;
 
 fn diameter(b: &[Interval; 3]) -> f64 {
     b.iter().map(|x| x.wid()).fold(0.0, f64::max)
@@ -173,89 +138,119 @@ fn mid(r: [f64; 2]) -> f64 {
     0.5 * (r[0] + r[1])
 }
 
-fn halves(r: [f64; 2]) -> [[f64; 2]; 2] {
-    let m = mid(r);
-    [[r[0], m], [m, r[1]]]
-}
-
-/// Searches one boundary curve of `a` against surface `b`. `swapped` says `a` is Q.
-fn search_edge<A, B>(ctx: &Ctx, a: &A, b: &B, edge: Edge, swapped: bool, report: &mut SearchReport)
-where
-    A: EnclosingSurface,
-    B: EnclosingSurface,
-{
-    let db = b.domain();
-    let mut stack = vec![(edge.run, db.u, db.v)];
-    while let Some((s, bu, bv)) = stack.pop() {
-        let (au, av) = edge.params_box(range(s));
-        let ea = a.enclose(au, av);
-        let eb = b.enclose(range(bu), range(bv));
+/// Pair subdivision of a piece `a0` of surface `a` against a piece `b0` of surface `b`, pruned
+/// where the bounding boxes are disjoint; Newton at every leaf pair.
+///
+/// `edge = Some(swapped)`: `a0` is a boundary curve of `a` (degree 0 in its fixed direction),
+/// and `a` is Q when `swapped`; results are boundary points. `edge = None`: `a = P`, `b = Q`,
+/// interior candidates.
+fn search_pairs(
+    ctx: &Ctx,
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    a0: SubPatch,
+    b0: SubPatch,
+    edge: Option<bool>,
+    report: &mut SearchReport,
+) {
+    let budget = report.leaves + ctx.max_leaves;
+    let (da, db) = (a.domain(), b.domain());
+    let mut stack = vec![(a0, b0, ctx.leaf)];
+    while let Some((pa, pb, mut leaf)) = stack.pop() {
+        let (ea, eb) = (pa.bounds(), pb.bounds());
         if boxes_disjoint(&ea, &eb) {
             continue;
         }
         let (wa, wb) = (diameter(&ea), diameter(&eb));
-        if wa <= ctx.leaf && wb <= ctx.leaf {
+        if wa <= leaf && wb <= leaf {
             report.leaves += 1;
-            if report.leaves > ctx.max_leaves {
+            if report.leaves > budget {
                 report.truncated = true;
                 return;
             }
-            match edge_newton(a, b, edge, [mid(s), mid(bu), mid(bv)], ctx.tol) {
-                Some([s0, u0, v0]) if inside(s0, edge.run) && db.contains(u0, v0, 1e-12) => {
-                    let (a0, a1) = edge.params(s0.clamp(edge.run[0], edge.run[1]));
-                    let params = if swapped {
-                        [u0, v0, a0, a1]
-                    } else {
-                        [a0, a1, u0, v0]
+            let guess = [mid(pa.u), mid(pa.v), mid(pb.u), mid(pb.v)];
+            let found = match edge {
+                Some(_) => edge_newton(a, b, &pa, guess, ctx.tol),
+                None => project_onto_intersection(a, b, guess, ctx.tol),
+            };
+            match found {
+                Some(x) if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) => {
+                    let (kind, params) = match edge {
+                        Some(swapped) => (
+                            StartKind::Boundary {
+                                surface: usize::from(swapped),
+                            },
+                            if swapped { [x[2], x[3], x[0], x[1]] } else { x },
+                        ),
+                        None => (StartKind::Interior, x),
                     };
-                    report.boundary.push(StartPoint {
-                        params,
-                        kind: StartKind::Boundary {
-                            surface: usize::from(swapped),
-                        },
-                    });
+                    let list = if edge.is_some() {
+                        &mut report.boundary
+                    } else {
+                        &mut report.interior
+                    };
+                    list.push(StartPoint { params, kind });
+                    continue;
                 }
-                Some(_) => {}
-                None => report.undecided += 1,
+                Some(_) => continue,
+                None if leaf > ctx.leaf * REFINE_FAILED_LEAF => leaf *= 0.5,
+                None => {
+                    report.undecided += 1;
+                    continue;
+                }
             }
-            continue;
         }
+        // Split the piece with the larger box, across its longer parameter direction (a
+        // boundary curve only along its free direction).
         if wa >= wb {
-            for h in halves(s) {
-                stack.push((h, bu, bv));
+            let dir = split_direction(&pa);
+            for half in pa.split(dir) {
+                stack.push((half, pb.clone(), leaf));
             }
         } else {
-            for hu in halves(bu) {
-                for hv in halves(bv) {
-                    stack.push((s, hu, hv));
-                }
+            let dir = split_direction(&pb);
+            for half in pb.split(dir) {
+                stack.push((pa.clone(), half, leaf));
             }
         }
     }
 }
 
-fn inside(x: f64, r: [f64; 2]) -> bool {
-    let tol = 1e-12 * (r[1] - r[0]).abs().max(1.0);
-    x >= r[0] - tol && x <= r[1] + tol
+/// The direction to split a piece: the one of larger relative parameter extent (never one of
+/// degree 0).
+fn split_direction(piece: &SubPatch) -> usize {
+    let [m, n] = piece.degree();
+    if m == 0 {
+        return 1;
+    }
+    if n == 0 {
+        return 0;
+    }
+    let (du, dv) = (piece.u[1] - piece.u[0], piece.v[1] - piece.v[0]);
+    usize::from(dv * (n as f64) > du * (m as f64))
 }
 
-/// Newton on `A(edge(s)) − B(u, v) = 0` in the unknowns `(s, u, v)`.
-fn edge_newton<A, B>(a: &A, b: &B, edge: Edge, mut x: [f64; 3], tol: f64) -> Option<[f64; 3]>
-where
-    A: EnclosingSurface,
-    B: EnclosingSurface,
-{
+/// Newton on `A(edge) − B(u, v) = 0` with the boundary parameter of `A` held fixed: three
+/// unknowns, three equations. `x = (a0, a1, b0, b1)` in the parameters of `A` then `B`.
+fn edge_newton(
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    edge: &SubPatch,
+    mut x: [f64; 4],
+    tol: f64,
+) -> Option<[f64; 4]> {
+    // The free parameter of the edge: 1 (v) when u is fixed (degree 0 in u), else 0.
+    let free = usize::from(edge.degree()[0] == 0);
     for _ in 0..40 {
-        let (au, av) = edge.params(x[0]);
-        let da = a.derivs(au, av);
-        let db = b.derivs(x[1], x[2]);
+        let da = a.derivs(x[0], x[1]);
+        let db = b.derivs(x[2], x[3]);
         let f: Vec3 = da.p - db.p;
-        let ds = if edge.fixed_index == 0 { da.sv } else { da.su };
+        let ds = if free == 1 { da.sv } else { da.su };
         let jac = Matrix3::from_columns(&[ds, -db.su, -db.sv]);
         let step = jac.lu().solve(&f)?;
-        for (xi, si) in x.iter_mut().zip(step.iter()) {
-            *xi -= si;
-        }
+        x[free] -= step[0];
+        x[2] -= step[1];
+        x[3] -= step[2];
         if !x.iter().all(|v| v.is_finite()) {
             return None;
         }
@@ -263,71 +258,19 @@ where
             return Some(x);
         }
         if step.norm() <= 1e-15 * (1.0 + x.iter().map(|v| v.abs()).fold(0.0, f64::max)) {
-            let (au, av) = edge.params(x[0]);
-            let r = (a.point(au, av) - b.point(x[1], x[2])).norm();
+            let r = (a.point(x[0], x[1]) - b.point(x[2], x[3])).norm();
             return (r <= tol).then_some(x);
         }
     }
     None
 }
 
-/// Pair subdivision of both patches; a Gauss–Newton projection at every surviving leaf pair.
-fn search_interior<P, Q>(ctx: &Ctx, p: &P, q: &Q, report: &mut SearchReport)
-where
-    P: EnclosingSurface,
-    Q: EnclosingSurface,
-{
-    let (dp, dq) = (p.domain(), q.domain());
-    let mut stack = vec![(dp.u, dp.v, dq.u, dq.v)];
-    let budget = report.leaves + ctx.max_leaves;
-    while let Some((pu, pv, qu, qv)) = stack.pop() {
-        let ep = p.enclose(range(pu), range(pv));
-        let eq = q.enclose(range(qu), range(qv));
-        if boxes_disjoint(&ep, &eq) {
-            continue;
-        }
-        let (wp, wq) = (diameter(&ep), diameter(&eq));
-        if wp <= ctx.leaf && wq <= ctx.leaf {
-            report.leaves += 1;
-            if report.leaves > budget {
-                report.truncated = true;
-                return;
-            }
-            let x0 = [mid(pu), mid(pv), mid(qu), mid(qv)];
-            match project_onto_intersection(p, q, x0, ctx.tol) {
-                Some(x) if dp.contains(x[0], x[1], 1e-12) && dq.contains(x[2], x[3], 1e-12) => {
-                    report.interior.push(StartPoint {
-                        params: x,
-                        kind: StartKind::Interior,
-                    })
-                }
-                Some(_) => {}
-                None => report.undecided += 1,
-            }
-            continue;
-        }
-        if wp >= wq {
-            for hu in halves(pu) {
-                for hv in halves(pv) {
-                    stack.push((hu, hv, qu, qv));
-                }
-            }
-        } else {
-            for hu in halves(qu) {
-                for hv in halves(qv) {
-                    stack.push((pu, pv, hu, hv));
-                }
-            }
-        }
-    }
-}
-
 /// Gauss–Newton (minimum-norm steps) from `x` onto `P(σ,t) = Q(u,v)`; `None` if it does not
 /// converge to a residual below `tol`.
 pub fn project_onto_intersection<P, Q>(p: &P, q: &Q, mut x: [f64; 4], tol: f64) -> Option<[f64; 4]>
 where
-    P: crate::geometry::ParametricSurface,
-    Q: crate::geometry::ParametricSurface,
+    P: ParametricSurface + ?Sized,
+    Q: ParametricSurface + ?Sized,
 {
     for _ in 0..40 {
         let a = p.derivs(x[0], x[1]);
@@ -378,71 +321,32 @@ fn dedup(points: &mut Vec<StartPoint>, dp: Domain, dq: Domain) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{ParametricSurface, SurfaceDerivs};
-    use crate::Scalar;
+    use crate::geometry::PowerSurface;
 
-    /// The graph z = a·(u² + v²) + c·u + d over a domain, with exact interval bounds.
-    struct Graph {
-        a: f64,
-        c: f64,
-        d: f64,
-        domain: Domain,
-    }
-
-    impl Graph {
-        fn z<S: Scalar>(&self, u: S, v: S) -> S {
-            S::from_f64(self.a) * (u.sqr() + v.sqr())
-                + S::from_f64(self.c) * u
-                + S::from_f64(self.d)
+    /// The graph z = a·(u² + v²) + c·u + d over [−1, 1]², as a Bézier patch.
+    fn graph(a: f64, c: f64, d: f64) -> RationalBezierPatch {
+        PowerSurface {
+            domain: Domain::new(-1.0, 1.0, -1.0, 1.0),
+            x: vec![(1, 0, 1.0)],
+            y: vec![(0, 1, 1.0)],
+            z: vec![(2, 0, a), (0, 2, a), (1, 0, c), (0, 0, d), (1, 1, 0.0)],
+            w: None,
         }
-    }
-
-    impl ParametricSurface for Graph {
-        fn domain(&self) -> Domain {
-            self.domain
-        }
-        fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs {
-            let z = self.z(u, v);
-            SurfaceDerivs {
-                p: Vec3::new(u, v, z),
-                su: Vec3::new(1.0, 0.0, 2.0 * self.a * u + self.c),
-                sv: Vec3::new(0.0, 1.0, 2.0 * self.a * v),
-                suu: Vec3::new(0.0, 0.0, 2.0 * self.a),
-                suv: Vec3::zeros(),
-                svv: Vec3::new(0.0, 0.0, 2.0 * self.a),
-            }
-        }
-    }
-
-    impl EnclosingSurface for Graph {
-        fn enclose(&self, u: Interval, v: Interval) -> [Interval; 3] {
-            [u, v, self.z(u, v)]
-        }
-    }
-
-    fn square() -> Domain {
-        Domain::new(-1.0, 1.0, -1.0, 1.0)
+        .to_bezier()
+        .unwrap()
     }
 
     #[test]
     fn interior_loop_is_found_and_lies_on_the_circle() {
         // Paraboloid z = u² + v² − 0.25 against the plane z = 0: the circle of radius 0.5.
-        let p = Graph {
-            a: 1.0,
-            c: 0.0,
-            d: -0.25,
-            domain: square(),
-        };
-        let q = Graph {
-            a: 0.0,
-            c: 0.0,
-            d: 0.0,
-            domain: square(),
-        };
-        let r = find_start_points(&p, &q, &SearchOptions::default());
+        let r = find_start_points(
+            &graph(1.0, 0.0, -0.25),
+            &graph(0.0, 0.0, 0.0),
+            &SearchOptions::default(),
+        );
         assert!(r.boundary.is_empty(), "{:?}", r.boundary);
         assert!(!r.interior.is_empty());
-        assert!(!r.truncated);
+        assert!(!r.truncated && r.undecided == 0);
         for s in &r.interior {
             let [x, y, ..] = s.params;
             assert!((x.hypot(y) - 0.5).abs() < 1e-10, "{:?}", s.params);
@@ -452,19 +356,11 @@ mod tests {
     #[test]
     fn tiny_loop_is_found() {
         // Circle of radius 1e-3: far below the leaf size, still found.
-        let p = Graph {
-            a: 1.0,
-            c: 0.0,
-            d: -1e-6,
-            domain: square(),
-        };
-        let q = Graph {
-            a: 0.0,
-            c: 0.0,
-            d: 0.0,
-            domain: square(),
-        };
-        let r = find_start_points(&p, &q, &SearchOptions::default());
+        let r = find_start_points(
+            &graph(1.0, 0.0, -1e-6),
+            &graph(0.0, 0.0, 0.0),
+            &SearchOptions::default(),
+        );
         assert!(r
             .interior
             .iter()
@@ -473,33 +369,21 @@ mod tests {
 
     #[test]
     fn open_branch_ends_are_found_on_the_boundaries() {
-        // Tilted plane z = 0.5·u + 0.1 against z = 0: the line u = −0.2 crossing v = ±1.
-        let p = Graph {
-            a: 0.0,
-            c: 0.5,
-            d: 0.1,
-            domain: square(),
-        };
-        let q = Graph {
-            a: 0.0,
-            c: 0.0,
-            d: 0.0,
-            domain: square(),
-        };
-        let r = find_start_points(&p, &q, &SearchOptions::default());
+        // Tilted plane z = 0.5·u + 0.1 against z = 0: the line u = −0.2 crossing v = ±1, found
+        // once each (on P's and on Q's boundary at the same place, deduplicated).
+        let q = graph(0.0, 0.0, 0.0);
+        let r = find_start_points(&graph(0.0, 0.5, 0.1), &q, &SearchOptions::default());
         assert_eq!(r.boundary.len(), 2, "{:?}", r.boundary);
         for s in &r.boundary {
             assert!((s.params[0] + 0.2).abs() < 1e-12);
             assert!((s.params[1].abs() - 1.0).abs() < 1e-12);
+            assert!(
+                (s.params[2] - s.params[0]).abs() < 1e-12
+                    && (s.params[3] - s.params[1]).abs() < 1e-12
+            );
         }
         // Disjoint surfaces: nothing, and no leaf is even reached.
-        let far = Graph {
-            a: 0.0,
-            c: 0.0,
-            d: 5.0,
-            domain: square(),
-        };
-        let r = find_start_points(&far, &q, &SearchOptions::default());
+        let r = find_start_points(&graph(0.0, 0.0, 5.0), &q, &SearchOptions::default());
         assert!(r.boundary.is_empty() && r.interior.is_empty() && r.leaves == 0);
     }
 }
