@@ -181,6 +181,11 @@ impl RationalBezierPatch {
     }
 }
 
+/// Whether two interval boxes are disjoint in some coordinate (a proof that they do not meet).
+pub fn boxes_disjoint(a: &[Interval; 3], b: &[Interval; 3]) -> bool {
+    a.iter().zip(b).any(|(x, y)| x.disjoint(*y))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -211,9 +216,4 @@ mod tests {
         // Cubic with x-controls 0,1,2,3 is x = 3t; at t = 0.5, x = 1.5.
         assert!(mid.iter().all(|h| h[0].contains(1.5)));
     }
-}
-
-/// Whether two interval boxes are disjoint in some coordinate (a proof that they do not meet).
-pub fn boxes_disjoint(a: &[Interval; 3], b: &[Interval; 3]) -> bool {
-    a.iter().zip(b).any(|(x, y)| x.disjoint(*y))
 }
