@@ -68,7 +68,12 @@ pub(crate) fn hull_of_net(net: &[[Interval; 4]]) -> Option<[Interval; 3]> {
         if h[3].is_empty() || h[3].inf() <= 0.0 {
             return None;
         }
-        let p = [h[0] / h[3], h[1] / h[3], h[2] / h[3]];
+        // Polynomial pieces keep the weight exactly 1 under subdivision: no division needed.
+        let p = if h[3].inf() == 1.0 && h[3].sup() == 1.0 {
+            [h[0], h[1], h[2]]
+        } else {
+            [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+        };
         out = Some(match out {
             None => p,
             Some(o) => [

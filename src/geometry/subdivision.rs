@@ -22,18 +22,14 @@ pub struct SubPatch {
     pub v: [f64; 2],
     degree: [usize; 2],
     net: Vec<[Interval; 4]>,
+    bounds: [Interval; 3],
 }
 
 impl SubPatch {
     /// The whole patch.
     pub fn whole(patch: &RationalBezierPatch) -> Self {
         let d = patch.domain();
-        SubPatch {
-            u: d.u,
-            v: d.v,
-            degree: patch.degree(),
-            net: patch.homogeneous().to_vec(),
-        }
+        SubPatch::new(d.u, d.v, patch.degree(), patch.homogeneous().to_vec())
     }
 
     /// One of the four boundary curves, as a piece of degree 0 in the fixed direction:
@@ -44,20 +40,23 @@ impl SubPatch {
         let net = patch.homogeneous();
         if fixed_index == 0 {
             let i = if upper { m } else { 0 };
-            SubPatch {
-                u: [d.u[usize::from(upper)]; 2],
-                v: d.v,
-                degree: [0, n],
-                net: (0..=n).map(|j| net[i * (n + 1) + j]).collect(),
-            }
+            let edge = (0..=n).map(|j| net[i * (n + 1) + j]).collect();
+            SubPatch::new([d.u[usize::from(upper)]; 2], d.v, [0, n], edge)
         } else {
             let j = if upper { n } else { 0 };
-            SubPatch {
-                u: d.u,
-                v: [d.v[usize::from(upper)]; 2],
-                degree: [m, 0],
-                net: (0..=m).map(|i| net[i * (n + 1) + j]).collect(),
-            }
+            let edge = (0..=m).map(|i| net[i * (n + 1) + j]).collect();
+            SubPatch::new(d.u, [d.v[usize::from(upper)]; 2], [m, 0], edge)
+        }
+    }
+
+    fn new(u: [f64; 2], v: [f64; 2], degree: [usize; 2], net: Vec<[Interval; 4]>) -> Self {
+        let bounds = hull_of_net(&net).unwrap_or([Interval::ENTIRE; 3]);
+        SubPatch {
+            u,
+            v,
+            degree,
+            net,
+            bounds,
         }
     }
 
@@ -69,7 +68,7 @@ impl SubPatch {
     /// A rigorous bounding box of the piece (convex hull of its projected net); the whole space
     /// if some weight is not provably positive.
     pub fn bounds(&self) -> [Interval; 3] {
-        hull_of_net(&self.net).unwrap_or([Interval::ENTIRE; 3])
+        self.bounds
     }
 
     /// Splits at the parameter midpoint in direction `dir` (0 = u, 1 = v) into two halves.
@@ -79,7 +78,6 @@ impl SubPatch {
         if self.degree[dir] == 0 {
             return [self.clone(), self.clone()];
         }
-        let half = point(0.5);
         let (mut lo, mut hi) = (self.net.clone(), self.net.clone());
         // Index of control point k along the split direction, in line `l` across it.
         let (count, lines) = if dir == 0 {
@@ -107,7 +105,7 @@ impl SubPatch {
                 for k in 0..count - level {
                     let next = work[k + 1];
                     for (w, n) in work[k].iter_mut().zip(next) {
-                        *w = (*w + n) * half;
+                        *w = halve(*w + n);
                     }
                 }
                 lo[idx(level, l)] = work[0];
@@ -116,17 +114,17 @@ impl SubPatch {
         }
         let a = self.range(dir);
         let mid = 0.5 * (a[0] + a[1]);
-        let (mut left, mut right) = (self.clone(), self.clone());
-        left.net = lo;
-        right.net = hi;
         if dir == 0 {
-            left.u = [a[0], mid];
-            right.u = [mid, a[1]];
+            [
+                SubPatch::new([a[0], mid], self.v, self.degree, lo),
+                SubPatch::new([mid, a[1]], self.v, self.degree, hi),
+            ]
         } else {
-            left.v = [a[0], mid];
-            right.v = [mid, a[1]];
+            [
+                SubPatch::new(self.u, [a[0], mid], self.degree, lo),
+                SubPatch::new(self.u, [mid, a[1]], self.degree, hi),
+            ]
         }
-        [left, right]
     }
 
     /// The range in direction `dir`.
@@ -137,6 +135,18 @@ impl SubPatch {
             self.v
         }
     }
+}
+
+/// `x / 2`, rigorously: halving each bound is exact in binary floating point unless it lands in
+/// the subnormal range, where the interval product (rounded outward) is used instead.
+fn halve(x: Interval) -> Interval {
+    let (lo, hi) = (0.5 * x.inf(), 0.5 * x.sup());
+    if lo.abs() >= f64::MIN_POSITIVE && hi.abs() >= f64::MIN_POSITIVE {
+        if let Ok(h) = Interval::try_from((lo, hi)) {
+            return h;
+        }
+    }
+    x * point(0.5)
 }
 
 #[cfg(test)]
@@ -192,6 +202,17 @@ mod tests {
                 assert!(b[k].wid() <= 1.5 * direct[k].wid() + 1e-12);
             }
         }
+    }
+
+    #[test]
+    fn halving_is_exact_or_outward() {
+        let x = crate::scalar::interval(-3.0, 1e-310).unwrap();
+        let h = halve(x);
+        assert!(h.inf() <= -1.5 && h.sup() >= 0.5e-310);
+        assert_eq!(
+            halve(crate::scalar::interval(2.0, 6.0).unwrap()),
+            crate::scalar::interval(1.0, 3.0).unwrap()
+        );
     }
 
     #[test]

@@ -1,0 +1,134 @@
+//! The whole marching pipeline on the example scenes, checked against closed forms: every branch
+//! found, each traced once, every point on the known curve.
+
+use ssitrace::intersection::{Branch, BranchStatus, EndReason, Intersection};
+use ssitrace::io::scene::Scene;
+use ssitrace::pipeline::{run_scene, RunOptions};
+
+fn run(file: &str) -> Intersection {
+    let path = format!("{}/scenes/{file}", env!("CARGO_MANIFEST_DIR"));
+    let scene = Scene::from_path(std::path::Path::new(&path)).expect("scene parses");
+    let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("runs");
+    assert_eq!(outcome.stats.failed_starts, 0);
+    assert_eq!(outcome.stats.undecided_leaves, 0);
+    assert!(!outcome.stats.search_truncated);
+    outcome.intersection
+}
+
+/// Smallest model-space distance between points of two branches.
+fn gap(a: &Branch, b: &Branch) -> f64 {
+    let mut best = f64::INFINITY;
+    for p in &a.points {
+        for q in &b.points {
+            let d = (0..3)
+                .map(|i| (p.xyz[i] - q.xyz[i]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            best = best.min(d);
+        }
+    }
+    best
+}
+
+/// A closed loop: ends are `ClosedLoop`, the last point repeats the first, and no other point
+/// comes back to the start (it was traced once, not one and a half times).
+fn assert_closed_once(b: &Branch, step: f64) {
+    assert_eq!(b.status, BranchStatus::Closed);
+    assert_eq!(b.ends, [EndReason::ClosedLoop; 2]);
+    let first = b.points.first().unwrap();
+    let last = b.points.last().unwrap();
+    assert_eq!(first.p, last.p);
+    let n = b.points.len();
+    for pt in &b.points[2..n - 2] {
+        let d = (0..3)
+            .map(|i| (pt.xyz[i] - first.xyz[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        assert!(d > 0.2 * step, "loop passes its start again: {d}");
+    }
+}
+
+#[test]
+fn fig7_three_nested_loops_none_strays() {
+    let ix = run("wu_andrade_fig7.json");
+    assert_eq!(ix.branches.len(), 3);
+    // Each loop lies on exactly one of the ellipses 3u² + v² = 0.5, 0.6, 0.7.
+    let mut levels = Vec::new();
+    for b in &ix.branches {
+        assert_closed_once(b, 0.05);
+        let w = |p: &[f64; 2]| 3.0 * p[0] * p[0] + p[1] * p[1];
+        let level = w(&b.points[0].p);
+        for pt in &b.points {
+            assert!(
+                (w(&pt.p) - level).abs() < 1e-9,
+                "strayed: {} vs {level}",
+                w(&pt.p)
+            );
+            assert!((pt.p[0] - pt.q[0]).abs() < 1e-9 && (pt.p[1] - pt.q[1]).abs() < 1e-9);
+            assert!(pt.xyz[2].abs() < 1e-9);
+        }
+        levels.push(level);
+    }
+    levels.sort_by(f64::total_cmp);
+    for (got, want) in levels.iter().zip([0.5, 0.6, 0.7]) {
+        assert!((got - want).abs() < 1e-9, "{levels:?}");
+    }
+    assert!(gap(&ix.branches[0], &ix.branches[1]) > 0.03);
+    assert!(gap(&ix.branches[1], &ix.branches[2]) > 0.03);
+}
+
+#[test]
+fn s31_s32_two_disjoint_loops_each_once() {
+    let ix = run("two_loops_s31_s32.json");
+    assert_eq!(ix.branches.len(), 2);
+    for b in &ix.branches {
+        assert_closed_once(b, 0.02);
+        for pt in &b.points {
+            // F = (u, v, 3u² + 3v²), G = (s, 5(s² + w²) − 1, w + 1).
+            let [u, v] = pt.p;
+            let [s, w] = pt.q;
+            assert!((u - s).abs() < 1e-9);
+            assert!((v - (5.0 * (s * s + w * w) - 1.0)).abs() < 1e-9);
+            assert!((3.0 * (u * u + v * v) - (w + 1.0)).abs() < 1e-9);
+        }
+    }
+    assert!(gap(&ix.branches[0], &ix.branches[1]) > 0.5);
+}
+
+#[test]
+fn bicubic_pair_one_open_branch_boundary_to_boundary() {
+    let ix = run("bicubic_transversal.json");
+    assert_eq!(
+        ix.branches.len(),
+        1,
+        "{:?}",
+        ix.branches.iter().map(|b| b.ends).collect::<Vec<_>>()
+    );
+    let b = &ix.branches[0];
+    assert_eq!(b.status, BranchStatus::Open);
+    assert!(
+        matches!(b.ends[0], EndReason::Boundary { .. })
+            && matches!(b.ends[1], EndReason::Boundary { .. })
+    );
+    for pt in &b.points {
+        assert!((pt.p[0] - 0.5).abs() < 1e-9, "σ = {}", pt.p[0]);
+        assert!((pt.xyz[0] - 0.5).abs() < 1e-9);
+    }
+    // Exact landing on the boundary t = 0 and t = 1 of P.
+    let mut ts = [b.points[0].p[1], b.points.last().unwrap().p[1]];
+    ts.sort_by(f64::total_cmp);
+    assert_eq!(ts, [0.0, 1.0]);
+}
+
+#[test]
+fn rational_sphere_patch_against_plane_is_one_circle() {
+    let ix = run("sphere_patch_plane.json");
+    assert_eq!(ix.branches.len(), 1);
+    let b = &ix.branches[0];
+    assert_closed_once(b, 0.02);
+    for pt in &b.points {
+        let [x, y, z] = pt.xyz;
+        assert!((x - 1.375).abs() < 1e-9);
+        assert!((y * y + z * z - 141.0 / 256.0).abs() < 1e-9);
+    }
+}
