@@ -26,6 +26,9 @@ use inari::Interval;
 /// How many times one step may shrink `h` because the validated remainder exceeds `ε`.
 const MAX_REMAINDER_SHRINKS: usize = 6;
 
+/// The remainder may be this fraction of the current set's width without shrinking the step.
+const REMAINDER_FRACTION_OF_WIDTH: f64 = 1e-9;
+
 /// Why a validated step could not be proven.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum StepFailure {
@@ -241,6 +244,10 @@ impl Integrator {
             }
         }
         // Phase I, shrinking h on failure.
+        // The remainder target: ε, or a tiny fraction of the set's width when that is larger
+        // (shrinking h cannot make a wide set tighter; it only multiplies the steps).
+        let width = state.boxed.iter().fold(0.0f64, |m, v| m.max(v.wid()));
+        let rem_target = eps.max(REMAINDER_FRACTION_OF_WIDTH * width);
         let mut shrinks = 0;
         let (t1, h_iv, apriori) = loop {
             let (t1, h_iv) = next_time(state.t, h, t_limit);
@@ -267,12 +274,14 @@ impl Integrator {
                     // larger than the point estimate used above; shrink until it meets ε.
                     let rem = a.remainder_coeff.iter().fold(0.0f64, |m, c| m.max(c.mag()))
                         * h_try.powi(k as i32);
-                    if rem <= eps || shrinks >= MAX_REMAINDER_SHRINKS || h_try <= self.options.h_min
+                    if rem <= rem_target
+                        || shrinks >= MAX_REMAINDER_SHRINKS
+                        || h_try <= self.options.h_min
                     {
                         break (t1, h_iv, a);
                     }
                     shrinks += 1;
-                    h = h_try * (eps / rem).powf(1.0 / k as f64).clamp(0.3, 0.95);
+                    h = h_try * (rem_target / rem).powf(1.0 / k as f64).clamp(0.3, 0.95);
                 }
                 Err(EnclosureFailure::Domain(_)) | Err(EnclosureFailure::NotContained) => {
                     if h_try <= self.options.h_min {
