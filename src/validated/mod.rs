@@ -16,6 +16,7 @@ pub mod enclosure;
 pub mod integrator;
 pub mod lohner;
 pub mod record;
+pub mod series;
 pub mod system;
 pub mod tape;
 
@@ -23,4 +24,5 @@ pub use ad::{DomainError, Expansion, TaylorAd};
 pub use enclosure::EnclosureMethod;
 pub use integrator::{Integrator, IntegratorOptions, IntegratorState, StepFailure, Trajectory};
 pub use record::StepRecord;
+pub use series::Series;
 pub use system::OdeSystem;
