@@ -21,6 +21,7 @@
 //! be ≤ 0, makes the expansion fail with [`DomainError`] instead of producing a silently restricted
 //! or empty interval (an empty interval would pass every containment test).
 
+use super::dot::{DotAcc, InariDot, IntervalDot};
 use super::tape::{Op, Tape};
 use crate::scalar::point;
 use inari::{const_interval, Interval};
@@ -96,7 +97,33 @@ impl TaylorAd {
     /// Encloses the Taylor coefficients `y₀ … y_order` of the solution through every point of the
     /// box `y0` (`y0.len() == dim`), and, if `with_jacobian`, the Jacobians `Jᵢ = ∂yᵢ/∂y₀` for
     /// `i < order`. Every returned interval is bounded and non-empty.
+    ///
+    /// Convolutions use the fast a-posteriori-bounded sums of [`DotAcc`] (a few ulps wider per
+    /// coefficient than one-operation-at-a-time outward rounding); [`expand_tight`](Self::expand_tight)
+    /// uses plain `inari` operations where those last ulps matter.
     pub fn expand(
+        &mut self,
+        y0: &[Interval],
+        order: usize,
+        with_jacobian: bool,
+        out: &mut Expansion,
+    ) -> Result<(), DomainError> {
+        self.expand_with::<DotAcc>(y0, order, with_jacobian, out)
+    }
+
+    /// As [`expand`](Self::expand), with every operation outward-rounded by `inari` (tightest;
+    /// used for the expansion at the centre of the set, whose rounding widths feed the set).
+    pub fn expand_tight(
+        &mut self,
+        y0: &[Interval],
+        order: usize,
+        with_jacobian: bool,
+        out: &mut Expansion,
+    ) -> Result<(), DomainError> {
+        self.expand_with::<InariDot>(y0, order, with_jacobian, out)
+    }
+
+    fn expand_with<D: IntervalDot>(
         &mut self,
         y0: &[Interval],
         order: usize,
@@ -126,12 +153,12 @@ impl TaylorAd {
         let ops = &self.tape.ops;
         for i in 0..order {
             for (v, op) in ops.iter().enumerate() {
-                coef_step(ops, &mut self.coef, s, v, *op, i)?;
+                coef_step::<D>(ops, &mut self.coef, s, v, *op, i)?;
             }
             let jac_here = with_jacobian && i + 1 < order;
             if jac_here {
                 for (v, op) in ops.iter().enumerate() {
-                    deriv_step(ops, &self.coef, &mut self.dcoef, s, n, v, *op, i);
+                    deriv_step::<D>(ops, &self.coef, &mut self.dcoef, s, n, v, *op, i);
                 }
             }
             // y_{i+1} = f_i / (i+1), and its derivatives.
@@ -186,7 +213,7 @@ fn is_const(ops: &[Op], a: u32) -> bool {
 }
 
 /// Computes coefficient `i` of operation `v` from coefficients `0..=i` of its operands.
-fn coef_step(
+fn coef_step<D: IntervalDot>(
     ops: &[Op],
     coef: &mut [Interval],
     s: usize,
@@ -209,11 +236,11 @@ fn coef_step(
             } else if is_const(ops, b) {
                 x[i] * y[0]
             } else {
-                let mut acc = x[0] * y[i];
-                for m in 1..=i {
-                    acc = acc + x[m] * y[i - m];
+                let mut acc = D::start();
+                for m in 0..=i {
+                    acc.add(x[m], y[i - m]);
                 }
-                acc
+                acc.total()
             };
         }
         Op::Div(a, b) => {
@@ -224,19 +251,20 @@ fn coef_step(
             c[i] = if is_const(ops, b) {
                 x[i] / y[0]
             } else {
-                let mut acc = x[i];
+                let mut acc = D::start();
                 for m in 1..=i {
-                    acc = acc - y[m] * c[i - m];
+                    acc.add(y[m], c[i - m]);
                 }
-                acc / y[0]
+                (x[i] - acc.total()) / y[0]
             };
         }
         Op::Sqr(a) => {
             let x = ser(a);
-            let mut acc = ZERO;
+            let mut dot = D::start();
             for m in 0..(i + 1) / 2 {
-                acc = acc + x[m] * x[i - m];
+                dot.add(x[m], x[i - m]);
             }
+            let mut acc = dot.total();
             acc = acc + acc;
             if i % 2 == 0 {
                 acc = acc + x[i / 2].sqr();
@@ -251,10 +279,11 @@ fn coef_step(
                 }
                 c[0] = x[0].sqrt();
             } else {
-                let mut acc = ZERO;
+                let mut dot = D::start();
                 for m in 1..(i + 1) / 2 {
-                    acc = acc + c[m] * c[i - m];
+                    dot.add(c[m], c[i - m]);
                 }
+                let mut acc = dot.total();
                 acc = acc + acc;
                 if i % 2 == 0 {
                     acc = acc + c[i / 2].sqr();
@@ -268,7 +297,7 @@ fn coef_step(
 
 /// Computes the `n` partial derivatives of coefficient `i` of operation `v`.
 #[allow(clippy::too_many_arguments)]
-fn deriv_step(
+fn deriv_step<D: IntervalDot>(
     ops: &[Op],
     coef: &[Interval],
     dcoef: &mut [Interval],
@@ -296,11 +325,12 @@ fn deriv_step(
                     d(a)[i] * ser(b)[0]
                 } else {
                     let (x, y, dx, dy) = (ser(a), ser(b), d(a), d(b));
-                    let mut acc = ZERO;
+                    let mut acc = D::start();
                     for m in 0..=i {
-                        acc = acc + dx[m] * y[i - m] + x[m] * dy[i - m];
+                        acc.add(dx[m], y[i - m]);
+                        acc.add(x[m], dy[i - m]);
                     }
-                    acc
+                    acc.total()
                 };
             }
             Op::Div(a, b) => {
@@ -309,29 +339,31 @@ fn deriv_step(
                     d(a)[i] / y[0]
                 } else {
                     let dy = d(b);
-                    let mut acc = d(a)[i];
+                    let mut acc = D::start();
                     for m in 0..i {
-                        acc = acc - dc[m] * y[i - m];
+                        acc.add(dc[m], y[i - m]);
                     }
                     for m in 0..=i {
-                        acc = acc - c[m] * dy[i - m];
+                        acc.add(c[m], dy[i - m]);
                     }
-                    acc / y[0]
+                    (d(a)[i] - acc.total()) / y[0]
                 };
             }
             Op::Sqr(a) => {
                 let (x, dx) = (ser(a), d(a));
-                let mut acc = ZERO;
+                let mut acc = D::start();
                 for m in 0..=i {
-                    acc = acc + dx[m] * x[i - m];
+                    acc.add(dx[m], x[i - m]);
                 }
+                let acc = acc.total();
                 dc[i] = acc + acc;
             }
             Op::Sqrt(a) => {
-                let mut acc = ZERO;
+                let mut acc = D::start();
                 for m in 0..i {
-                    acc = acc + dc[m] * c[i - m];
+                    acc.add(dc[m], c[i - m]);
                 }
+                let acc = acc.total();
                 dc[i] = (d(a)[i] - (acc + acc)) / (c[0] + c[0]);
             }
         }

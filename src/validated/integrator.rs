@@ -85,6 +85,10 @@ pub struct IntegratorState {
     pub set: LohnerSet,
     /// A box enclosing all solutions at `t` (not necessarily the whole Lohner set).
     pub boxed: Vec<Interval>,
+    /// Step-size memory: the ratio of the last accepted step to its point-coefficient prediction
+    /// (the validated remainder usually forces a smaller step than the prediction; starting from
+    /// the last ratio saves repeated phase-I attempts). Starts at 1.
+    pub step_ratio: f64,
 }
 
 /// A validated integration from `t0` to `t_end`: every step's record.
@@ -175,6 +179,7 @@ impl Integrator {
             t: t0,
             set: LohnerSet::from_box(y0),
             boxed: y0.to_vec(),
+            step_ratio: 1.0,
         })
     }
 
@@ -223,7 +228,7 @@ impl Integrator {
             .map(|(b, c)| b.convex_hull(*c))
             .collect();
         self.ad
-            .expand(&center, k, false, &mut self.exp_center)
+            .expand_tight(&center, k, false, &mut self.exp_center)
             .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
         self.ad
             .expand(&range, k, true, &mut self.exp_box)
@@ -243,6 +248,8 @@ impl Integrator {
                 h = h.min((eps / norm).powf(1.0 / i as f64));
             }
         }
+        let h_predicted = h;
+        h = (h_predicted * (state.step_ratio * 1.05).min(1.0)).min(self.options.h_max);
         // Phase I, shrinking h on failure.
         // The remainder target: ε, or a tiny fraction of the set's width when that is larger
         // (shrinking h cannot make a wide set tighter; it only multiplies the steps).
@@ -359,6 +366,9 @@ impl Integrator {
             basis,
             r: state.set.r.clone(),
         };
+        if t1 < t_limit && h_predicted.is_finite() && h_predicted > 0.0 {
+            state.step_ratio = (h / h_predicted).clamp(1e-6, 1.0);
+        }
         state.t = t1;
         state.set = next;
         state.boxed = end;

@@ -12,6 +12,7 @@
 //! [`integrator`] (driver and step control).
 
 pub mod ad;
+pub mod dot;
 pub mod enclosure;
 pub mod integrator;
 pub mod lohner;
