@@ -5,6 +5,8 @@
 //! equals 3.03 by construction of the initial condition: its interval evaluation over every end box
 //! and every a-priori box must contain 3.03.
 
+#![allow(clippy::needless_range_loop)] // index loops mirror the formulas
+
 use inari::Interval;
 use ssitrace::scalar::{interval, point};
 use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem};

@@ -11,6 +11,8 @@
 //!   widened by a stated margin that bounds the floating-point error with a large safety factor and
 //!   is still orders of magnitude below the box widths (so a wrong enclosure would be caught).
 
+#![allow(clippy::needless_range_loop)] // index loops mirror the formulas
+
 use inari::Interval;
 use ssitrace::scalar::{interval, point};
 use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem, Trajectory};

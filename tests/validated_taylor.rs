@@ -1,6 +1,8 @@
 //! Taylor-mode AD: coefficients and Jacobians against closed forms (computed independently in
 //! interval arithmetic), the naive `Series` scheme against the tape scheme, and the domain guards.
 
+#![allow(clippy::needless_range_loop)] // index loops mirror the formulas
+
 use inari::Interval;
 use ssitrace::scalar::{interval, point};
 use ssitrace::validated::series::naive_expand;
@@ -67,7 +69,7 @@ fn rotation_coefficients_and_jacobians_are_the_exponential_series() {
     let mut fact = point(1.0);
     for m in 0..=30usize {
         if m > 0 {
-            fact = fact * point(m as f64);
+            fact *= point(m as f64);
         }
         let (re, im) = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][m % 4];
         let (x, y) = (point(re) / fact, point(im) / fact);

@@ -261,13 +261,13 @@ fn coef_step<D: IntervalDot>(
         Op::Sqr(a) => {
             let x = ser(a);
             let mut dot = D::start();
-            for m in 0..(i + 1) / 2 {
+            for m in 0..i.div_ceil(2) {
                 dot.add(x[m], x[i - m]);
             }
             let mut acc = dot.total();
             acc = acc + acc;
-            if i % 2 == 0 {
-                acc = acc + x[i / 2].sqr();
+            if i.is_multiple_of(2) {
+                acc += x[i / 2].sqr();
             }
             c[i] = acc;
         }
@@ -280,13 +280,13 @@ fn coef_step<D: IntervalDot>(
                 c[0] = x[0].sqrt();
             } else {
                 let mut dot = D::start();
-                for m in 1..(i + 1) / 2 {
+                for m in 1..i.div_ceil(2) {
                     dot.add(c[m], c[i - m]);
                 }
                 let mut acc = dot.total();
                 acc = acc + acc;
-                if i % 2 == 0 {
-                    acc = acc + c[i / 2].sqr();
+                if i.is_multiple_of(2) {
+                    acc += c[i / 2].sqr();
                 }
                 c[i] = (x[i] - acc) / (c[0] + c[0]);
             }

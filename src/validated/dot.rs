@@ -36,7 +36,7 @@ impl IntervalDot for InariDot {
     }
     #[inline]
     fn add(&mut self, x: Interval, y: Interval) {
-        self.0 = self.0 + x * y;
+        self.0 += x * y;
     }
     #[inline]
     fn total(self) -> Interval {
@@ -135,7 +135,7 @@ mod tests {
         let mut reference = point(0.0);
         for (x, y) in xs.iter().zip(&ys) {
             acc.add_prod(*x, *y);
-            reference = reference + *x * *y;
+            reference += *x * *y;
         }
         let got = acc.finish();
         assert!(reference.subset(got), "{got:?} vs {reference:?}");
@@ -161,7 +161,7 @@ mod tests {
         };
         for trial in 0..2000 {
             let n = 1 + trial % 40;
-            let scale = 10f64.powi((trial % 9) as i32 * 20 - 80);
+            let scale = 10f64.powi((trial % 9) * 20 - 80);
             let mut acc = DotAcc::new();
             let mut reference = point(0.0);
             for _ in 0..n {
@@ -174,7 +174,7 @@ mod tests {
                 let x = interval(a, a + w1).unwrap();
                 let y = interval(b, b + w2).unwrap();
                 acc.add_prod(x, y);
-                reference = reference + x * y;
+                reference += x * y;
             }
             let got = acc.finish();
             assert!(

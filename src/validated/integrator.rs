@@ -318,7 +318,7 @@ impl Integrator {
                 }
             }
             for (uj, pj) in u.iter_mut().zip(&poly) {
-                *uj = *uj + *pj;
+                *uj += *pj;
             }
         }
         let mut s = self.exp_box.jacobian(k - 1).to_vec();

@@ -26,7 +26,7 @@ pub fn mat_mul(a: &[Interval], b: &[Interval], n: usize) -> Vec<Interval> {
         for l in 0..n {
             let ail = a[i * n + l];
             for j in 0..n {
-                c[i * n + j] = c[i * n + j] + ail * b[l * n + j];
+                c[i * n + j] += ail * b[l * n + j];
             }
         }
     }

@@ -103,7 +103,7 @@ impl Mul for Series {
             let mut acc = ZERO;
             for m in 0..=i {
                 if m < self.len as usize && i - m < rhs.len as usize {
-                    acc = acc + self.c[m] * rhs.c[i - m];
+                    acc += self.c[m] * rhs.c[i - m];
                 }
             }
             r.c[i] = acc;
@@ -124,7 +124,7 @@ impl Div for Series {
         for i in 0..n {
             let mut acc = self.coeff(i);
             for m in 1..=i.min(rhs.len as usize - 1) {
-                acc = acc - rhs.c[m] * r.c[i - m];
+                acc -= rhs.c[m] * r.c[i - m];
             }
             r.c[i] = acc / b0;
         }
@@ -145,12 +145,12 @@ impl Scalar for Series {
         let mut r = Series::constant(ZERO);
         for i in 0..n {
             let mut acc = ZERO;
-            for m in 0..(i + 1) / 2 {
-                acc = acc + self.c[m] * self.c[i - m];
+            for m in 0..i.div_ceil(2) {
+                acc += self.c[m] * self.c[i - m];
             }
             acc = acc + acc;
             if i % 2 == 0 {
-                acc = acc + self.c[i / 2].sqr();
+                acc += self.c[i / 2].sqr();
             }
             r.c[i] = acc;
         }
@@ -167,12 +167,12 @@ impl Scalar for Series {
         let two_c0 = r.c[0] + r.c[0];
         for i in 1..n {
             let mut acc = ZERO;
-            for m in 1..(i + 1) / 2 {
-                acc = acc + r.c[m] * r.c[i - m];
+            for m in 1..i.div_ceil(2) {
+                acc += r.c[m] * r.c[i - m];
             }
             acc = acc + acc;
             if i % 2 == 0 {
-                acc = acc + r.c[i / 2].sqr();
+                acc += r.c[i / 2].sqr();
             }
             r.c[i] = (self.c[i] - acc) / two_c0;
         }
