@@ -94,6 +94,27 @@ fn pcr3bp_reference_run_matches_or_beats_capd() {
             "a-priori box of step {j}"
         );
     }
+    // Sub-interval enclosures are far tighter than the a-priori box: on [0.5h, 0.51h] the box is
+    // about the solution's motion over 0.01h, not over h.
+    let mut worst_ratio = 0.0f64;
+    for step in &traj.steps {
+        let sub = step.enclose_on(0.5 * step.h, 0.51 * step.h).unwrap();
+        for (s, a) in sub.iter().zip(&step.apriori) {
+            if a.wid() > 1e-6 {
+                worst_ratio = worst_ratio.max(s.wid() / a.wid());
+            }
+        }
+    }
+    // At a single instant inside a step the enclosure is as tight as the set itself.
+    let at_mid = traj.steps.iter().map(|st| {
+        let e = st.enclose_on(0.5 * st.h, 0.5 * st.h).unwrap();
+        e.iter().map(|v| v.wid()).fold(0.0, f64::max)
+    });
+    let worst_point = at_mid.fold(0.0, f64::max);
+    println!("largest width of enclose_on(0.5h, 0.5h) over all steps = {worst_point:.3e}");
+    assert!(worst_point < 1e-10, "{worst_point}");
+    println!("largest width ratio enclose_on(0.5h, 0.51h) / a-priori box = {worst_ratio:.3e}");
+    assert!(worst_ratio < 0.05, "{worst_ratio}");
     for j in 0..4 {
         assert!(
             traj.end[j].wid() <= capd[j],

@@ -400,3 +400,38 @@ fn bad_inputs_give_typed_errors() {
         Err(Error::StepFailed { .. })
     ));
 }
+
+#[test]
+fn phase_one_never_proves_an_enclosure_past_a_blow_up() {
+    use ssitrace::validated::enclosure::prove_apriori;
+    use ssitrace::validated::tape::Tape;
+    use ssitrace::validated::{Expansion, TaylorAd};
+    // y' = y², y(0) = 1: y = 1/(1 − t) blows up at t = 1.
+    let mut ad = TaylorAd::new(Tape::record(&Square).unwrap());
+    for order in [1, 4, 12, 30] {
+        let (mut exp, mut scratch) = (Expansion::default(), Expansion::default());
+        ad.expand(&[point(1.0)], order, false, &mut exp).unwrap();
+        for h in [0.05, 0.2, 0.5, 0.9, 0.999, 1.0, 1.001, 1.5, 4.0] {
+            match prove_apriori(&mut ad, &[point(1.0)], &exp, order, h, &mut scratch) {
+                Ok(a) => {
+                    assert!(
+                        h < 1.0,
+                        "order {order}: 'proved' an enclosure over [0, {h}]"
+                    );
+                    for frac in [0.0, 0.3, 0.7, 1.0] {
+                        let t = h * frac;
+                        let exact = point(1.0) / (point(1.0) - point(t));
+                        assert!(meets(exact, a.boxed[0]), "order {order}, h {h}, t {t}");
+                    }
+                    println!(
+                        "order {order}: h = {h} proven ({:?}), box [{}, {}]",
+                        a.method,
+                        a.boxed[0].inf(),
+                        a.boxed[0].sup()
+                    );
+                }
+                Err(e) => println!("order {order}: h = {h} rejected ({e:?})"),
+            }
+        }
+    }
+}
