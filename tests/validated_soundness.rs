@@ -384,6 +384,23 @@ fn bad_inputs_give_typed_errors() {
     assert!(s.enclose_on(-0.1, 0.0).is_err());
     assert!(s.enclose_on(0.0, s.h * 2.0).is_err());
     assert!(s.enclose_on(f64::NAN, 0.0).is_err());
+    // Stepping towards a time not after the current one, and expanding a box of the wrong size.
+    let mut state = integ.start(&[point(0.5)], 1.0).unwrap();
+    assert!(matches!(
+        integ.step(&mut state, 1.0),
+        Err(Error::BadIntegratorSetup(_))
+    ));
+    assert!(matches!(
+        integ.step(&mut state, f64::NAN),
+        Err(Error::BadIntegratorSetup(_))
+    ));
+    let mut e = ssitrace::validated::Expansion::default();
+    assert_eq!(
+        integ
+            .ad()
+            .expand(&[point(0.5), point(0.5)], 5, true, &mut e),
+        Err(ssitrace::validated::DomainError::WrongDimension)
+    );
     // √ of a negative value: the field is undefined there, typed error.
     struct Bad;
     impl OdeSystem for Bad {

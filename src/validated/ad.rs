@@ -37,6 +37,8 @@ pub enum DomainError {
     SqrtOfNonPositive,
     /// An interval that is empty or unbounded (overflow).
     Unbounded,
+    /// An initial box whose length is not the field's dimension.
+    WrongDimension,
 }
 
 /// Taylor coefficients of the solution (and optionally their Jacobians) for one initial box.
@@ -131,6 +133,9 @@ impl TaylorAd {
         out: &mut Expansion,
     ) -> Result<(), DomainError> {
         let n = self.tape.dim;
+        if y0.len() != n {
+            return Err(DomainError::WrongDimension);
+        }
         let nodes = self.tape.ops.len();
         let s = order + 1;
         self.coef.clear();

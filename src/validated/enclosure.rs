@@ -47,10 +47,13 @@ pub enum EnclosureFailure {
     NotContained,
     /// The field could not be evaluated on a candidate box.
     Domain(DomainError),
+    /// Inconsistent arguments (order 0, or an expansion of the wrong order or dimension).
+    InvalidArguments,
 }
 
-/// `Σ_{i<k} tⁱ cᵢ + tᵏ·rem` per component, by Horner in intervals (`t` may be an interval).
-pub fn taylor_poly(
+/// `Σ_{i<k} tⁱ cᵢ + tᵏ·rem` per component, by Horner in intervals (`t` may be an interval);
+/// `1 ≤ k ≤ exp.order`.
+pub(crate) fn taylor_poly(
     exp: &Expansion,
     k: usize,
     t: Interval,
@@ -81,6 +84,14 @@ pub fn prove_apriori(
     h: f64,
     scratch: &mut Expansion,
 ) -> Result<Apriori, EnclosureFailure> {
+    if k == 0
+        || exp_box.order < k
+        || exp_box.dim != y.len()
+        || exp_box.dim != ad.dim()
+        || !(h > 0.0)
+    {
+        return Err(EnclosureFailure::InvalidArguments);
+    }
     let t = interval(0.0, h).unwrap_or(Interval::ENTIRE);
     let tk = crate::Scalar::powi(t, k as i32);
     let poly = taylor_poly(exp_box, k, t, None);

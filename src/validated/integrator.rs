@@ -13,7 +13,7 @@
 //!    the end box is the hull of the new set intersected with `u + S·([y] − x̂)` and `[ỹ]`.
 
 use super::ad::{DomainError, Expansion, TaylorAd};
-use super::enclosure::{prove_apriori, EnclosureFailure};
+use super::enclosure::prove_apriori;
 use super::lohner::{mat_mul, mat_vec, LohnerSet};
 use super::record::StepRecord;
 use super::system::OdeSystem;
@@ -80,11 +80,11 @@ impl Default for IntegratorOptions {
 #[derive(Clone, Debug)]
 pub struct IntegratorState {
     /// Current time (exact).
-    pub t: f64,
+    pub(crate) t: f64,
     /// The Lohner set enclosing all solutions at `t`.
-    pub set: LohnerSet,
+    pub(crate) set: LohnerSet,
     /// A box enclosing all solutions at `t` (not necessarily the whole Lohner set).
-    pub boxed: Vec<Interval>,
+    pub(crate) boxed: Vec<Interval>,
     /// Step-size memory: the ratio of the last accepted step to its point-coefficient prediction
     /// (the validated remainder usually forces a smaller step than the prediction; starting from
     /// the last ratio saves repeated phase-I attempts). Starts at 1.
@@ -213,6 +213,18 @@ impl Integrator {
     /// One proven step from `state.t` towards (never past) `t_limit`; advances `state`.
     pub fn step(&mut self, state: &mut IntegratorState, t_limit: f64) -> Result<StepRecord> {
         let n = self.ad.dim();
+        if state.boxed.len() != n {
+            return Err(Error::BadIntegratorSetup(format!(
+                "a state of dimension {} for a system of dimension {n}",
+                state.boxed.len()
+            )));
+        }
+        if !(t_limit > state.t && t_limit.is_finite()) {
+            return Err(Error::BadIntegratorSetup(format!(
+                "step limit {t_limit} is not after the current time {}",
+                state.t
+            )));
+        }
         let k = self.options.order;
         let fail = |state: &IntegratorState, h: f64, reason| Error::StepFailed {
             time: state.t,
@@ -290,7 +302,7 @@ impl Integrator {
                     shrinks += 1;
                     h = h_try * (rem_target / rem).powf(1.0 / k as f64).clamp(0.3, 0.95);
                 }
-                Err(EnclosureFailure::Domain(_)) | Err(EnclosureFailure::NotContained) => {
+                Err(_) => {
                     if h_try <= self.options.h_min {
                         return Err(fail(
                             state,

@@ -20,7 +20,7 @@ use nalgebra::DMatrix;
 const ZERO: Interval = const_interval!(0.0, 0.0);
 
 /// Row-major `n×n` interval matrix times `n×n` interval matrix.
-pub fn mat_mul(a: &[Interval], b: &[Interval], n: usize) -> Vec<Interval> {
+pub(crate) fn mat_mul(a: &[Interval], b: &[Interval], n: usize) -> Vec<Interval> {
     let mut c = vec![ZERO; n * n];
     for i in 0..n {
         for l in 0..n {
@@ -34,7 +34,7 @@ pub fn mat_mul(a: &[Interval], b: &[Interval], n: usize) -> Vec<Interval> {
 }
 
 /// Row-major `n×n` interval matrix times interval vector.
-pub fn mat_vec(a: &[Interval], x: &[Interval], n: usize) -> Vec<Interval> {
+pub(crate) fn mat_vec(a: &[Interval], x: &[Interval], n: usize) -> Vec<Interval> {
     (0..n)
         .map(|i| (0..n).fold(ZERO, |acc, j| acc + a[i * n + j] * x[j]))
         .collect()
@@ -83,7 +83,7 @@ pub fn verified_inverse(q: &DMatrix<f64>) -> Option<Vec<Interval>> {
 
 /// The orthonormal basis for the next set: `Q` of the QR factorisation of `mid(M)`, columns
 /// pivoted by decreasing `‖mid(M) column j‖₂ · wid(r_j)`.
-pub fn qr_basis(m: &[Interval], r: &[Interval], n: usize) -> DMatrix<f64> {
+pub(crate) fn qr_basis(m: &[Interval], r: &[Interval], n: usize) -> DMatrix<f64> {
     let mid = DMatrix::from_fn(n, n, |i, j| m[i * n + j].mid());
     let mut order: Vec<usize> = (0..n).collect();
     let key = |j: usize| mid.column(j).norm() * r[j].wid();
@@ -100,14 +100,29 @@ pub fn qr_basis(m: &[Interval], r: &[Interval], n: usize) -> DMatrix<f64> {
 #[derive(Clone, Debug)]
 pub struct LohnerSet {
     /// Centre `x̂` (exact `f64` values).
-    pub center: Vec<f64>,
+    pub(crate) center: Vec<f64>,
     /// Basis `A`, row-major, exact `f64` entries.
-    pub basis: Vec<f64>,
+    pub(crate) basis: Vec<f64>,
     /// Coefficients `[r]`.
-    pub r: Vec<Interval>,
+    pub(crate) r: Vec<Interval>,
 }
 
 impl LohnerSet {
+    /// The centre `x̂`.
+    pub fn center(&self) -> &[f64] {
+        &self.center
+    }
+
+    /// The basis `A` (row-major `n×n`; orthonormal up to rounding when QR is used).
+    pub fn basis(&self) -> &[f64] {
+        &self.basis
+    }
+
+    /// The coefficient box `[r]`.
+    pub fn r(&self) -> &[Interval] {
+        &self.r
+    }
+
     /// The set equal to the box `y` (`A = I`, centre the midpoint).
     pub fn from_box(y: &[Interval]) -> Self {
         let n = y.len();
@@ -138,7 +153,7 @@ impl LohnerSet {
 
     /// The next set enclosing `u + M·[r]` (`M = S·A`). With `qr` the basis is re-orthonormalised;
     /// without it the basis stays the identity (a plain interval method, which wraps).
-    pub fn advance(&self, u: &[Interval], m: &[Interval], qr: bool) -> LohnerSet {
+    pub(crate) fn advance(&self, u: &[Interval], m: &[Interval], qr: bool) -> LohnerSet {
         let n = u.len();
         let center: Vec<f64> = u.iter().map(|v| v.mid()).collect();
         let du: Vec<Interval> = u.iter().zip(&center).map(|(v, c)| *v - point(*c)).collect();
