@@ -88,7 +88,8 @@ pub fn prove_apriori(
         || exp_box.order < k
         || exp_box.dim != y.len()
         || exp_box.dim != ad.dim()
-        || !(h > 0.0)
+        || h.is_nan()
+        || h <= 0.0
     {
         return Err(EnclosureFailure::InvalidArguments);
     }
