@@ -12,8 +12,9 @@
 //!   `[y] + T·f(Z) ⊆ int Z` then every solution stays in `[y] + T·f(Z)`; tried when the
 //!   high-order test fails (it tolerates a poorer guess, at the price of a wider box).
 //!
-//! In both cases the result is tightened once more by Taylor's theorem with the Lagrange remainder
-//! over the proven box `Y`: `y(t) ∈ P(t) + Tᵏ·y_k(Y)`, intersected with `Y`.
+//! The remainder coefficient reported is `y_k(Z)` for the high-order test (valid: the solutions
+//! stay in `Y ⊆ Z`). After the first-order test, whose `Y` is usually wide, the box is tightened
+//! by Taylor's theorem with the Lagrange remainder over `Y`: `y(t) ∈ P(t) + Tᵏ·y_k(Y)`, ∩ `Y`.
 
 use super::ad::{DomainError, Expansion, TaylorAd};
 use crate::scalar::interval;
@@ -123,15 +124,14 @@ pub fn prove_apriori(
                 if rem.iter().zip(&guess).all(|(r, g)| r.interior(*g)) {
                     let boxed: Vec<Interval> =
                         poly.iter().zip(&rem).map(|(p, r)| *p + *r).collect();
-                    return tighten(
-                        ad,
-                        exp_box,
-                        k,
-                        t,
+                    // The solutions stay in `boxed ⊆ Z`, so `y_k(Z)` is a valid remainder
+                    // coefficient; Z exceeds `boxed` only by the small guessed remainder, so
+                    // re-expanding over `boxed` would gain little.
+                    return Ok(Apriori {
                         boxed,
-                        EnclosureMethod::HighOrder,
-                        scratch,
-                    );
+                        remainder_coeff: scratch.coeff(k).to_vec(),
+                        method: EnclosureMethod::HighOrder,
+                    });
                 }
                 guess = rem
                     .iter()
