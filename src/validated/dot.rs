@@ -9,8 +9,10 @@
 //! Each corner product is off by at most `u·A_m + η` (`u = 2⁻⁵³`, `η = 2⁻¹⁰⁷⁵` for underflow), and a
 //! recursive sum of `N` terms by at most `γ_{N−1}·Σ|terms|`; with the slack for `A` itself being
 //! rounded, the exact sum of the exact products lies in
-//! `[lo − B, hi + B]`, `B = (N + 4)·2⁻⁵²·A + (N + 1)·2⁻¹⁰⁷⁴`, and `B` and the final bounds are
-//! computed in `inari` (outward rounding). Any non-finite bound gives the whole line.
+//! `[lo − B, hi + B]`, `B = (N + 4)·2⁻⁵²·A + (N + 1)·2⁻¹⁰⁷⁴` (a factor of about 2 to spare);
+//! `B` is evaluated with one more unit in each term to absorb its own rounding, and the final
+//! bounds are moved one ulp outward after rounding to nearest. Any non-finite bound gives the
+//! whole line.
 
 use crate::scalar::point;
 use inari::Interval;
@@ -103,11 +105,14 @@ impl DotAcc {
             return Interval::ENTIRE;
         }
         let n = self.n as f64;
-        let bound = (point((n + 4.0) * f64::EPSILON) * point(self.mag)
-            + point((n + 1.0) * f64::from_bits(1)))
-        .sup();
-        let lo = (point(self.lo) - point(bound)).inf();
-        let hi = (point(self.hi) + point(bound)).sup();
+        // B = (n + 4)·2⁻⁵²·A + (n + 1)·2⁻¹⁰⁷⁴, evaluated in round-to-nearest with one extra unit in
+        // each factor: the two roundings of the product and the one of the sum (relative 3·2⁻⁵³
+        // of B), and an underflow of the product (absolute 2⁻¹⁰⁷⁵), are covered by the extra
+        // 2⁻⁵²·A and 2⁻¹⁰⁷⁴.
+        let bound = (n + 5.0) * f64::EPSILON * self.mag + (n + 2.0) * f64::from_bits(1);
+        // One ulp outward of a round-to-nearest result is on the correct side of the exact value.
+        let lo = (self.lo - bound).next_down();
+        let hi = (self.hi + bound).next_up();
         crate::scalar::interval(lo, hi).unwrap_or(Interval::ENTIRE)
     }
 }
