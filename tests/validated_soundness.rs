@@ -452,3 +452,57 @@ fn phase_one_never_proves_an_enclosure_past_a_blow_up() {
         }
     }
 }
+
+#[test]
+fn low_orders_with_loose_tolerance_are_sound() {
+    // Low orders take many small steps (the test prints how many the first-order test proved).
+    let y0 = [
+        interval(0.999, 1.001).unwrap(),
+        interval(-0.001, 0.001).unwrap(),
+    ];
+    for order in [2, 3, 4] {
+        let options = IntegratorOptions {
+            order,
+            tolerance: 1e-6,
+            h_min: 1e-12,
+            ..Default::default()
+        };
+        let mut integ = Integrator::new(&Rotation, options).unwrap();
+        let traj = integ.integrate(&y0, 0.0, 2.0).unwrap();
+        let first_order = traj
+            .steps
+            .iter()
+            .filter(|s| s.method == ssitrace::validated::EnclosureMethod::FirstOrder)
+            .count();
+        println!(
+            "rotation k={order}: {first_order} of {} steps proven by the first-order test",
+            traj.steps.len()
+        );
+        let exact = |p: &[f64], t: f64| {
+            let m = 1e-13 * (p[0].abs() + p[1].abs());
+            let (s, c) = t.sin_cos();
+            vec![
+                widened(p[0] * c - p[1] * s, m),
+                widened(p[0] * s + p[1] * c, m),
+            ]
+        };
+        check_trajectory(&traj, &y0, &exact, &format!("rotation k={order}"));
+    }
+}
+
+#[test]
+fn field_of_wrong_length_is_a_setup_error() {
+    struct Wrong;
+    impl OdeSystem for Wrong {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
+            vec![y[0]]
+        }
+    }
+    assert!(matches!(
+        Integrator::new(&Wrong, IntegratorOptions::default()),
+        Err(Error::BadIntegratorSetup(_))
+    ));
+}

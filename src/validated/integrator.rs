@@ -3,10 +3,12 @@
 //! One step from `t` with initial set `x̂ + A·[r]` (interval hull `[y]`):
 //! 1. expand at the centre `x̂` (coefficients only) and over `B = hull([y], x̂)` (coefficients to
 //!    order `k` and Jacobians `Jᵢ`, `i < k`);
-//! 2. step size `h = min_{i ∈ {k−1, k}} (ε/‖yᵢ(x̂)‖∞)^{1/i}`, `ε = tol·max(1, ‖x̂‖∞)`, capped by
-//!    `h_max` and the time left, rounded so that `t + h` is exact;
+//! 2. step size `h = min_{i ∈ {k−1, k}, i ≥ 2} (ε/‖yᵢ(x̂)‖∞)^{1/i}`, `ε = tol·max(1, ‖x̂‖∞)`, then
+//!    scaled by the ratio accepted at the previous step, capped by `h_max` and the time left;
 //! 3. phase I ([`prove_apriori`]) proves `[ỹ]` over `[t, t + h]`; on failure `h` shrinks by 0.7
-//!    until `h_min`, below which the integrator stops with [`Error::StepFailed`];
+//!    until `h_min`, below which the integrator stops with [`Error::StepFailed`]; if the validated
+//!    remainder `hᵏ·‖y_k([ỹ])‖` exceeds ε (or 1e-9 of the set's width, if larger), `h` shrinks
+//!    and phase I runs again (at most 6 times);
 //! 4. phase II: `u = Σ_{i<k} yᵢ(x̂) hⁱ + hᵏ·y_k([ỹ])`, `S = Σ_{i<k} Jᵢ hⁱ`; then every solution at
 //!    `t + h` lies in `u + S·A·[r]` (mean-value theorem over the convex box `B`, Taylor with the
 //!    Lagrange remainder over `[ỹ]`), which the [`LohnerSet`] update re-encloses without wrapping;
@@ -88,7 +90,22 @@ pub struct IntegratorState {
     /// Step-size memory: the ratio of the last accepted step to its point-coefficient prediction
     /// (the validated remainder usually forces a smaller step than the prediction; starting from
     /// the last ratio saves repeated phase-I attempts). Starts at 1.
-    pub step_ratio: f64,
+    pub(crate) step_ratio: f64,
+}
+
+impl IntegratorState {
+    /// The current time.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+    /// A box enclosing every solution at [`t`](Self::t).
+    pub fn enclosure(&self) -> &[Interval] {
+        &self.boxed
+    }
+    /// The Lohner set `x̂ + A·[r]` enclosing every solution at [`t`](Self::t).
+    pub fn set(&self) -> &LohnerSet {
+        &self.set
+    }
 }
 
 /// A validated integration from `t0` to `t_end`: every step's record.
@@ -250,7 +267,8 @@ impl Integrator {
         let scale = state.set.center.iter().fold(1.0f64, |m, c| m.max(c.abs()));
         let eps = self.options.tolerance * scale;
         let mut h = self.options.h_max;
-        for i in [k.saturating_sub(1).max(1), k] {
+        // (The first-order term is skipped for k ≥ 2: (ε/‖y₁‖)¹ would force h ≈ ε.)
+        for i in [k.saturating_sub(1).max(2).min(k), k] {
             let norm = self
                 .exp_center
                 .coeff(i)
