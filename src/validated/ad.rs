@@ -26,6 +26,9 @@ use super::tape::{Op, Tape};
 use crate::scalar::point;
 use inari::{const_interval, Interval};
 
+/// Orders computed with `inari`'s one-operation-at-a-time rounding by [`TaylorAd::expand_tight`].
+pub const TIGHT_ORDERS: usize = 8;
+
 const ZERO: Interval = const_interval!(0.0, 0.0);
 
 /// The expansion hit a point where the field is not (smoothly) defined on the given box.
@@ -110,11 +113,14 @@ impl TaylorAd {
         with_jacobian: bool,
         out: &mut Expansion,
     ) -> Result<(), DomainError> {
-        self.expand_with::<DotAcc>(y0, order, with_jacobian, out)
+        self.expand_with(y0, order, with_jacobian, 0, out)
     }
 
-    /// As [`expand`](Self::expand), with every operation outward-rounded by `inari` (tightest;
-    /// used for the expansion at the centre of the set, whose rounding widths feed the set).
+    /// As [`expand`](Self::expand), but orders below [`TIGHT_ORDERS`] are computed with every
+    /// operation outward-rounded by `inari` (tightest). Used for the expansion at the centre of the
+    /// set, whose rounding widths feed the set: the low orders carry almost all of the Taylor
+    /// polynomial's value, while the terms `yᵢhⁱ` of higher orders are so small that the few extra
+    /// ulps of the fast sums are negligible.
     pub fn expand_tight(
         &mut self,
         y0: &[Interval],
@@ -122,14 +128,15 @@ impl TaylorAd {
         with_jacobian: bool,
         out: &mut Expansion,
     ) -> Result<(), DomainError> {
-        self.expand_with::<InariDot>(y0, order, with_jacobian, out)
+        self.expand_with(y0, order, with_jacobian, TIGHT_ORDERS, out)
     }
 
-    fn expand_with<D: IntervalDot>(
+    fn expand_with(
         &mut self,
         y0: &[Interval],
         order: usize,
         with_jacobian: bool,
+        tight_below: usize,
         out: &mut Expansion,
     ) -> Result<(), DomainError> {
         let n = self.tape.dim;
@@ -158,12 +165,20 @@ impl TaylorAd {
         let ops = &self.tape.ops;
         for i in 0..order {
             for (v, op) in ops.iter().enumerate() {
-                coef_step::<D>(ops, &mut self.coef, s, v, *op, i)?;
+                if i < tight_below {
+                    coef_step::<InariDot>(ops, &mut self.coef, s, v, *op, i)?;
+                } else {
+                    coef_step::<DotAcc>(ops, &mut self.coef, s, v, *op, i)?;
+                }
             }
             let jac_here = with_jacobian && i + 1 < order;
             if jac_here {
                 for (v, op) in ops.iter().enumerate() {
-                    deriv_step::<D>(ops, &self.coef, &mut self.dcoef, s, n, v, *op, i);
+                    if i < tight_below {
+                        deriv_step::<InariDot>(ops, &self.coef, &mut self.dcoef, s, n, v, *op, i);
+                    } else {
+                        deriv_step::<DotAcc>(ops, &self.coef, &mut self.dcoef, s, n, v, *op, i);
+                    }
                 }
             }
             // y_{i+1} = f_i / (i+1), and its derivatives.

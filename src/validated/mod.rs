@@ -42,7 +42,7 @@
 //! * **Convolutions with an a-posteriori error bound** ([`dot`]) instead of switching the rounding
 //!   mode per operation: ≈ 3× faster expansions on sign-straddling data and ≈ 2.5× faster
 //!   integration of the PCR3BP run; the expansion at the set's centre, whose rounding widths feed
-//!   the set directly, keeps operation-by-operation rounding (all-fast widened the PCR3BP result
+//!   the set directly, keeps operation-by-operation rounding for its first orders (all-fast widened the PCR3BP result
 //!   from 4.1e-12 to 6.6e-12).
 //! * **Phase I** ([`enclosure`]): the high-order test of Corliss & Rihm, falling back to the
 //!   first-order test; `h` shrinks on failure down to `h_min`.
