@@ -186,6 +186,7 @@ impl LohnerSet {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scalar::interval;
 
     #[test]
     fn verified_inverse_encloses_inverse_of_rotation_like_matrix() {
@@ -193,10 +194,7 @@ mod tests {
         let s = 0.8f64;
         let q = DMatrix::from_row_slice(2, 2, &[c, -s, s, c]);
         let inv = verified_inverse(&q).unwrap();
-        // Exact inverse of [[0.6,-0.8],[0.8,0.6]] (as exact binary numbers) is close to the
-        // transpose; check X·q ∋ I rigorously.
-        let qi: Vec<Interval> = q.iter().map(|_| ZERO).collect::<Vec<_>>();
-        let _ = qi;
+        // The enclosure times q must contain the identity (checked in intervals).
         let qrow: Vec<Interval> = vec![point(c), point(-s), point(s), point(c)];
         let prod = mat_mul(&inv, &qrow, 2);
         for (k, p) in prod.iter().enumerate() {
@@ -204,5 +202,38 @@ mod tests {
             assert!(p.contains(want), "{k}: {p:?}");
             assert!(p.wid() < 1e-14);
         }
+    }
+
+    #[test]
+    fn qr_advance_does_not_wrap_under_repeated_rotation() {
+        // M = rotation by an angle with cos = 0.6, sin = 0.8 (exact binary approximations; M is
+        // taken as point intervals of those values, so M is the map being applied).
+        let m = [point(0.6), point(-0.8), point(0.8), point(0.6)];
+        let start = [
+            interval(0.99, 1.01).unwrap(),
+            interval(-0.01, 0.01).unwrap(),
+        ];
+        let mut qr = LohnerSet::from_box(&start);
+        let mut plain = LohnerSet::from_box(&start);
+        for _ in 0..200 {
+            let u_qr = mat_vec(
+                &m,
+                &qr.center.iter().map(|c| point(*c)).collect::<Vec<_>>(),
+                2,
+            );
+            let mq = mat_mul(&m, &qr.basis_intervals(), 2);
+            qr = qr.advance(&u_qr, &mq, true);
+            let u_pl = mat_vec(
+                &m,
+                &plain.center.iter().map(|c| point(*c)).collect::<Vec<_>>(),
+                2,
+            );
+            let mp = mat_mul(&m, &plain.basis_intervals(), 2);
+            plain = plain.advance(&u_pl, &mp, false);
+        }
+        let w = |set: &LohnerSet| set.hull().iter().map(|v| v.wid()).fold(0.0, f64::max);
+        // The exact image of the box is a rotated square of side 0.02: hull width ≤ 0.02·√2.
+        assert!(w(&qr) < 0.0283, "QR hull width {}", w(&qr));
+        assert!(w(&plain) > 1e6, "plain hull width {}", w(&plain));
     }
 }
