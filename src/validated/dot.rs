@@ -17,6 +17,9 @@
 use crate::scalar::point;
 use inari::Interval;
 
+/// `2⁻¹⁰⁰⁰`, a normal number exceeding the underflow allowance `(n + 2)·2⁻¹⁰⁷⁴` of any sum.
+const UNDERFLOW_PAD: f64 = 9.332636185032189e-302;
+
 /// A rigorous accumulator of sums of interval products.
 pub trait IntervalDot: Copy {
     /// An empty sum.
@@ -106,10 +109,12 @@ impl DotAcc {
         }
         let n = self.n as f64;
         // B = (n + 4)·2⁻⁵²·A + (n + 1)·2⁻¹⁰⁷⁴, evaluated in round-to-nearest with one extra unit in
-        // each factor: the two roundings of the product and the one of the sum (relative 3·2⁻⁵³
-        // of B), and an underflow of the product (absolute 2⁻¹⁰⁷⁵), are covered by the extra
-        // 2⁻⁵²·A and 2⁻¹⁰⁷⁴.
-        let bound = (n + 5.0) * f64::EPSILON * self.mag + (n + 2.0) * f64::from_bits(1);
+        // the first factor: the two roundings of the product and the one of the sum (relative
+        // 3·2⁻⁵³ of B) are covered by the extra 2⁻⁵²·A, an underflow of the product (absolute
+        // 2⁻¹⁰⁷⁵) by the generous underflow pad.
+        // The underflow part uses the normal number 2⁻¹⁰⁰⁰ ≥ (n + 2)·2⁻¹⁰⁷⁴ (n < 2⁷³): arithmetic on
+        // subnormal numbers is very slow on x86.
+        let bound = (n + 5.0) * f64::EPSILON * self.mag + UNDERFLOW_PAD;
         // One ulp outward of a round-to-nearest result is on the correct side of the exact value.
         let lo = (self.lo - bound).next_down();
         let hi = (self.hi + bound).next_up();
@@ -187,5 +192,11 @@ mod tests {
                 "trial {trial}: {got:?} vs {reference:?}"
             );
         }
+    }
+
+    #[test]
+    fn underflow_pad_is_two_to_the_minus_1000() {
+        assert_eq!(UNDERFLOW_PAD, 2f64.powi(-1000));
+        assert!(UNDERFLOW_PAD >= f64::MIN_POSITIVE);
     }
 }
