@@ -197,6 +197,6 @@ mod tests {
     #[test]
     fn underflow_pad_is_two_to_the_minus_1000() {
         assert_eq!(UNDERFLOW_PAD, 2f64.powi(-1000));
-        assert!(UNDERFLOW_PAD >= f64::MIN_POSITIVE);
+        const { assert!(UNDERFLOW_PAD >= f64::MIN_POSITIVE) };
     }
 }
