@@ -95,6 +95,24 @@ pub enum Error {
     /// Drawing a picture failed.
     #[error("rendering failed: {0}")]
     Render(String),
+    /// The validated ODE integrator could not prove the next step; carries the time and the
+    /// enclosure of the state it had reached (everything before it is proven).
+    #[error(
+        "validated integration stopped at t = {time} (last step tried h = {step:e}): {reason}"
+    )]
+    StepFailed {
+        /// Time reached (start of the step that failed).
+        time: f64,
+        /// The last step size tried.
+        step: f64,
+        /// Enclosure of the state at `time`.
+        state: Vec<inari::Interval>,
+        /// Why the step failed.
+        reason: crate::validated::StepFailure,
+    },
+    /// Invalid options or ODE system given to the validated integrator.
+    #[error("validated integrator setup: {0}")]
+    BadIntegratorSetup(String),
 }
 
 impl Error {

@@ -1,1 +1,76 @@
 //! The validated Taylor ODE engine.
+//!
+//! For an autonomous system `y' = f(y)` ([`OdeSystem`], written once over [`crate::Scalar`]) and
+//! an initial box, [`Integrator`] produces proven steps ([`StepRecord`]): the step size `h`, an
+//! a-priori box `[ỹ_j]` over the whole step, a tight end box `[y_{j+1}]`, and the interval Taylor
+//! coefficients with their remainder, so callers can enclose the solution on any sub-interval of a
+//! step far tighter than `[ỹ_j]` ([`StepRecord::enclose_on`]). Every claimed bound is computed in
+//! `inari` interval arithmetic (or with an a-posteriori rounding-error bound finished in `inari`,
+//! [`dot`]). A step that cannot be proven ends the integration with
+//! [`crate::Error::StepFailed`], carrying the time and the enclosure reached; nothing panics.
+//!
+//! ```
+//! use ssitrace::scalar::interval;
+//! use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem};
+//! use ssitrace::Scalar;
+//!
+//! /// y' = y², solution y0 / (1 − y0·t).
+//! struct Square;
+//! impl OdeSystem for Square {
+//!     fn dim(&self) -> usize { 1 }
+//!     fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> { vec![y[0].sqr()] }
+//! }
+//!
+//! let mut integ = Integrator::new(&Square, IntegratorOptions { order: 20, ..Default::default() })?;
+//! let traj = integ.integrate(&[interval(0.5, 0.5).unwrap()], 0.0, 1.0)?;
+//! assert!(traj.end[0].contains(1.0)); // 0.5 / (1 − 0.5) = 1
+//! let step = &traj.steps[0];
+//! let tube = step.enclose_on(0.0, step.h / 2.0)?; // the first half of the first step
+//! assert!(tube[0].subset(step.apriori[0]));
+//! # Ok::<(), ssitrace::Error>(())
+//! ```
+//!
+//! # Design choices (measured with `cargo bench --bench validated`)
+//! * **Taylor coefficients by recurrences on a tape** ([`tape`], [`ad`]): the field is recorded
+//!   once as a straight-line program and the solution's coefficients are computed order by order,
+//!   `O(k²)` per operation. The textbook alternative, evaluating `f` on [`Series`] of growing
+//!   length ([`series::naive_expand`], `O(k³)`), takes ≈ 1.0 ms at order 30 on the PCR3BP field
+//!   against ≈ 0.09 ms (11×). [`Series`] remains available as a `Copy` [`crate::Scalar`] for
+//!   evaluating generic code along a series.
+//! * **Jacobians `∂yᵢ/∂y₀` by forward-mode differentiation of the same recurrences** ([`ad`]),
+//!   `n` derivative series per tape operation, in the same pass over the tape.
+//! * **Convolutions with an a-posteriori error bound** ([`dot`]) instead of switching the rounding
+//!   mode per operation: ≈ 3× faster expansions on sign-straddling data and ≈ 2.5× faster
+//!   integration of the PCR3BP run; the expansion at the set's centre, whose rounding widths feed
+//!   the set directly, keeps operation-by-operation rounding for its first orders (all-fast widened the PCR3BP result
+//!   from 4.1e-12 to 6.6e-12).
+//! * **Phase I** ([`enclosure`]): the high-order test of Corliss & Rihm, falling back to the
+//!   first-order test; `h` shrinks on failure down to `h_min`.
+//! * **Phase II** ([`integrator`], [`lohner`]): mean-value form with Lohner's QR set
+//!   `x̂ + A·[r]`, `A⁻¹` enclosed by a verified inverse.
+//! * **Step size**: from the last two Taylor terms at the centre, then reduced until the validated
+//!   remainder `hᵏ·y_k([ỹ])` meets the tolerance (the interval remainder over the a-priori box is
+//!   often many orders of magnitude above the point estimate).
+//!
+//! Pieces, one per file: [`system`] (the trait), [`tape`] (recording the field once), [`ad`]
+//! (Taylor-mode AD over intervals with Jacobians), [`dot`] (fast rigorous dot products),
+//! [`series`] (a `Copy` truncated-series scalar, the naive alternative), [`enclosure`] (phase I),
+//! [`lohner`] (the QR set representation), [`record`] (step output), [`integrator`] (driver and
+//! step control).
+
+pub mod ad;
+pub mod dot;
+pub mod enclosure;
+pub mod integrator;
+pub mod lohner;
+pub mod record;
+pub mod series;
+pub mod system;
+pub mod tape;
+
+pub use ad::{DomainError, Expansion, TaylorAd};
+pub use enclosure::EnclosureMethod;
+pub use integrator::{Integrator, IntegratorOptions, IntegratorState, StepFailure, Trajectory};
+pub use record::StepRecord;
+pub use series::Series;
+pub use system::OdeSystem;

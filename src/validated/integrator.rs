@@ -1,0 +1,418 @@
+//! The driver: step-size control, phase I, phase II (mean-value form + Lohner QR), output.
+//!
+//! One step from `t` with initial set `x̂ + A·[r]` (interval hull `[y]`):
+//! 1. expand at the centre `x̂` (coefficients only) and over `B = hull([y], x̂)` (coefficients to
+//!    order `k` and Jacobians `Jᵢ`, `i < k`);
+//! 2. step size `h = min_{i ∈ {k−1, k}, i ≥ 2} (ε/‖yᵢ(x̂)‖∞)^{1/i}`, `ε = tol·max(1, ‖x̂‖∞)`, then
+//!    scaled by the ratio accepted at the previous step, capped by `h_max` and the time left;
+//! 3. phase I ([`prove_apriori`]) proves `[ỹ]` over `[t, t + h]`; on failure `h` shrinks by 0.7
+//!    until `h_min`, below which the integrator stops with [`Error::StepFailed`]; if the validated
+//!    remainder `hᵏ·‖y_k([ỹ])‖` exceeds ε (or 1e-9 of the set's width, if larger), `h` shrinks
+//!    and phase I runs again (at most 6 times);
+//! 4. phase II: `u = Σ_{i<k} yᵢ(x̂) hⁱ + hᵏ·y_k([ỹ])`, `S = Σ_{i<k} Jᵢ hⁱ`; then every solution at
+//!    `t + h` lies in `u + S·A·[r]` (mean-value theorem over the convex box `B`, Taylor with the
+//!    Lagrange remainder over `[ỹ]`), which the [`LohnerSet`] update re-encloses without wrapping;
+//!    the end box is the hull of the new set intersected with `u + S·([y] − x̂)` and `[ỹ]`.
+
+use super::ad::{DomainError, Expansion, TaylorAd};
+use super::enclosure::prove_apriori;
+use super::lohner::{mat_mul, mat_vec, LohnerSet};
+use super::record::StepRecord;
+use super::system::OdeSystem;
+use super::tape::Tape;
+use crate::error::{Error, Result};
+use crate::scalar::point;
+use crate::Scalar;
+use inari::Interval;
+
+/// How many times one step may shrink `h` because the validated remainder exceeds `ε`.
+const MAX_REMAINDER_SHRINKS: usize = 6;
+
+/// The remainder may be this fraction of the current set's width without shrinking the step.
+const REMAINDER_FRACTION_OF_WIDTH: f64 = 1e-9;
+
+/// Why a validated step could not be proven.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum StepFailure {
+    /// Phase I failed for every step size down to `h_min`.
+    #[error("no a-priori enclosure found for any step size down to h_min = {h_min:e}")]
+    BelowMinimumStep {
+        /// The minimum step size of the options.
+        h_min: f64,
+    },
+    /// The field cannot be evaluated (smoothly) on the current set.
+    #[error("the field is not defined on the current set ({0:?})")]
+    Domain(DomainError),
+    /// The options' step budget is spent.
+    #[error("more than {0} steps")]
+    TooManySteps(usize),
+}
+
+/// Parameters of the validated integrator.
+#[derive(Clone, Copy, Debug)]
+pub struct IntegratorOptions {
+    /// Taylor order `k` (1..=60; orders up to 30 are the intended range).
+    pub order: usize,
+    /// Target size of the last Taylor terms per step (absolute, scaled by `max(1, ‖x̂‖∞)`).
+    pub tolerance: f64,
+    /// Smallest step size phase I may try before giving up.
+    pub h_min: f64,
+    /// Largest step size.
+    pub h_max: f64,
+    /// Keep the set in Lohner's QR form (`true`) or as a plain box (`false`, wraps).
+    pub qr: bool,
+    /// Maximum number of steps of one [`Integrator::integrate`] call.
+    pub max_steps: usize,
+}
+
+impl Default for IntegratorOptions {
+    fn default() -> Self {
+        IntegratorOptions {
+            order: 20,
+            tolerance: 1e-16,
+            h_min: 1e-10,
+            h_max: f64::INFINITY,
+            qr: true,
+            max_steps: 1_000_000,
+        }
+    }
+}
+
+/// The integrator's current state: time and the set `x̂ + A·[r]` with a tight box around it.
+#[derive(Clone, Debug)]
+pub struct IntegratorState {
+    /// Current time (exact).
+    pub(crate) t: f64,
+    /// The Lohner set enclosing all solutions at `t`.
+    pub(crate) set: LohnerSet,
+    /// A box enclosing all solutions at `t` (not necessarily the whole Lohner set).
+    pub(crate) boxed: Vec<Interval>,
+    /// Step-size memory: the ratio of the last accepted step to its point-coefficient prediction
+    /// (the validated remainder usually forces a smaller step than the prediction; starting from
+    /// the last ratio saves repeated phase-I attempts). Starts at 1.
+    pub(crate) step_ratio: f64,
+}
+
+impl IntegratorState {
+    /// The current time.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+    /// A box enclosing every solution at [`t`](Self::t).
+    pub fn enclosure(&self) -> &[Interval] {
+        &self.boxed
+    }
+    /// The Lohner set `x̂ + A·[r]` enclosing every solution at [`t`](Self::t).
+    pub fn set(&self) -> &LohnerSet {
+        &self.set
+    }
+}
+
+/// A validated integration from `t0` to `t_end`: every step's record.
+#[derive(Clone, Debug)]
+pub struct Trajectory {
+    /// The steps, in order; `steps[j].t1 == steps[j + 1].t0`.
+    pub steps: Vec<StepRecord>,
+    /// Enclosure of all solutions at the final time.
+    pub end: Vec<Interval>,
+    /// The final time reached (equals the requested end time).
+    pub t_end: f64,
+}
+
+impl Trajectory {
+    /// Largest width of the final box.
+    pub fn end_width(&self) -> f64 {
+        self.end.iter().map(|v| v.wid()).fold(0.0, f64::max)
+    }
+}
+
+/// A validated Taylor integrator for one [`OdeSystem`].
+#[derive(Clone, Debug)]
+pub struct Integrator {
+    ad: TaylorAd,
+    options: IntegratorOptions,
+    exp_center: Expansion,
+    exp_box: Expansion,
+    scratch: Expansion,
+}
+
+impl Integrator {
+    /// Records the system's field and checks the options (typed error on bad ones).
+    pub fn new<F: OdeSystem>(system: &F, options: IntegratorOptions) -> Result<Self> {
+        let o = &options;
+        if o.order == 0 || o.order > 60 {
+            return Err(Error::BadIntegratorSetup(format!(
+                "order {} is not in 1..=60",
+                o.order
+            )));
+        }
+        if !(o.tolerance > 0.0 && o.tolerance.is_finite()) {
+            return Err(Error::BadIntegratorSetup(format!(
+                "tolerance {} is not positive",
+                o.tolerance
+            )));
+        }
+        if !(o.h_min > 0.0 && o.h_min.is_finite() && o.h_max >= o.h_min) {
+            return Err(Error::BadIntegratorSetup(format!(
+                "step bounds h_min = {}, h_max = {} are invalid",
+                o.h_min, o.h_max
+            )));
+        }
+        let tape = Tape::record(system)?;
+        Ok(Integrator {
+            ad: TaylorAd::new(tape),
+            options,
+            exp_center: Expansion::default(),
+            exp_box: Expansion::default(),
+            scratch: Expansion::default(),
+        })
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &IntegratorOptions {
+        &self.options
+    }
+
+    /// The Taylor-mode AD engine (to expand the field directly).
+    pub fn ad(&mut self) -> &mut TaylorAd {
+        &mut self.ad
+    }
+
+    /// The state for the initial box `y0` at time `t0`.
+    pub fn start(&self, y0: &[Interval], t0: f64) -> Result<IntegratorState> {
+        if y0.len() != self.ad.dim() {
+            return Err(Error::input(
+                "y0",
+                crate::InputProblem::WrongCount {
+                    expected: self.ad.dim(),
+                    found: y0.len(),
+                },
+            ));
+        }
+        if !t0.is_finite() || y0.iter().any(|v| !v.is_common_interval()) {
+            return Err(Error::input("y0", crate::InputProblem::NonFinite));
+        }
+        Ok(IntegratorState {
+            t: t0,
+            set: LohnerSet::from_box(y0),
+            boxed: y0.to_vec(),
+            step_ratio: 1.0,
+        })
+    }
+
+    /// Integrates the box `y0` from `t0` to `t_end > t0`, proving every step.
+    pub fn integrate(&mut self, y0: &[Interval], t0: f64, t_end: f64) -> Result<Trajectory> {
+        if !(t_end.is_finite() && t_end > t0) {
+            return Err(Error::BadIntegratorSetup(format!(
+                "end time {t_end} is not after {t0}"
+            )));
+        }
+        let mut state = self.start(y0, t0)?;
+        let mut steps = Vec::new();
+        while state.t < t_end {
+            if steps.len() >= self.options.max_steps {
+                return Err(Error::StepFailed {
+                    time: state.t,
+                    step: 0.0,
+                    state: state.boxed.clone(),
+                    reason: StepFailure::TooManySteps(self.options.max_steps),
+                });
+            }
+            steps.push(self.step(&mut state, t_end)?);
+        }
+        Ok(Trajectory {
+            end: state.boxed.clone(),
+            t_end: state.t,
+            steps,
+        })
+    }
+
+    /// One proven step from `state.t` towards (never past) `t_limit`; advances `state`.
+    pub fn step(&mut self, state: &mut IntegratorState, t_limit: f64) -> Result<StepRecord> {
+        let n = self.ad.dim();
+        if state.boxed.len() != n {
+            return Err(Error::BadIntegratorSetup(format!(
+                "a state of dimension {} for a system of dimension {n}",
+                state.boxed.len()
+            )));
+        }
+        if !(t_limit > state.t && t_limit.is_finite()) {
+            return Err(Error::BadIntegratorSetup(format!(
+                "step limit {t_limit} is not after the current time {}",
+                state.t
+            )));
+        }
+        let k = self.options.order;
+        let fail = |state: &IntegratorState, h: f64, reason| Error::StepFailed {
+            time: state.t,
+            step: h,
+            state: state.boxed.clone(),
+            reason,
+        };
+        let center: Vec<Interval> = state.set.center.iter().map(|c| point(*c)).collect();
+        let range: Vec<Interval> = state
+            .boxed
+            .iter()
+            .zip(&center)
+            .map(|(b, c)| b.convex_hull(*c))
+            .collect();
+        self.ad
+            .expand_tight(&center, k, false, &mut self.exp_center)
+            .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
+        self.ad
+            .expand(&range, k, true, &mut self.exp_box)
+            .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
+
+        // Step size from the last two terms at the centre.
+        let scale = state.set.center.iter().fold(1.0f64, |m, c| m.max(c.abs()));
+        let eps = self.options.tolerance * scale;
+        let mut h = self.options.h_max;
+        // (The first-order term is skipped for k ≥ 2: (ε/‖y₁‖)¹ would force h ≈ ε.)
+        for i in [k.saturating_sub(1).max(2).min(k), k] {
+            let norm = self
+                .exp_center
+                .coeff(i)
+                .iter()
+                .fold(0.0f64, |m, c| m.max(c.mag()));
+            if norm > 0.0 {
+                h = h.min((eps / norm).powf(1.0 / i as f64));
+            }
+        }
+        let h_predicted = h;
+        h = (h_predicted * (state.step_ratio * 1.05).min(1.0)).min(self.options.h_max);
+        // Phase I, shrinking h on failure.
+        // The remainder target: ε, or a tiny fraction of the set's width when that is larger
+        // (shrinking h cannot make a wide set tighter; it only multiplies the steps).
+        let width = state.boxed.iter().fold(0.0f64, |m, v| m.max(v.wid()));
+        let rem_target = eps.max(REMAINDER_FRACTION_OF_WIDTH * width);
+        let mut shrinks = 0;
+        let (t1, h_iv, apriori) = loop {
+            let (t1, h_iv) = next_time(state.t, h, t_limit);
+            let h_try = h_iv.sup();
+            if h_try < self.options.h_min && h_try < t_limit - state.t {
+                return Err(fail(
+                    state,
+                    h_try,
+                    StepFailure::BelowMinimumStep {
+                        h_min: self.options.h_min,
+                    },
+                ));
+            }
+            match prove_apriori(
+                &mut self.ad,
+                &range,
+                &self.exp_box,
+                k,
+                h_try,
+                &mut self.scratch,
+            ) {
+                Ok(a) => {
+                    // Remainder control: the interval remainder over the a-priori box can be far
+                    // larger than the point estimate used above; shrink until it meets ε.
+                    let rem = a.remainder_coeff.iter().fold(0.0f64, |m, c| m.max(c.mag()))
+                        * h_try.powi(k as i32);
+                    if rem <= rem_target
+                        || shrinks >= MAX_REMAINDER_SHRINKS
+                        || h_try <= self.options.h_min
+                    {
+                        break (t1, h_iv, a);
+                    }
+                    shrinks += 1;
+                    h = h_try * (rem_target / rem).powf(1.0 / k as f64).clamp(0.3, 0.95);
+                }
+                Err(_) => {
+                    if h_try <= self.options.h_min {
+                        return Err(fail(
+                            state,
+                            h_try,
+                            StepFailure::BelowMinimumStep {
+                                h_min: self.options.h_min,
+                            },
+                        ));
+                    }
+                    h = h_try * 0.7;
+                }
+            }
+        };
+
+        // Phase II.
+        let hp = h_iv;
+        let h = h_iv.sup();
+        let hk = hp.powi(k as i32);
+        let mut u: Vec<Interval> = apriori.remainder_coeff.iter().map(|r| *r * hk).collect();
+        {
+            let mut poly = self.exp_center.coeff(k - 1).to_vec();
+            for i in (0..k - 1).rev() {
+                for (p, c) in poly.iter_mut().zip(self.exp_center.coeff(i)) {
+                    *p = *p * hp + *c;
+                }
+            }
+            for (uj, pj) in u.iter_mut().zip(&poly) {
+                *uj += *pj;
+            }
+        }
+        let mut s = self.exp_box.jacobian(k - 1).to_vec();
+        for i in (0..k - 1).rev() {
+            for (sv, jv) in s.iter_mut().zip(self.exp_box.jacobian(i)) {
+                *sv = *sv * hp + *jv;
+            }
+        }
+        let basis = state.set.basis_intervals();
+        let m = mat_mul(&s, &basis, n);
+        let next = state.set.advance(&u, &m, self.options.qr);
+        let dev: Vec<Interval> = state
+            .boxed
+            .iter()
+            .zip(&center)
+            .map(|(b, c)| *b - *c)
+            .collect();
+        let direct = mat_vec(&s, &dev, n);
+        let hull = next.hull();
+        let end: Vec<Interval> = (0..n)
+            .map(|j| {
+                let e = hull[j]
+                    .intersection(u[j] + direct[j])
+                    .intersection(apriori.boxed[j]);
+                if e.is_empty() {
+                    hull[j]
+                } else {
+                    e
+                }
+            })
+            .collect();
+
+        let record = StepRecord {
+            t0: state.t,
+            t1,
+            h,
+            start: state.boxed.clone(),
+            apriori: apriori.boxed,
+            end: end.clone(),
+            coeffs: (0..k).map(|i| self.exp_box.coeff(i).to_vec()).collect(),
+            remainder_coeff: apriori.remainder_coeff,
+            method: apriori.method,
+            center_coeffs: (0..k).map(|i| self.exp_center.coeff(i).to_vec()).collect(),
+            jacobians: (0..k).map(|i| self.exp_box.jacobian(i).to_vec()).collect(),
+            basis,
+            r: state.set.r.clone(),
+        };
+        if t1 < t_limit && h_predicted.is_finite() && h_predicted > 0.0 {
+            state.step_ratio = (h / h_predicted).clamp(1e-6, 1.0);
+        }
+        state.t = t1;
+        state.set = next;
+        state.boxed = end;
+        Ok(record)
+    }
+}
+
+/// The end time `t1 ≤ t_limit` of a step of about `h` from `t` (`t1 = t_limit` for the last step)
+/// and an enclosure of the true step `t1 − t` (which need not be a double).
+fn next_time(t: f64, h: f64, t_limit: f64) -> (f64, Interval) {
+    let t1 = if h >= t_limit - t {
+        t_limit
+    } else {
+        (t + h).min(t_limit)
+    };
+    (t1, point(t1) - point(t))
+}

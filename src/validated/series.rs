@@ -1,0 +1,238 @@
+//! A `Copy` truncated power series with interval coefficients, implementing [`Scalar`].
+//!
+//! [`Series`] stores up to [`MAX_TERMS`] coefficients inline (`[Interval; 32]` plus a length), so it
+//! is `Copy` as [`Scalar`] requires and needs no allocation; a constant has length 1 and is
+//! broadcast against longer operands. Every operation returns an enclosure of the truncated series
+//! of the exact result for all values in the coefficient intervals. Where the result is undefined
+//! (a divisor whose constant term may be zero, a square root whose argument's constant term may be
+//! ≤ 0) every coefficient is the whole line, which the integrator rejects.
+//!
+//! Use: evaluating any generic [`Scalar`] code along a Taylor series (e.g. a patch along a curve),
+//! and [`naive_expand`], the textbook way to get the solution's Taylor coefficients: evaluate `f`
+//! on the series of `y` known to order `i` to get order `i + 1`. That costs `O(k)` evaluations of
+//! `O(k²)` each; the engine instead uses the tape-based recurrences of [`crate::validated::ad`]
+//! (`O(k²)` in total), and the `validated` benchmark measures the difference.
+
+use super::system::OdeSystem;
+use crate::scalar::point;
+use crate::Scalar;
+use inari::{const_interval, Interval};
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// Largest number of coefficients a [`Series`] holds (orders up to 31).
+pub const MAX_TERMS: usize = 32;
+
+const ZERO: Interval = const_interval!(0.0, 0.0);
+
+/// A truncated power series `Σ_{i<len} cᵢ tⁱ` with interval coefficients.
+#[derive(Clone, Copy, Debug)]
+pub struct Series {
+    c: [Interval; MAX_TERMS],
+    len: u8,
+}
+
+impl Series {
+    /// The series with the given coefficients (at most [`MAX_TERMS`]; extra ones are dropped).
+    pub fn new(coeffs: &[Interval]) -> Self {
+        let mut c = [ZERO; MAX_TERMS];
+        let len = coeffs.len().clamp(1, MAX_TERMS);
+        c[..coeffs.len().min(MAX_TERMS)].copy_from_slice(&coeffs[..coeffs.len().min(MAX_TERMS)]);
+        Series { c, len: len as u8 }
+    }
+    /// The constant `x` (length 1).
+    pub fn constant(x: Interval) -> Self {
+        Series::new(&[x])
+    }
+    /// The coefficients.
+    pub fn coeffs(&self) -> &[Interval] {
+        &self.c[..self.len as usize]
+    }
+    /// Coefficient `i` (zero beyond the length).
+    pub fn coeff(&self, i: usize) -> Interval {
+        if i < self.len as usize {
+            self.c[i]
+        } else {
+            ZERO
+        }
+    }
+    fn undefined(len: usize) -> Self {
+        let mut s = Series::new(&[Interval::ENTIRE]);
+        s.c[..len].fill(Interval::ENTIRE);
+        s.len = len as u8;
+        s
+    }
+    fn len2(a: &Series, b: &Series) -> usize {
+        a.len.max(b.len) as usize
+    }
+}
+
+impl Add for Series {
+    type Output = Series;
+    fn add(self, rhs: Series) -> Series {
+        let n = Series::len2(&self, &rhs);
+        let mut r = self;
+        for i in 0..n {
+            r.c[i] = self.coeff(i) + rhs.coeff(i);
+        }
+        r.len = n as u8;
+        r
+    }
+}
+impl Sub for Series {
+    type Output = Series;
+    fn sub(self, rhs: Series) -> Series {
+        self + (-rhs)
+    }
+}
+impl Neg for Series {
+    type Output = Series;
+    fn neg(self) -> Series {
+        let mut r = self;
+        for v in &mut r.c[..self.len as usize] {
+            *v = -*v;
+        }
+        r
+    }
+}
+impl Mul for Series {
+    type Output = Series;
+    fn mul(self, rhs: Series) -> Series {
+        let n = Series::len2(&self, &rhs);
+        let mut r = Series::constant(ZERO);
+        for i in 0..n {
+            let mut acc = ZERO;
+            for m in 0..=i {
+                if m < self.len as usize && i - m < rhs.len as usize {
+                    acc += self.c[m] * rhs.c[i - m];
+                }
+            }
+            r.c[i] = acc;
+        }
+        r.len = n as u8;
+        r
+    }
+}
+impl Div for Series {
+    type Output = Series;
+    fn div(self, rhs: Series) -> Series {
+        let n = Series::len2(&self, &rhs);
+        let b0 = rhs.c[0];
+        if b0.contains(0.0) || b0.is_empty() {
+            return Series::undefined(n);
+        }
+        let mut r = Series::constant(ZERO);
+        for i in 0..n {
+            let mut acc = self.coeff(i);
+            for m in 1..=i.min(rhs.len as usize - 1) {
+                acc -= rhs.c[m] * r.c[i - m];
+            }
+            r.c[i] = acc / b0;
+        }
+        r.len = n as u8;
+        r
+    }
+}
+
+impl Scalar for Series {
+    fn from_f64(x: f64) -> Self {
+        Series::constant(point(x))
+    }
+    fn from_interval(x: Interval) -> Self {
+        Series::constant(x)
+    }
+    fn sqr(self) -> Self {
+        let n = self.len as usize;
+        let mut r = Series::constant(ZERO);
+        for i in 0..n {
+            let mut acc = ZERO;
+            for m in 0..i.div_ceil(2) {
+                acc += self.c[m] * self.c[i - m];
+            }
+            acc = acc + acc;
+            if i % 2 == 0 {
+                acc += self.c[i / 2].sqr();
+            }
+            r.c[i] = acc;
+        }
+        r.len = n as u8;
+        r
+    }
+    fn sqrt(self) -> Self {
+        let n = self.len as usize;
+        let a0 = self.c[0];
+        if a0.is_empty() || a0.inf() <= 0.0 {
+            return Series::undefined(n);
+        }
+        let mut r = Series::constant(a0.sqrt());
+        let two_c0 = r.c[0] + r.c[0];
+        for i in 1..n {
+            let mut acc = ZERO;
+            for m in 1..i.div_ceil(2) {
+                acc += r.c[m] * r.c[i - m];
+            }
+            acc = acc + acc;
+            if i % 2 == 0 {
+                acc += r.c[i / 2].sqr();
+            }
+            r.c[i] = (self.c[i] - acc) / two_c0;
+        }
+        r.len = n as u8;
+        r
+    }
+    fn powi(self, n: i32) -> Self {
+        if n == 0 {
+            return Series::one();
+        }
+        let mut e = n.unsigned_abs();
+        let mut base = self;
+        let mut acc = Series::one();
+        while e > 0 {
+            if e & 1 == 1 {
+                acc = acc * base;
+            }
+            e >>= 1;
+            if e > 0 {
+                base = base.sqr();
+            }
+        }
+        if n < 0 {
+            Series::one() / acc
+        } else {
+            acc
+        }
+    }
+}
+
+/// The normalised Taylor coefficients `y₀ … y_order` of the solution of `y' = f(y)` through every
+/// point of the box `y0`, by the naive scheme (`order + 1 ≤ MAX_TERMS`): `coeffs[i][j]`.
+/// Returns `None` if the field is undefined on the way or `order` is too large.
+pub fn naive_expand<F: OdeSystem>(
+    system: &F,
+    y0: &[Interval],
+    order: usize,
+) -> Option<Vec<Vec<Interval>>> {
+    if order + 1 > MAX_TERMS || y0.len() != system.dim() {
+        return None;
+    }
+    let mut ys: Vec<Series> = y0.iter().map(|v| Series::constant(*v)).collect();
+    for i in 0..order {
+        let f = system.eval(&ys);
+        if f.len() != ys.len() {
+            return None;
+        }
+        let div = point((i + 1) as f64);
+        for (y, fj) in ys.iter_mut().zip(&f) {
+            let next = fj.coeff(i) / div;
+            if !next.is_common_interval() {
+                return None;
+            }
+            y.c[i + 1] = next;
+            y.len = (i + 2) as u8;
+        }
+    }
+    Some(
+        (0..=order)
+            .map(|i| ys.iter().map(|y| y.coeff(i)).collect())
+            .collect(),
+    )
+}

@@ -1,0 +1,234 @@
+//! Recording the right-hand side once as a straight-line program (a "tape").
+//!
+//! [`Var`] is a `Copy` scalar that, instead of computing, appends the operation it stands for to a
+//! thread-local list. Evaluating an [`OdeSystem`] once on `Var` inputs ([`Tape::record`]) therefore
+//! yields the field as a list of elementary operations (`+ − × ÷`, negation, square, square root;
+//! integer powers are lowered to products and one quotient). Sub-expressions that involve only
+//! constants are folded at recording time, in interval arithmetic, so constants stay rigorous.
+//!
+//! Why a tape: the Taylor coefficients of the solution are then computed *incrementally*, one
+//! order at a time for every operation (see [`crate::validated::ad`]), which costs `O(k²)` per
+//! operation for order `k`. Evaluating `f` on truncated series of growing length (the naive
+//! scheme, [`crate::validated::series`]) costs `O(k³)`; the benchmark `validated` measures both.
+
+use super::system::OdeSystem;
+use crate::error::{Error, Result};
+use crate::scalar::point;
+use crate::Scalar;
+use inari::Interval;
+use std::cell::RefCell;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// One elementary operation of a recorded program; operands are indices of earlier operations.
+#[derive(Clone, Copy, Debug)]
+pub enum Op {
+    /// The `j`-th component of the state.
+    Input(usize),
+    /// A constant, enclosed by an interval.
+    Const(Interval),
+    /// `a + b`.
+    Add(u32, u32),
+    /// `a − b`.
+    Sub(u32, u32),
+    /// `a × b`.
+    Mul(u32, u32),
+    /// `a ÷ b`.
+    Div(u32, u32),
+    /// `−a`.
+    Neg(u32),
+    /// `a²`.
+    Sqr(u32),
+    /// `√a` (the engine rejects arguments that may be negative).
+    Sqrt(u32),
+}
+
+thread_local! {
+    static RECORDING: RefCell<Vec<Op>> = const { RefCell::new(Vec::new()) };
+}
+
+fn push(op: Op) -> Var {
+    RECORDING.with(|t| {
+        let mut t = t.borrow_mut();
+        t.push(op);
+        Var((t.len() - 1) as u32)
+    })
+}
+
+fn constant_of(v: Var) -> Option<Interval> {
+    RECORDING.with(|t| match t.borrow().get(v.0 as usize) {
+        Some(Op::Const(c)) => Some(*c),
+        _ => None,
+    })
+}
+
+/// A recording scalar: a handle to one operation of the program being recorded on this thread.
+///
+/// Only meaningful inside [`Tape::record`]; values created elsewhere are harmless but unused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Var(u32);
+
+impl Var {
+    /// Index of the operation this variable stands for.
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+fn binary(a: Var, b: Var, fold: fn(Interval, Interval) -> Interval, op: fn(u32, u32) -> Op) -> Var {
+    match (constant_of(a), constant_of(b)) {
+        (Some(x), Some(y)) => push(Op::Const(fold(x, y))),
+        _ => push(op(a.0, b.0)),
+    }
+}
+
+fn unary(a: Var, fold: fn(Interval) -> Interval, op: fn(u32) -> Op) -> Var {
+    match constant_of(a) {
+        Some(x) => push(Op::Const(fold(x))),
+        None => push(op(a.0)),
+    }
+}
+
+impl Add for Var {
+    type Output = Var;
+    fn add(self, rhs: Var) -> Var {
+        binary(self, rhs, |x, y| x + y, Op::Add)
+    }
+}
+impl Sub for Var {
+    type Output = Var;
+    fn sub(self, rhs: Var) -> Var {
+        binary(self, rhs, |x, y| x - y, Op::Sub)
+    }
+}
+impl Mul for Var {
+    type Output = Var;
+    fn mul(self, rhs: Var) -> Var {
+        binary(self, rhs, |x, y| x * y, Op::Mul)
+    }
+}
+impl Div for Var {
+    type Output = Var;
+    fn div(self, rhs: Var) -> Var {
+        binary(self, rhs, |x, y| x / y, Op::Div)
+    }
+}
+impl Neg for Var {
+    type Output = Var;
+    fn neg(self) -> Var {
+        unary(self, |x| -x, Op::Neg)
+    }
+}
+
+impl Scalar for Var {
+    fn from_f64(x: f64) -> Self {
+        push(Op::Const(point(x)))
+    }
+    fn from_interval(x: Interval) -> Self {
+        push(Op::Const(x))
+    }
+    fn sqr(self) -> Self {
+        unary(self, Interval::sqr, Op::Sqr)
+    }
+    fn sqrt(self) -> Self {
+        // A constant whose interval reaches below zero is not folded (inari would silently drop
+        // the negative part); the engine's domain check then rejects it.
+        match constant_of(self) {
+            Some(x) if x.inf() >= 0.0 => push(Op::Const(x.sqrt())),
+            _ => push(Op::Sqrt(self.0)),
+        }
+    }
+    fn powi(self, n: i32) -> Self {
+        if n == 0 {
+            return Var::one();
+        }
+        // Square-and-multiply on |n|, then one reciprocal for negative n.
+        let mut e = n.unsigned_abs();
+        let mut base = self;
+        let mut acc: Option<Var> = None;
+        while e > 0 {
+            if e & 1 == 1 {
+                acc = Some(match acc {
+                    None => base,
+                    Some(a) => a * base,
+                });
+            }
+            e >>= 1;
+            if e > 0 {
+                base = base.sqr();
+            }
+        }
+        let p = acc.unwrap_or_else(Var::one);
+        if n < 0 {
+            Var::one() / p
+        } else {
+            p
+        }
+    }
+}
+
+/// A recorded right-hand side: `n` inputs, a list of operations, and the `n` outputs `f_j`.
+#[derive(Clone, Debug)]
+pub struct Tape {
+    /// The operations; the first `dim` are the inputs `Input(0..dim)`.
+    pub ops: Vec<Op>,
+    /// Index of the operation giving each component `f_j`.
+    pub outputs: Vec<usize>,
+    /// The dimension `n`.
+    pub dim: usize,
+}
+
+impl Tape {
+    /// Records `system.eval` once. Errors if the system has dimension 0 or returns a vector of the
+    /// wrong length. Recording is re-entrant: a recording in progress on this thread is restored.
+    pub fn record<F: OdeSystem>(system: &F) -> Result<Tape> {
+        let dim = system.dim();
+        if dim == 0 {
+            return Err(Error::BadIntegratorSetup(
+                "the ODE system has dimension 0".into(),
+            ));
+        }
+        let saved = RECORDING.with(|t| std::mem::take(&mut *t.borrow_mut()));
+        let inputs: Vec<Var> = (0..dim).map(|j| push(Op::Input(j))).collect();
+        let out = system.eval(&inputs);
+        let ops = RECORDING.with(|t| std::mem::replace(&mut *t.borrow_mut(), saved));
+        if out.len() != dim {
+            return Err(Error::BadIntegratorSetup(format!(
+                "the ODE system has dimension {dim} but its field returned {} components",
+                out.len()
+            )));
+        }
+        let outputs = out.iter().map(|v| v.index()).collect();
+        Ok(Tape { ops, outputs, dim })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct Sample;
+    impl OdeSystem for Sample {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
+            let c = S::from_f64(2.0) * S::from_f64(3.0);
+            vec![y[0] * c + y[1].powi(-3), y[0].sqrt()]
+        }
+    }
+
+    #[test]
+    fn constants_fold_and_powers_lower() {
+        let t = Tape::record(&Sample).unwrap();
+        assert_eq!(t.dim, 2);
+        // 2·3 folds to one constant 6.
+        assert!(t
+            .ops
+            .iter()
+            .any(|op| matches!(op, Op::Const(c) if c.inf() == 6.0 && c.sup() == 6.0)));
+        assert!(!t.ops.iter().any(|op| matches!(op, Op::Mul(a, b)
+            if matches!(t.ops[*a as usize], Op::Const(_)) && matches!(t.ops[*b as usize], Op::Const(_)))));
+        assert!(t.ops.iter().any(|op| matches!(op, Op::Div(_, _))));
+        assert_eq!(t.outputs.len(), 2);
+    }
+}
