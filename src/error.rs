@@ -110,6 +110,15 @@ pub enum Error {
         /// Why the step failed.
         reason: crate::validated::StepFailure,
     },
+    /// A certified trace could not start, or an internal consistency check of the certificate
+    /// failed (e.g. two consecutive boxes of a chain that do not overlap); nothing is claimed.
+    #[error("certification failed near (σ,t,u,v) = {near:?}: {reason}")]
+    Certification {
+        /// What failed.
+        reason: String,
+        /// Approximate parameters where it failed.
+        near: [f64; 4],
+    },
     /// Invalid options or ODE system given to the validated integrator.
     #[error("validated integrator setup: {0}")]
     BadIntegratorSetup(String),

@@ -1,0 +1,148 @@
+//! What a certified branch reports: gap-free boxes in three spaces, tight tubes, end reasons.
+
+use inari::Interval;
+
+/// One link of the chain: a box holding the true curve over an arc-length range, in both
+/// parameter domains and in model space.
+///
+/// Guarantee: for every arc length `s ∈ [s[0], s[1]]` the true intersection point has
+/// parameters in `p` (on P) and `q` (on Q) and lies in `xyz`. Consecutive boxes of a branch
+/// share the point at their common arc length, so they overlap: the chain has no gaps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnclosureBox {
+    /// Arc-length range `[s0, s1]` from the branch's start point (negative backwards).
+    pub s: [f64; 2],
+    /// `[σ] × [t]` on P.
+    pub p: [Interval; 2],
+    /// `[u] × [v]` on Q.
+    pub q: [Interval; 2],
+    /// The model-space box: `P([σ],[t]) ∩ Q([u],[v])`.
+    pub xyz: [Interval; 3],
+}
+
+impl EnclosureBox {
+    /// The four parameter intervals `(σ, t, u, v)`.
+    pub fn params(&self) -> [Interval; 4] {
+        [self.p[0], self.p[1], self.q[0], self.q[1]]
+    }
+
+    /// Whether this box and `other` share a point in all three spaces.
+    pub fn overlaps(&self, other: &EnclosureBox) -> bool {
+        let meet = |a: &[Interval], b: &[Interval]| a.iter().zip(b).all(|(x, y)| !x.disjoint(*y));
+        meet(&self.p, &other.p) && meet(&self.q, &other.q) && meet(&self.xyz, &other.xyz)
+    }
+}
+
+/// One step's reported curve and its proven radius.
+///
+/// The reported parameter curve is `y(τ) = Σᵢ coeffs[i]·τⁱ` for `τ ∈ [0, h]` (arc length
+/// `s0 + τ`, or `s0 − τ` for a backward piece), `y = (σ, t, u, v)`; the reported model curve
+/// is `P(σ(τ), t(τ))`. Guarantee: the true curve at the same arc length is within
+/// `radius_param` (max norm, in parameters) and within `radius_xyz` (Euclidean, in model space).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TubePiece {
+    /// Arc length at `τ = 0`.
+    pub s0: f64,
+    /// +1 along increasing arc length, −1 for a piece of the backward half.
+    pub direction: f64,
+    /// Length of the piece.
+    pub h: f64,
+    /// Polynomial coefficients in `τ` (midpoints of the proven interval coefficients).
+    pub coeffs: Vec<[f64; 4]>,
+    /// Proven bound on the parameter deviation.
+    pub radius_param: f64,
+    /// Proven bound on the model-space deviation.
+    pub radius_xyz: f64,
+}
+
+impl TubePiece {
+    /// The reported parameters `(σ, t, u, v)` at `τ ∈ [0, h]`.
+    pub fn eval(&self, tau: f64) -> [f64; 4] {
+        let mut y = [0.0; 4];
+        for c in self.coeffs.iter().rev() {
+            for i in 0..4 {
+                y[i] = y[i] * tau + c[i];
+            }
+        }
+        y
+    }
+}
+
+/// Why one end of a certified branch ends. Every variant is itself proven, except
+/// [`CertifiedEnd::Unproven`], which says the tracer stopped without a proof of what is beyond.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CertifiedEnd {
+    /// The curve leaves the domain of surface `surface` (0 = P, 1 = Q); the last box straddles
+    /// that boundary.
+    Boundary {
+        /// 0 for P, 1 for Q.
+        surface: usize,
+    },
+    /// The curve returned to its start point (proven by the uniqueness box of the start): a
+    /// closed loop, traced once.
+    ClosedLoop,
+    /// `0 ∈ |N^P × N^Q|` on the current box: a singular or tangential point may lie in `near`.
+    Singular {
+        /// Parameter box `(σ, t, u, v)` where the field could not be bounded away from zero.
+        near: [Interval; 4],
+    },
+    /// The step fell below `h_min` although the normals are separated: two branches closer
+    /// than can be resolved at this `h_min`.
+    CloseBranches {
+        /// The step size at which the proof failed.
+        h: f64,
+        /// The box reached.
+        near: [Interval; 4],
+    },
+    /// Stopped without proof of what comes next (step or length budget, unbounded field).
+    Unproven {
+        /// Why.
+        reason: String,
+        /// The box reached.
+        near: [Interval; 4],
+    },
+}
+
+impl CertifiedEnd {
+    /// A short name (`"boundary"`, `"closed_loop"`, `"singular"`, `"close_branches"`,
+    /// `"unproven"`).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            CertifiedEnd::Boundary { .. } => "boundary",
+            CertifiedEnd::ClosedLoop => "closed_loop",
+            CertifiedEnd::Singular { .. } => "singular",
+            CertifiedEnd::CloseBranches { .. } => "close_branches",
+            CertifiedEnd::Unproven { .. } => "unproven",
+        }
+    }
+}
+
+/// A certified branch: the chain of boxes in order along the curve, the tubes, and both ends.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CertifiedBranch {
+    /// The start box: coordinate `fixed` is a point, and for that value the curve meets
+    /// `start_uniqueness` in exactly one point, which lies in this box.
+    pub start: [Interval; 4],
+    /// The parameter held fixed at the start (0..4 for σ, t, u, v).
+    pub fixed: usize,
+    /// The box of the uniqueness proof at the start.
+    pub start_uniqueness: [Interval; 4],
+    /// The chain of a-priori boxes, ordered by arc length (backward half first).
+    pub boxes: Vec<EnclosureBox>,
+    /// One tube piece per step, in the same order as `boxes`.
+    pub tubes: Vec<TubePiece>,
+    /// The largest `radius_xyz` of the tubes: the certified tolerance of the branch.
+    pub tolerance: f64,
+    /// The end at the smallest arc length, and at the largest.
+    pub ends: [CertifiedEnd; 2],
+    /// Largest width (over σ, t, u, v) of the tight end box of every step, in order; with
+    /// contraction this stays near the start width.
+    pub widths: Vec<f64>,
+}
+
+impl CertifiedBranch {
+    /// Number of validated steps.
+    pub fn steps(&self) -> usize {
+        self.boxes.len()
+    }
+}

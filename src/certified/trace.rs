@@ -1,0 +1,483 @@
+//! Certified tracing of one branch on the validated engine.
+//!
+//! 1. **Start**: the marcher's point is turned into a proven box by the parametric Krawczyk test
+//!    ([`super::krawczyk`]), holding the fastest-moving parameter fixed; the box of the proof is
+//!    kept: for that parameter value the curve meets it in exactly one point.
+//! 2. **Steps**: the transversal ODE ([`super::ode::TransversalOde`]) is integrated both ways by
+//!    [`Integrator`]; each step gives an a-priori box (the link of the chain), a tight end box and
+//!    Taylor coefficients with a remainder (the tube piece).
+//! 3. **Contraction**: each end box is pulled back onto `P = Q` by Krawczyk in three of the four
+//!    parameters (all curve points in the box stay in it), so widths stay near rounding level.
+//! 4. **Ends**, each proven: the end box lies outside a domain (the last box straddles the
+//!    boundary); the curve crosses the start parameter's value inside the start's uniqueness box
+//!    (a closed loop: it is the start point, traced once); the field cannot be bounded because
+//!    `0 ∈ |N^P × N^Q|` (singular or tangential point); the step fell below `h_min` with the
+//!    normals separated (branches closer than can be resolved). A budget end is reported as
+//!    [`CertifiedEnd::Unproven`].
+
+use super::curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
+use super::field::{norm_sqr, transversal_field, ScalarSurface};
+use super::krawczyk::{best_fixed_coordinate, krawczyk, KrawczykResult};
+use super::ode::TransversalOde;
+use crate::error::{Error, Result};
+use crate::geometry::{Domain, RationalBezierPatch};
+use crate::scalar::{interval, point};
+use crate::validated::{Integrator, IntegratorOptions, StepFailure, StepRecord};
+use inari::Interval;
+
+/// Parameters of [`certify_branch`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CertifyOptions {
+    /// Taylor order of the validated steps.
+    pub order: usize,
+    /// Per-step size target of the last Taylor terms (the engine's tolerance).
+    pub step_tolerance: f64,
+    /// Smallest step before the tracer reports branches closer than can be resolved.
+    pub h_min: f64,
+    /// Largest step (arc length).
+    pub h_max: f64,
+    /// Step budget per half branch.
+    pub max_steps: usize,
+    /// Arc-length budget per half branch (e.g. 1.5 × the marcher's loop length).
+    pub max_length: f64,
+    /// Pull every end box back onto `P = Q` (Krawczyk) before the next step.
+    pub contract: bool,
+}
+
+impl Default for CertifyOptions {
+    fn default() -> Self {
+        CertifyOptions {
+            order: 20,
+            step_tolerance: 1e-13,
+            h_min: 1e-9,
+            h_max: 0.25,
+            max_steps: 200_000,
+            max_length: f64::INFINITY,
+            contract: true,
+        }
+    }
+}
+
+fn to4(v: &[Interval]) -> [Interval; 4] {
+    [v[0], v[1], v[2], v[3]]
+}
+
+fn mids(v: &[Interval; 4]) -> [f64; 4] {
+    v.map(|x| x.mid())
+}
+
+fn max_width(v: &[Interval]) -> f64 {
+    v.iter().map(|x| x.wid()).fold(0.0, f64::max)
+}
+
+/// Bounds of parameter `i` of `(σ, t, u, v)`.
+fn bounds(dp: &Domain, dq: &Domain, i: usize) -> [f64; 2] {
+    match i {
+        0 => dp.u,
+        1 => dp.v,
+        2 => dq.u,
+        _ => dq.v,
+    }
+}
+
+/// Certifies the branch through `start ≈ (σ, t, u, v)` (a point on the curve from the marcher).
+///
+/// Errors: the start cannot be proven (singular, or not near the curve) or an internal check of
+/// the certificate fails ([`Error::Certification`]); bad options ([`Error::BadIntegratorSetup`]).
+/// Everything returned is proven; ends that are not are [`CertifiedEnd::Unproven`].
+pub fn certify_branch(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    start: [f64; 4],
+    opts: &CertifyOptions,
+) -> Result<CertifiedBranch> {
+    let (dp, dq) = (p.domain(), q.domain());
+    let scales: [f64; 4] = std::array::from_fn(|i| {
+        let b = bounds(&dp, &dq, i);
+        b[1] - b[0]
+    });
+    let fail = |reason: &str| Error::Certification {
+        reason: reason.to_string(),
+        near: start,
+    };
+    if start.iter().any(|x| !x.is_finite()) {
+        return Err(fail("non-finite start point"));
+    }
+    let v0 = transversal_field(p, q, &start, 1.0);
+    if !v0.velocity.iter().all(|x| x.is_finite()) {
+        return Err(fail(
+            "the normals are parallel at the start point (singular start)",
+        ));
+    }
+    let fixed = best_fixed_coordinate(&v0.velocity, &scales);
+    let (y0, uniq) = prove_start(p, q, start, fixed, &scales).ok_or_else(|| {
+        fail(
+            "no Krawczyk proof of a unique curve point near the start (off the curve, or singular)",
+        )
+    })?;
+
+    let forward = trace_half(
+        p,
+        q,
+        &y0,
+        1.0,
+        Some((fixed, start[fixed], &uniq, v0.velocity[fixed])),
+        opts,
+    )?;
+    let (mut boxes, mut tubes, mut widths) = (Vec::new(), Vec::new(), Vec::new());
+    let first_end;
+    if forward.end == CertifiedEnd::ClosedLoop {
+        first_end = CertifiedEnd::ClosedLoop;
+    } else {
+        let backward = trace_half(p, q, &y0, -1.0, None, opts)?;
+        first_end = backward.end;
+        boxes.extend(backward.boxes.into_iter().rev());
+        tubes.extend(backward.tubes.into_iter().rev());
+        widths.extend(backward.widths.into_iter().rev());
+    }
+    let joined = boxes.len();
+    boxes.extend(forward.boxes);
+    tubes.extend(forward.tubes);
+    widths.extend(forward.widths);
+    // Gap-free chain: consecutive boxes share the curve point at their common arc length. The
+    // two halves meet at the start point, which both first boxes contain.
+    for (j, pair) in boxes.windows(2).enumerate() {
+        if !pair[0].overlaps(&pair[1]) {
+            return Err(Error::Certification {
+                reason: format!(
+                    "boxes {j} and {} of the chain do not overlap (at the join: {})",
+                    j + 1,
+                    j + 1 == joined
+                ),
+                near: mids(&pair[1].params()),
+            });
+        }
+    }
+    let tolerance = tubes.iter().map(|t| t.radius_xyz).fold(0.0, f64::max);
+    Ok(CertifiedBranch {
+        start: y0,
+        fixed,
+        start_uniqueness: uniq,
+        boxes,
+        tubes,
+        tolerance,
+        ends: [first_end, forward.end],
+        widths,
+    })
+}
+
+/// The proven start box and the box of its uniqueness proof: the largest of a few radii for which
+/// Krawczyk succeeds (a large uniqueness box makes the loop-closing proof easy).
+fn prove_start(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    start: [f64; 4],
+    fixed: usize,
+    scales: &[f64; 4],
+) -> Option<([Interval; 4], [Interval; 4])> {
+    let mut rho = 1e-2;
+    while rho >= 1e-10 {
+        let mut y = [point(0.0); 4];
+        for k in 0..4 {
+            y[k] = if k == fixed {
+                point(start[k])
+            } else {
+                interval(start[k] - rho * scales[k], start[k] + rho * scales[k])?
+            };
+        }
+        if let KrawczykResult::Proven { enclosure, .. } = krawczyk(p, q, y, fixed, 30) {
+            return Some((enclosure, y));
+        }
+        rho *= 0.125;
+    }
+    None
+}
+
+struct Half {
+    boxes: Vec<EnclosureBox>,
+    tubes: Vec<TubePiece>,
+    widths: Vec<f64>,
+    end: CertifiedEnd,
+}
+
+/// Data of the loop-closing test: the start's fixed coordinate, its value, the uniqueness box
+/// and the fixed coordinate's velocity at the start (its sign says on which side the curve
+/// comes back from).
+type Closure<'a> = (usize, f64, &'a [Interval; 4], f64);
+
+fn trace_half(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y0: &[Interval; 4],
+    dir: f64,
+    closure: Option<Closure>,
+    opts: &CertifyOptions,
+) -> Result<Half> {
+    let (dp, dq) = (p.domain(), q.domain());
+    let ode = TransversalOde {
+        p,
+        q,
+        orientation: dir,
+    };
+    let mut integ = Integrator::new(
+        &ode,
+        IntegratorOptions {
+            order: opts.order,
+            tolerance: opts.step_tolerance,
+            h_min: opts.h_min,
+            h_max: opts.h_max,
+            qr: true,
+            max_steps: usize::MAX,
+        },
+    )?;
+    let mut state = integ.start(y0, 0.0)?;
+    let mut half = Half {
+        boxes: Vec::new(),
+        tubes: Vec::new(),
+        widths: Vec::new(),
+        end: CertifiedEnd::ClosedLoop,
+    };
+    let mut crossing_hull: Option<[Interval; 4]> = None;
+    let mut current = *y0;
+    loop {
+        if half.boxes.len() >= opts.max_steps || state.t >= opts.max_length {
+            half.end = CertifiedEnd::Unproven {
+                reason: format!(
+                    "budget spent ({} steps, arc length {})",
+                    half.boxes.len(),
+                    state.t
+                ),
+                near: current,
+            };
+            return Ok(half);
+        }
+        let limit = state.t + opts.h_max;
+        let rec = match integ.step(&mut state, limit) {
+            Ok(r) => r,
+            Err(Error::StepFailed { step, reason, .. }) => {
+                half.end = classify_failure(p, q, &current, step.max(opts.h_min), reason, &dp, &dq);
+                return Ok(half);
+            }
+            Err(e) => return Err(e),
+        };
+        let apriori = to4(&rec.apriori);
+        let xyz = model_box(p, q, &apriori).ok_or_else(|| Error::Certification {
+            reason: "the model-space boxes of P and Q over the a-priori box are disjoint".into(),
+            near: mids(&apriori),
+        })?;
+        let s = if dir > 0.0 {
+            [rec.t0, rec.t1]
+        } else {
+            [-rec.t1, -rec.t0]
+        };
+        half.boxes.push(EnclosureBox {
+            s,
+            p: [apriori[0], apriori[1]],
+            q: [apriori[2], apriori[3]],
+            xyz,
+        });
+        half.tubes.push(tube_piece(p, &rec, dir)?);
+        let end = to4(&rec.end);
+        half.widths.push(max_width(&end));
+        current = end;
+        if let Some(surface) = outside(&end, &dp, &dq) {
+            half.end = CertifiedEnd::Boundary { surface };
+            return Ok(half);
+        }
+        if let Some(c) = closure {
+            if closes(&rec, &apriori, c, &mut crossing_hull)? {
+                half.end = CertifiedEnd::ClosedLoop;
+                return Ok(half);
+            }
+        }
+        if opts.contract {
+            let v = transversal_field(p, q, &mids(&end), dir).velocity;
+            let scales: [f64; 4] = std::array::from_fn(|i| {
+                let b = bounds(&dp, &dq, i);
+                b[1] - b[0]
+            });
+            if v.iter().all(|x| x.is_finite()) {
+                let k = best_fixed_coordinate(&v, &scales);
+                if let KrawczykResult::Proven { enclosure, .. } = krawczyk(p, q, end, k, 3) {
+                    let ratio = state.step_ratio;
+                    state = integ.start(&enclosure, rec.t1)?;
+                    state.step_ratio = ratio;
+                    current = enclosure;
+                }
+            }
+        }
+    }
+}
+
+/// The model-space box `P([σ],[t]) ∩ Q([u],[v])`; `None` if empty (impossible for a box that
+/// holds curve points, so a sign of a broken certificate).
+fn model_box(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y: &[Interval; 4],
+) -> Option<[Interval; 3]> {
+    let a = p.enclose(y[0], y[1]);
+    let b = q.enclose(y[2], y[3]);
+    let out = [
+        a[0].intersection(b[0]),
+        a[1].intersection(b[1]),
+        a[2].intersection(b[2]),
+    ];
+    (!out.iter().any(|x| x.is_empty())).then_some(out)
+}
+
+/// The surface whose domain the box lies wholly outside of, if any.
+fn outside(y: &[Interval; 4], dp: &Domain, dq: &Domain) -> Option<usize> {
+    (0..4).find_map(|i| {
+        let b = bounds(dp, dq, i);
+        (y[i].sup() < b[0] || y[i].inf() > b[1]).then_some(i / 2)
+    })
+}
+
+/// Whether the box is not wholly inside both domains.
+fn straddles(y: &[Interval; 4], dp: &Domain, dq: &Domain) -> Option<usize> {
+    (0..4).find_map(|i| {
+        let b = bounds(dp, dq, i);
+        (y[i].inf() < b[0] || y[i].sup() > b[1]).then_some(i / 2)
+    })
+}
+
+/// Why a step could not be proven, decided rigorously where possible.
+fn classify_failure(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y: &[Interval; 4],
+    h: f64,
+    reason: StepFailure,
+    dp: &Domain,
+    dq: &Domain,
+) -> CertifiedEnd {
+    if let Some(surface) = straddles(y, dp, dq) {
+        // Outside the domain the patch extension is not ours to trace.
+        return CertifiedEnd::Boundary { surface };
+    }
+    // The region the next step would have covered: parameter speeds are bounded by the field
+    // where it exists; use a box of radius h·(1 + max speed) around the current box.
+    let speed = transversal_field(p, q, &mids(y), 1.0)
+        .velocity
+        .iter()
+        .fold(
+            1.0f64,
+            |m, v| if v.is_finite() { m.max(v.abs()) } else { m },
+        );
+    let r = h * (1.0 + speed);
+    let near = y.map(|x| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE));
+    let m2 = transversal_field(p, q, &near, 1.0).cross_norm_sqr;
+    if m2.contains(0.0) || m2.is_empty() {
+        return CertifiedEnd::Singular { near };
+    }
+    match reason {
+        StepFailure::BelowMinimumStep { .. } => CertifiedEnd::CloseBranches { h, near: *y },
+        other => CertifiedEnd::Unproven {
+            reason: other.to_string(),
+            near: *y,
+        },
+    }
+}
+
+/// One step's tube: midpoint polynomial and proven radii.
+fn tube_piece(p: &RationalBezierPatch, rec: &StepRecord, dir: f64) -> Result<TubePiece> {
+    let k = rec.coeffs.len();
+    let tau = interval(0.0, rec.h).unwrap_or(Interval::ENTIRE);
+    let coeffs: Vec<[f64; 4]> = rec
+        .coeffs
+        .iter()
+        .map(|c| [c[0].mid(), c[1].mid(), c[2].mid(), c[3].mid()])
+        .collect();
+    // true(τ) − reported(τ) ∈ Σ_{j<k} (c_j − mid c_j) τʲ + R τᵏ, τ ∈ [0, h].
+    let radius_param = (0..4)
+        .map(|i| {
+            (0..k)
+                .rev()
+                .fold(rec.remainder_coeff[i], |acc, j| {
+                    acc * tau + (rec.coeffs[j][i] - point(coeffs[j][i]))
+                })
+                .mag()
+        })
+        .fold(0.0f64, f64::max);
+    // Model space: |P(y) − P(y')| ≤ (sup‖P_σ‖ + sup‖P_t‖)·r over the a-priori box grown by r.
+    let grow = |x: Interval| {
+        interval(x.inf() - radius_param, x.sup() + radius_param).unwrap_or(Interval::ENTIRE)
+    };
+    let [_, ps, pt] = p.first_order(grow(rec.apriori[0]), grow(rec.apriori[1]));
+    let lipschitz = norm_sqr(&ps).sqrt() + norm_sqr(&pt).sqrt();
+    let radius_xyz = (lipschitz * point(radius_param)).sup();
+    if !(radius_param.is_finite() && radius_xyz.is_finite()) {
+        return Err(Error::Certification {
+            reason: "unbounded tube radius".into(),
+            near: mids(&to4(&rec.apriori)),
+        });
+    }
+    Ok(TubePiece {
+        s0: dir * rec.t0,
+        direction: dir,
+        h: rec.h,
+        coeffs,
+        radius_param,
+        radius_xyz,
+    })
+}
+
+/// The loop-closing proof for one step: the fixed coordinate `k` crosses its start value `c`,
+/// from the side it returns from to the side it left to, inside the uniqueness box (in the other
+/// coordinates). Then the crossing point is the start point. `hull` carries the enclosure since
+/// the curve was last strictly on the returning side (it may span steps).
+fn closes(
+    rec: &StepRecord,
+    apriori: &[Interval; 4],
+    c: Closure,
+    hull: &mut Option<[Interval; 4]>,
+) -> Result<bool> {
+    let (k, value, uniq, speed) = c;
+    let free = |y: &[Interval; 4], f: &dyn Fn(Interval, Interval) -> bool| {
+        (0..4).filter(|&i| i != k).all(|i| f(y[i], uniq[i]))
+    };
+    if !free(apriori, &|a, u| !a.disjoint(u)) {
+        *hull = None;
+        return Ok(false);
+    }
+    let before = |x: Interval| {
+        if speed > 0.0 {
+            x.sup() < value
+        } else {
+            x.inf() > value
+        }
+    };
+    let after = |x: Interval| {
+        if speed > 0.0 {
+            x.inf() > value
+        } else {
+            x.sup() < value
+        }
+    };
+    const PIECES: usize = 8;
+    for m in 0..PIECES {
+        let a = rec.h * m as f64 / PIECES as f64;
+        let b = if m + 1 == PIECES {
+            rec.h
+        } else {
+            rec.h * (m + 1) as f64 / PIECES as f64
+        };
+        let at_a = to4(&rec.enclose_on(a, a)?);
+        let piece = to4(&rec.enclose_on(a, b)?);
+        if before(at_a[k]) {
+            *hull = Some(piece);
+        } else if let Some(h) = hull.as_mut() {
+            for i in 0..4 {
+                h[i] = h[i].convex_hull(piece[i]);
+            }
+        }
+        let at_b = to4(&rec.enclose_on(b, b)?);
+        if let Some(h) = hull {
+            if after(at_b[k]) && free(h, &|x, u| x.subset(u)) {
+                return Ok(true);
+            }
+        }
+    }
+    Ok(false)
+}
