@@ -356,8 +356,9 @@ fn classify_failure(
         // Outside the domain the patch extension is not ours to trace.
         return CertifiedEnd::Boundary { surface };
     }
-    // The region the next step would have covered: parameter speeds are bounded by the field
-    // where it exists; use a box of radius h·(1 + max speed) around the current box.
+    // Near a singular point the Taylor coefficients blow up (their radius of convergence is the
+    // distance to it), so the step collapses at a distance of many steps. Look for `0 ∈ m2` in
+    // boxes of radius 10ʲ·h·(1 + speed), j = 0..3, around the current box.
     let speed = transversal_field(p, q, &mids(y), 1.0)
         .velocity
         .iter()
@@ -365,11 +366,13 @@ fn classify_failure(
             1.0f64,
             |m, v| if v.is_finite() { m.max(v.abs()) } else { m },
         );
-    let r = h * (1.0 + speed);
-    let near = y.map(|x| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE));
-    let m2 = transversal_field(p, q, &near, 1.0).cross_norm_sqr;
-    if m2.contains(0.0) || m2.is_empty() {
-        return CertifiedEnd::Singular { near };
+    for factor in [1.0, 10.0, 100.0, 1000.0] {
+        let r = factor * h * (1.0 + speed);
+        let near = y.map(|x| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE));
+        let m2 = transversal_field(p, q, &near, 1.0).cross_norm_sqr;
+        if m2.contains(0.0) || m2.is_empty() {
+            return CertifiedEnd::Singular { near };
+        }
     }
     match reason {
         StepFailure::BelowMinimumStep { .. } => CertifiedEnd::CloseBranches { h, near: *y },

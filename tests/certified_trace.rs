@@ -1,0 +1,232 @@
+//! Certified tracing against curves known in closed form: every box of the chain must contain
+//! the true curve at its arc-length range, sampled densely, and every end must be the right one.
+//!
+//! Truth is computed in f64 (sin, cos, sqrt): its error is a few ulps, below 1e-15 for these
+//! unit-size curves; containment is checked with a margin of 1e-13, a hundred times that, and far
+//! below the box widths along the curve (so a box that misses the curve cannot pass).
+
+use inari::Interval;
+use ssitrace::certified::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
+use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
+use ssitrace::io::scene::Scene;
+use ssitrace::pipeline::{run_scene, RunOptions};
+
+const MARGIN: f64 = 1e-13;
+
+fn near(x: Interval, v: f64) -> bool {
+    x.inf() - MARGIN <= v && v <= x.sup() + MARGIN
+}
+
+/// z = a·(u² + v²) + b·u·v + c·u + d over [−1, 1]² as a Bézier patch.
+fn graph(a: f64, b: f64, c: f64, d: f64) -> RationalBezierPatch {
+    PowerSurface {
+        domain: Domain::new(-1.0, 1.0, -1.0, 1.0),
+        x: vec![(1, 0, 1.0)],
+        y: vec![(0, 1, 1.0)],
+        z: vec![(2, 0, a), (0, 2, a), (1, 1, b), (1, 0, c), (0, 0, d)],
+        w: None,
+    }
+    .to_bezier()
+    .expect("valid surface")
+}
+
+/// Checks every box at 9 arc lengths of its range against `truth(s) = (σ, t, u, v, x, y, z)`.
+fn check_chain(c: &CertifiedBranch, truth: impl Fn(f64) -> [f64; 7]) {
+    assert!(!c.boxes.is_empty());
+    for (j, b) in c.boxes.iter().enumerate() {
+        for k in 0..=8 {
+            let s = b.s[0] + (b.s[1] - b.s[0]) * k as f64 / 8.0;
+            let t = truth(s);
+            let params = b.params();
+            for i in 0..4 {
+                assert!(
+                    near(params[i], t[i]),
+                    "box {j} param {i} at s = {s}: {} not in [{}, {}]",
+                    t[i],
+                    params[i].inf(),
+                    params[i].sup()
+                );
+            }
+            for i in 0..3 {
+                assert!(near(b.xyz[i], t[4 + i]), "box {j} xyz {i} at s = {s}");
+            }
+        }
+    }
+    for pair in c.boxes.windows(2) {
+        assert!(pair[0].overlaps(&pair[1]));
+        assert_eq!(
+            pair[0].s[1], pair[1].s[0],
+            "arc-length ranges chain without gaps"
+        );
+    }
+    // The tubes: the reported polynomial is within the proven radius of the truth.
+    for piece in &c.tubes {
+        for k in 0..=8 {
+            let tau = piece.h * k as f64 / 8.0;
+            let y = piece.eval(tau);
+            let t = truth(piece.s0 + piece.direction * tau);
+            for i in 0..4 {
+                assert!(
+                    (y[i] - t[i]).abs() <= piece.radius_param + MARGIN,
+                    "tube off by {}",
+                    (y[i] - t[i]).abs()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn small_circle_closes_exactly_once_and_every_box_holds_it() {
+    // Paraboloid z = u² + v² − r² against z = 0: the circle of radius r = 0.05.
+    let r = 0.05;
+    let (p, q) = (graph(1.0, 0.0, 0.0, -r * r), graph(0.0, 0.0, 0.0, 0.0));
+    let c =
+        certify_branch(&p, &q, [r, 0.0, r, 0.0], &CertifyOptions::default()).expect("certified");
+    assert_eq!(c.ends, [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop]);
+    let last = c.boxes.last().unwrap();
+    let length = 2.0 * std::f64::consts::PI * r;
+    assert!(
+        last.s[0] < length && length <= last.s[1] + 1e-12,
+        "one turn: {:?} vs {length}",
+        last.s
+    );
+    // Orientation of the trace: N^P × N^Q at (r, 0) points along +v or −v.
+    let dir = if c.boxes[0].p[1].sup() > 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
+    check_chain(&c, |s| {
+        let th = dir * s / r;
+        let (x, y) = (r * th.cos(), r * th.sin());
+        [x, y, x, y, x, y, 0.0]
+    });
+    assert!(c.tolerance < 1e-9, "tolerance {}", c.tolerance);
+    println!(
+        "small circle: {} steps, tolerance {:e}, max width {:e}",
+        c.steps(),
+        c.tolerance,
+        c.widths.iter().cloned().fold(0.0, f64::max)
+    );
+}
+
+#[test]
+fn straight_branch_ends_on_both_boundaries() {
+    // z = 0.5u + 0.1 against z = 0: the line u = −0.2, v ∈ [−1, 1].
+    let (p, q) = (graph(0.0, 0.0, 0.5, 0.1), graph(0.0, 0.0, 0.0, 0.0));
+    let c = certify_branch(&p, &q, [-0.2, 0.3, -0.2, 0.3], &CertifyOptions::default())
+        .expect("certified");
+    assert!(
+        matches!(c.ends[0], CertifiedEnd::Boundary { .. })
+            && matches!(c.ends[1], CertifiedEnd::Boundary { .. }),
+        "{:?}",
+        c.ends
+    );
+    // Arc length along the line: v = 0.3 ± s (sign from the first forward box).
+    let dir = if c.boxes.last().unwrap().p[1].sup() > 0.3 {
+        1.0
+    } else {
+        -1.0
+    };
+    check_chain(&c, |s| {
+        let v = 0.3 + dir * s;
+        [-0.2, v, -0.2, v, -0.2, v, 0.0]
+    });
+    // The last boxes straddle the boundaries v = ±1.
+    let (first, last) = (c.boxes[0], *c.boxes.last().unwrap());
+    for b in [first, last] {
+        assert!(
+            b.p[1].contains(1.0)
+                || b.p[1].contains(-1.0)
+                || b.p[1].sup() > 1.0
+                || b.p[1].inf() < -1.0
+        );
+    }
+}
+
+#[test]
+fn branch_point_of_a_saddle_is_reported_as_singular() {
+    // z = u·v against z = 0: the axes cross at the origin, where the normals are parallel.
+    let (p, q) = (graph(0.0, 1.0, 0.0, 0.0), graph(0.0, 0.0, 0.0, 0.0));
+    let c = certify_branch(&p, &q, [0.5, 0.0, 0.5, 0.0], &CertifyOptions::default())
+        .expect("certified");
+    let singular: Vec<_> = c
+        .ends
+        .iter()
+        .filter_map(|e| match e {
+            CertifiedEnd::Singular { near } => Some(*near),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(singular.len(), 1, "{:?}", c.ends);
+    // The reported box holds the crossing at the origin.
+    assert!(singular[0].iter().all(|x| x.contains(0.0)));
+    // The other end is the boundary u = 1; every box holds the u-axis point at its arc length.
+    assert!(c
+        .ends
+        .iter()
+        .any(|e| matches!(e, CertifiedEnd::Boundary { .. })));
+    let dir = if c.boxes.last().unwrap().p[0].sup() > 0.5 {
+        1.0
+    } else {
+        -1.0
+    };
+    check_chain(&c, |s| {
+        let u = 0.5 + dir * s;
+        [u, 0.0, u, 0.0, u, 0.0, 0.0]
+    });
+}
+
+#[test]
+fn rational_sphere_patch_against_plane_arc_is_enclosed() {
+    // A budgeted arc of the circle y² + z² = 141/256 on x = 11/8 (the scene's closed form),
+    // from a point of the marched branch.
+    let path = format!(
+        "{}/scenes/sphere_patch_plane.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let scene = Scene::from_path(std::path::Path::new(&path)).unwrap();
+    let (marched, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).unwrap();
+    let [p, q] = &scene.surfaces;
+    let rad = (141.0f64).sqrt() / 16.0;
+    let pts = &marched.intersection.branches[0].points;
+    let pt = pts[pts.len() / 3];
+    let opts = CertifyOptions {
+        max_length: 0.25,
+        ..CertifyOptions::default()
+    };
+    let c = certify_branch(p, q, [pt.p[0], pt.p[1], pt.q[0], pt.q[1]], &opts).expect("certified");
+    let y0 = c.start;
+    let th_start = (2.0 * y0[3].mid() - 1.0).atan2(2.0 * y0[2].mid() - 1.0);
+    let dir = {
+        let b = c.boxes.last().unwrap();
+        let th_end = (2.0 * b.q[1].mid() - 1.0).atan2(2.0 * b.q[0].mid() - 1.0);
+        if th_end > th_start {
+            1.0
+        } else {
+            -1.0
+        }
+    };
+    for b in &c.boxes {
+        for k in 0..=8 {
+            let s = b.s[0] + (b.s[1] - b.s[0]) * k as f64 / 8.0;
+            let th = th_start + dir * s / rad;
+            let (y, z) = (rad * th.cos(), rad * th.sin());
+            assert!(
+                near(b.q[0], 0.5 + 0.5 * y) && near(b.q[1], 0.5 + 0.5 * z),
+                "Q box misses the circle at s = {s}"
+            );
+            assert!(
+                near(b.xyz[0], 1.375) && near(b.xyz[1], y) && near(b.xyz[2], z),
+                "model box misses the circle at s = {s}"
+            );
+        }
+    }
+    assert!(c.tolerance < 1e-9, "tolerance {}", c.tolerance);
+    println!(
+        "sphere arc: {} steps, tolerance {:e}",
+        c.steps(),
+        c.tolerance
+    );
+}
