@@ -230,3 +230,93 @@ fn rational_sphere_patch_against_plane_arc_is_enclosed() {
         c.tolerance
     );
 }
+
+/// A quarter cylinder of radius `r` as a rational biquadratic-by-linear patch: the arc in the
+/// plane of coordinates `(a, b)` from `(r, 0)` to `(0, r)`, extruded along coordinate `axis`
+/// over `[lo, hi]`. The middle weight is the interval around √2/2, so the patch family contains
+/// the exact cylinder.
+fn quarter_cylinder(
+    r: f64,
+    a: usize,
+    b: usize,
+    axis: usize,
+    lo: f64,
+    hi: f64,
+) -> RationalBezierPatch {
+    use ssitrace::scalar::{interval, point};
+    let arc = [[r, 0.0], [r, r], [0.0, r]];
+    let mut pts = Vec::new();
+    for c in arc {
+        for e in [lo, hi] {
+            let mut x = [point(0.0); 3];
+            x[a] = point(c[0]);
+            x[b] = point(c[1]);
+            x[axis] = point(e);
+            pts.push(x);
+        }
+    }
+    let s = interval(0.707_106_781_186_547_5, 0.707_106_781_186_547_6).unwrap();
+    assert!(s.contains(0.5f64.sqrt()));
+    let weights = vec![point(1.0), point(1.0), s, s, point(1.0), point(1.0)];
+    RationalBezierPatch::new([2, 1], pts, Some(weights), Domain::UNIT).expect("valid patch")
+}
+
+#[test]
+fn cylinder_against_cylinder_open_branch_is_enclosed() {
+    // P: x² + z² = 1 (axis y); Q: y² + z² = 1/4 (axis x). One branch from (1, 1/2, 0) to
+    // (√3/2, 0, 1/2), on the boundaries of the quarter patches.
+    let p = quarter_cylinder(1.0, 0, 2, 1, -1.0, 1.0);
+    let q = quarter_cylinder(0.5, 1, 2, 0, 0.0, 2.0);
+    let found = ssitrace::marching::intersect::intersect(
+        &p,
+        &q,
+        &ssitrace::marching::MarchOptions::default(),
+        &ssitrace::marching::start_points::SearchOptions::default(),
+    );
+    assert_eq!(found.intersection.branches.len(), 1);
+    let pts = &found.intersection.branches[0].points;
+    let pt = pts[pts.len() / 2];
+    let c = certify_branch(
+        &p,
+        &q,
+        [pt.p[0], pt.p[1], pt.q[0], pt.q[1]],
+        &CertifyOptions::default(),
+    )
+    .expect("certified");
+    assert!(
+        c.ends
+            .iter()
+            .all(|e| matches!(e, CertifiedEnd::Boundary { .. })),
+        "{:?}",
+        c.ends
+    );
+    let one = ssitrace::scalar::point(1.0);
+    let quarter = ssitrace::scalar::point(0.25);
+    let m = ssitrace::scalar::interval(-MARGIN, MARGIN).unwrap();
+    for b in &c.boxes {
+        // Both cylinder equations hold somewhere in every model box.
+        let [x, y, z] = b.xyz;
+        assert!(
+            (x.sqr() + z.sqr() - one + m).contains(0.0),
+            "box off P's cylinder"
+        );
+        assert!(
+            (y.sqr() + z.sqr() - quarter + m).contains(0.0),
+            "box off Q's cylinder"
+        );
+    }
+    // The chain covers the curve from end to end: y runs from 1/2 down to 0 (or up).
+    let ys: Vec<f64> = c
+        .boxes
+        .iter()
+        .flat_map(|b| [b.xyz[1].inf(), b.xyz[1].sup()])
+        .collect();
+    assert!(ys.iter().cloned().fold(f64::INFINITY, f64::min) <= 1e-12);
+    assert!(ys.iter().cloned().fold(f64::NEG_INFINITY, f64::max) >= 0.5 - 1e-12);
+    assert!(c.tolerance < 1e-9, "tolerance {}", c.tolerance);
+    println!(
+        "cylinders: {} steps, tolerance {:e}",
+        c.steps(),
+        c.tolerance
+    );
+}
