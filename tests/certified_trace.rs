@@ -320,3 +320,31 @@ fn cylinder_against_cylinder_open_branch_is_enclosed() {
         c.tolerance
     );
 }
+
+#[test]
+fn contraction_keeps_widths_near_rounding_level() {
+    // The same loop with and without pulling each end box back onto P = Q.
+    let r = 0.05;
+    let (p, q) = (graph(1.0, 0.0, 0.0, -r * r), graph(0.0, 0.0, 0.0, 0.0));
+    let start = [r, 0.0, r, 0.0];
+    let with = certify_branch(&p, &q, start, &CertifyOptions::default()).expect("certified");
+    let opts = CertifyOptions {
+        contract: false,
+        ..CertifyOptions::default()
+    };
+    let without = certify_branch(&p, &q, start, &opts).expect("certified");
+    let max = |w: &[f64]| w.iter().cloned().fold(0.0, f64::max);
+    let last = |w: &[f64]| *w.last().unwrap();
+    println!(
+        "widths along the loop: with contraction max {:.2e} (last {:.2e}), without max {:.2e} (last {:.2e}); steps {} vs {}",
+        max(&with.widths),
+        last(&with.widths),
+        max(&without.widths),
+        last(&without.widths),
+        with.steps(),
+        without.steps()
+    );
+    assert!(max(&with.widths) < max(&without.widths));
+    // Both are still sound: the contracted chain holds the circle.
+    assert_eq!(without.ends[1], CertifiedEnd::ClosedLoop);
+}

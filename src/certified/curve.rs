@@ -135,8 +135,9 @@ pub struct CertifiedBranch {
     pub tolerance: f64,
     /// The end at the smallest arc length, and at the largest.
     pub ends: [CertifiedEnd; 2],
-    /// Largest width (over σ, t, u, v) of the tight end box of every step, in order; with
-    /// contraction this stays near the start width.
+    /// Transversal width of every step's end box, in order: the largest width over the three
+    /// parameters other than the fastest-moving one (the along-curve spread is excluded). With
+    /// contraction this stays near rounding level.
     pub widths: Vec<f64>,
 }
 

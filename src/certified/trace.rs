@@ -66,8 +66,12 @@ fn mids(v: &[Interval; 4]) -> [f64; 4] {
     v.map(|x| x.mid())
 }
 
-fn max_width(v: &[Interval]) -> f64 {
-    v.iter().map(|x| x.wid()).fold(0.0, f64::max)
+/// Largest width over the coordinates other than `along` (all four if unknown).
+fn transversal_width(v: &[Interval; 4], along: Option<usize>) -> f64 {
+    (0..4)
+        .filter(|&i| Some(i) != along)
+        .map(|i| v[i].wid())
+        .fold(0.0, f64::max)
 }
 
 /// Bounds of parameter `i` of `(σ, t, u, v)`.
@@ -238,6 +242,10 @@ fn trace_half(
         end: CertifiedEnd::ClosedLoop,
     };
     let mut crossing_hull: Option<[Interval; 4]> = None;
+    let scales: [f64; 4] = std::array::from_fn(|i| {
+        let b = bounds(&dp, &dq, i);
+        b[1] - b[0]
+    });
     let mut current = *y0;
     loop {
         if half.boxes.len() >= opts.max_steps || state.t >= opts.max_length {
@@ -278,9 +286,24 @@ fn trace_half(
         });
         half.tubes.push(tube_piece(p, &rec, dir)?);
         let end = to4(&rec.end);
-        half.widths.push(max_width(&end));
         current = end;
-        if let Some(surface) = outside(&end, &dp, &dq) {
+        // The fastest-moving parameter: held fixed by the contraction, and the along-curve
+        // direction when measuring the transversal width.
+        let v = transversal_field(p, q, &mids(&end), dir).velocity;
+        let along = v
+            .iter()
+            .all(|x| x.is_finite())
+            .then(|| best_fixed_coordinate(&v, &scales));
+        if let (true, Some(k)) = (opts.contract, along) {
+            if let Some(enclosure) = contract(p, q, &end, k) {
+                let ratio = state.step_ratio;
+                state = integ.start(&enclosure, rec.t1)?;
+                state.step_ratio = ratio;
+                current = enclosure;
+            }
+        }
+        half.widths.push(transversal_width(&current, along));
+        if let Some(surface) = outside(&current, &dp, &dq) {
             half.end = CertifiedEnd::Boundary { surface };
             return Ok(half);
         }
@@ -290,22 +313,33 @@ fn trace_half(
                 return Ok(half);
             }
         }
-        if opts.contract {
-            let v = transversal_field(p, q, &mids(&end), dir).velocity;
-            let scales: [f64; 4] = std::array::from_fn(|i| {
-                let b = bounds(&dp, &dq, i);
-                b[1] - b[0]
-            });
-            if v.iter().all(|x| x.is_finite()) {
-                let k = best_fixed_coordinate(&v, &scales);
-                if let KrawczykResult::Proven { enclosure, .. } = krawczyk(p, q, end, k, 3) {
-                    let ratio = state.step_ratio;
-                    state = integ.start(&enclosure, rec.t1)?;
-                    state.step_ratio = ratio;
-                    current = enclosure;
-                }
-            }
+    }
+}
+
+/// Pulls a box holding the curve back onto `P = Q`: Krawczyk with coordinate `k` held in its
+/// interval, on the box inflated in the other coordinates (a thin box whose free widths already
+/// equal the along-curve spread cannot pass the strict-interior test itself). All curve points of
+/// the inflated box lie in the Krawczyk image, so the image intersected with the original box
+/// still holds the curve point the original held.
+fn contract(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y: &[Interval; 4],
+    k: usize,
+) -> Option<[Interval; 4]> {
+    let mut grown = *y;
+    for (i, g) in grown.iter_mut().enumerate() {
+        if i != k {
+            let r = g.wid().max(1e-15 * g.mag().max(1.0));
+            *g = interval(g.inf() - r, g.sup() + r)?;
         }
+    }
+    match krawczyk(p, q, grown, k, 4) {
+        KrawczykResult::Proven { enclosure, .. } => {
+            let out: [Interval; 4] = std::array::from_fn(|i| enclosure[i].intersection(y[i]));
+            (!out.iter().any(|x| x.is_empty())).then_some(out)
+        }
+        KrawczykResult::NotProven(_) => None,
     }
 }
 
