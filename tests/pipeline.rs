@@ -132,3 +132,69 @@ fn rational_sphere_patch_against_plane_is_one_circle() {
         assert!((y * y + z * z - 141.0 / 256.0).abs() < 1e-9);
     }
 }
+
+#[test]
+fn cylinder_lying_on_a_plane_reports_the_contact_line() {
+    // A 90° arc of the cylinder x² + (z − ½)² = ¼ around its lowest line, extruded along y, on
+    // the plane z = 0: they touch along x = z = 0. The middle weight is the interval around
+    // √2/2, so the patch family holds the exact cylinder and the contact is real.
+    use ssitrace::geometry::{Domain, RationalBezierPatch};
+    use ssitrace::marching::intersect::intersect;
+    use ssitrace::marching::start_points::SearchOptions;
+    use ssitrace::marching::MarchOptions;
+    use ssitrace::scalar::{interval, point};
+    let (h, c) = (
+        std::f64::consts::FRAC_1_SQRT_2,
+        0.5 * std::f64::consts::FRAC_1_SQRT_2,
+    );
+    let mut pts = Vec::new();
+    for (x, z) in [(-c, 0.5 - c), (0.0, 0.5 - h), (c, 0.5 - c)] {
+        for y in [-1.0, 1.0] {
+            pts.push([point(x), point(y), point(z)]);
+        }
+    }
+    // The control data above are rounded; widen them so the family holds the exact cylinder.
+    let widen = |x: inari::Interval| interval(x.inf() - 1e-15, x.sup() + 1e-15).unwrap();
+    let pts: Vec<_> = pts.into_iter().map(|p| p.map(widen)).collect();
+    let w = interval(h.next_down(), h.next_up()).unwrap();
+    let weights = vec![point(1.0), point(1.0), w, w, point(1.0), point(1.0)];
+    let p = RationalBezierPatch::new([2, 1], pts, Some(weights), Domain::UNIT).unwrap();
+    let plane = [
+        [-1.0, -2.0, 0.0],
+        [-1.0, 2.0, 0.0],
+        [1.0, -2.0, 0.0],
+        [1.0, 2.0, 0.0],
+    ];
+    let q = RationalBezierPatch::from_f64_points([1, 1], &plane, None, Domain::UNIT).unwrap();
+    let out = intersect(&p, &q, &MarchOptions::default(), &SearchOptions::default());
+    let ix = &out.intersection;
+    // Never "no intersection": the contact is reported, as singular events along the line.
+    assert!(
+        !ix.events.is_empty(),
+        "contact not reported: {:?}",
+        out.stats
+    );
+    for e in &ix.events {
+        assert!(
+            e.xyz[0].abs() < 1e-4 && e.xyz[2].abs() < 1e-7,
+            "event off the contact line: {:?}",
+            e.xyz
+        );
+    }
+    let ys: Vec<f64> = ix.events.iter().map(|e| e.xyz[1]).collect();
+    let (lo, hi) = ys
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
+            (a.min(*y), b.max(*y))
+        });
+    assert!(
+        lo < -0.8 && hi > 0.8,
+        "the events span the contact line: [{lo}, {hi}]"
+    );
+    println!(
+        "contact line: {} events, {} branches, stats {:?}",
+        ix.events.len(),
+        ix.branches.len(),
+        out.stats
+    );
+}

@@ -7,7 +7,7 @@
 use super::start_points::{find_start_points, SearchOptions, SearchReport, StartPoint};
 use super::{trace_branch, MarchOptions};
 use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
-use crate::intersection::{Branch, Event, Intersection};
+use crate::intersection::{Branch, EndReason, Event, EventKind, Intersection};
 use std::time::Instant;
 
 /// Counts and timings of one [`intersect`] run.
@@ -25,6 +25,9 @@ pub struct IntersectStats {
     pub undecided_leaves: usize,
     /// The search ran out of its leaf budget.
     pub search_truncated: bool,
+    /// Start points where the surfaces are tangent (normals parallel): reported as singular
+    /// events, not as branches.
+    pub contact_points: usize,
     /// Points over all branches.
     pub points: usize,
     /// Seconds spent in the start-point search.
@@ -82,11 +85,19 @@ pub fn intersect(
             stats.skipped_covered += 1;
             continue;
         }
+        // A start next to a contact point already reported (along a tangential contact every
+        // leaf of the search yields one) adds nothing.
+        let here = p.point(start.params[0], start.params[1]);
+        let here = [here.x, here.y, here.z];
+        if events
+            .iter()
+            .any(|e| e.kind == EventKind::Singular && dist3(&e.xyz, &here) <= radius)
+        {
+            stats.skipped_covered += 1;
+            continue;
+        }
         match trace_branch(p, q, start.params, march) {
             Ok(traced) => {
-                let mut branch = traced.branch;
-                branch.id = branches.len();
-                stats.points += branch.points.len();
                 for e in traced.events {
                     let dup = events.iter().any(|f| {
                         f.kind == e.kind && dist3(&f.xyz, &e.xyz) <= 1e-6 * (1.0 + norm3(&e.xyz))
@@ -95,6 +106,17 @@ pub fn intersect(
                         events.push(e);
                     }
                 }
+                // A start where the normals are parallel (a tangential contact) gives a branch of
+                // one point: it is reported by its event only.
+                let single = traced.branch.points.len() == 1
+                    && traced.branch.ends == [EndReason::Singular, EndReason::Singular];
+                if single {
+                    stats.contact_points += 1;
+                    continue;
+                }
+                let mut branch = traced.branch;
+                branch.id = branches.len();
+                stats.points += branch.points.len();
                 branches.push(branch);
             }
             Err(_) => stats.failed_starts += 1,
