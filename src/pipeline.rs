@@ -136,7 +136,7 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     let mut certify_seconds = 0.0;
     if opts.method != Method::March {
         for b in &outcome.intersection.branches {
-            let cert = certify_marched(p, q, b, opts);
+            let cert = certify_marched_branch(p, q, b, opts);
             certify_seconds += cert.seconds;
             meta.certified
                 .insert(b.id, certificate_json(&cert, opts.tolerance, opts.tubes));
@@ -225,8 +225,11 @@ fn choose_start(p: &RationalBezierPatch, q: &RationalBezierPatch, b: &Branch) ->
     Some(best.0)
 }
 
-/// Certifies one marched branch within the budgets of `opts`.
-fn certify_marched(
+/// Certifies one marched branch within the budgets of `opts`: from its middle point (or a more
+/// transversal point at a quarter or a third of the way), with `opts.max_steps` steps and
+/// [`LENGTH_BUDGET_FACTOR`] × the marched length of arc per half branch. Never fails as a
+/// whole: a certification failure is kept in [`BranchCertificate::result`].
+pub fn certify_marched_branch(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     b: &Branch,
@@ -266,8 +269,9 @@ fn certify_marched(
 }
 
 /// The branch's `"certified"` object: [`certified_to_json`] (or `{"error": ...}`) plus
-/// `"meets_tolerance"`, `"required_tolerance"`, `"start_point"`, `"max_length"` and `"seconds"`.
-fn certificate_json(c: &BranchCertificate, tolerance: f64, tubes: bool) -> Value {
+/// `"meets_tolerance"` (only when certified), `"required_tolerance"`, `"start_point"` (when the
+/// branch had points), `"max_length"` and `"seconds"`.
+pub fn certificate_json(c: &BranchCertificate, tolerance: f64, tubes: bool) -> Value {
     let mut v = match &c.result {
         Ok(cb) => certified_to_json(cb, tubes),
         Err(e) => certified_error_to_json(e),
