@@ -334,11 +334,11 @@ fn overlay_merges_boxes_into_hulls_that_hold_them() {
     for (k, b) in cb.boxes.iter().enumerate() {
         let h = overlay.p_boxes[k / 4];
         let m = overlay.xyz_boxes[k / 4];
-        for i in 0..2 {
-            assert!(h[i][0] <= b.p[i].inf() && b.p[i].sup() <= h[i][1]);
+        for (hi, x) in h.iter().zip(&b.p) {
+            assert!(hi[0] <= x.inf() && x.sup() <= hi[1]);
         }
-        for i in 0..3 {
-            assert!(m[0][i] <= b.xyz[i].inf() && b.xyz[i].sup() <= m[1][i]);
+        for (i, x) in b.xyz.iter().enumerate() {
+            assert!(m[0][i] <= x.inf() && x.sup() <= m[1][i]);
         }
     }
     let svg = render_svg_with_overlay(
