@@ -11,10 +11,12 @@
 //!  "stats": {"points": 1}}
 //! ```
 //!
-//! Extension point: a branch object may carry a `"certified"` member (the validated engine's
-//! interval enclosures). It is written from [`ResultMeta::certified`] and read back verbatim,
-//! so adding it changes nothing for readers that ignore it. Interval bounds inside it are
-//! written with [`interval_to_json`].
+//! Certified output: a branch object may carry a `"certified"` member (the certified tracer's
+//! enclosures, ends and tolerance, built by [`certified_to_json`]), and `"events"` may hold
+//! certified boxes (`"singular_box"`, `"close_branches"`, built by [`certified_events_to_json`]).
+//! Both are written from [`ResultMeta`] and read back verbatim, so adding them changes nothing
+//! for readers that ignore the member. Interval bounds are written with [`interval_to_json`];
+//! [`enclosures_from_json`] reads a chain of boxes back bit for bit.
 
 use std::collections::BTreeMap;
 use std::path::Path;
