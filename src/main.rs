@@ -185,7 +185,13 @@ fn certificate_line(c: &BranchCertificate, tolerance: f64) -> String {
     let ms = c.seconds * 1e3;
     match &c.result {
         Ok(b) => {
-            let max_width = b.widths.iter().copied().fold(0.0, f64::max);
+            // As the JSON's `max_width`: the start box and every step's tight end box.
+            let max_width = b
+                .widths
+                .iter()
+                .copied()
+                .chain(b.start.iter().map(|x| x.wid()))
+                .fold(0.0, f64::max);
             let meets = if b.tolerance <= tolerance {
                 "meets"
             } else {
