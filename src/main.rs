@@ -1,12 +1,12 @@
 //! The `ssitrace` command line: `ssitrace trace SCENE.json ...` and `ssitrace demo`.
 
 use clap::{Parser, Subcommand, ValueEnum};
+use ssitrace::certified::CertifiedEnd;
 use ssitrace::intersection::{BranchStatus, EndReason};
 use ssitrace::io::result_json::write_result;
 use ssitrace::io::scene::{Method, Scene};
-use ssitrace::io::svg::write_svg;
-use ssitrace::marching::intersect::IntersectOutcome;
-use ssitrace::pipeline::{run_scene, RunOptions};
+use ssitrace::io::svg::{certified_overlay, write_svg_with_overlay, DEFAULT_OVERLAY_BOXES};
+use ssitrace::pipeline::{BranchCertificate, RunOptions, RunReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -29,9 +29,9 @@ struct Cli {
 enum MethodArg {
     /// Floating-point circular-step marching.
     March,
-    /// Certified tracing (not available yet).
+    /// March to find the branches, then certify each (slow; within the step budget).
     Validated,
-    /// Both (not available yet).
+    /// Like `validated`, and report the marched and certified results side by side.
     Both,
 }
 
@@ -57,6 +57,15 @@ enum Command {
         /// Marching step L (default: the scene's, else 0.05).
         #[arg(long)]
         step: Option<f64>,
+        /// Model-space tolerance a certified branch should meet (default: the scene's, else 1e-9).
+        #[arg(long)]
+        tolerance: Option<f64>,
+        /// Certified step budget per half branch (default 20000).
+        #[arg(long)]
+        max_steps: Option<usize>,
+        /// Write the certified tube pieces into the result JSON (large).
+        #[arg(long)]
+        tubes: bool,
         #[command(flatten)]
         outputs: Outputs,
     },
@@ -83,6 +92,9 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
             scene,
             method,
             step,
+            tolerance,
+            max_steps,
+            tubes,
             outputs,
         } => {
             let s = Scene::from_path(&scene)?;
@@ -97,6 +109,13 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
             if let Some(l) = step {
                 o.step = l;
             }
+            if let Some(t) = tolerance {
+                o.tolerance = t;
+            }
+            if let Some(n) = max_steps {
+                o.max_steps = n;
+            }
+            o.tubes = tubes;
             (s, o, outputs)
         }
         Command::Demo { outputs } => {
@@ -106,11 +125,12 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
         }
     };
     let started = Instant::now();
-    let (outcome, meta) = run_scene(&scene, &opts)?;
+    let report = ssitrace::pipeline::run(&scene, &opts)?;
     let elapsed = started.elapsed().as_secs_f64();
-    say(&summary(&scene, &outcome, elapsed));
+    say(&summary(&scene, &report, &opts, elapsed));
+    let outcome = &report.outcome;
     if let Some(path) = &outputs.out {
-        write_result(path, &outcome.intersection, &meta)?;
+        write_result(path, &outcome.intersection, &report.meta)?;
         say(&format!("result written to {}\n", path.display()));
     }
     if let Some(path) = &outputs.svg {
@@ -120,7 +140,13 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
             .clone()
             .unwrap_or_else(|| "ssitrace".into());
         let domains = [scene.surfaces[0].domain(), scene.surfaces[1].domain()];
-        write_svg(path, &outcome.intersection, domains, &title)?;
+        let certified: Vec<_> = report
+            .certificates
+            .iter()
+            .filter_map(|c| c.result.as_ref().ok())
+            .collect();
+        let overlay = certified_overlay(&certified, DEFAULT_OVERLAY_BOXES);
+        write_svg_with_overlay(path, &outcome.intersection, domains, &title, &overlay)?;
         say(&format!("picture written to {}\n", path.display()));
     }
     Ok(())
@@ -142,10 +168,55 @@ fn end_name(e: &EndReason) -> String {
     }
 }
 
-fn summary(scene: &Scene, outcome: &IntersectOutcome, seconds: f64) -> String {
+fn certified_end_name(e: &CertifiedEnd) -> String {
+    match e {
+        CertifiedEnd::Boundary { surface } => {
+            format!("boundary of {}", ["P", "Q"][(*surface).min(1)])
+        }
+        CertifiedEnd::ClosedLoop => "closed".into(),
+        CertifiedEnd::Singular { .. } => "singular box".into(),
+        CertifiedEnd::CloseBranches { h, .. } => format!("close branches (h = {h:.1e})"),
+        CertifiedEnd::Unproven { reason, .. } => format!("UNPROVEN ({reason})"),
+    }
+}
+
+/// One summary line for a branch's certification.
+fn certificate_line(c: &BranchCertificate, tolerance: f64) -> String {
+    let ms = c.seconds * 1e3;
+    match &c.result {
+        Ok(b) => {
+            // As the JSON's `max_width`: the start box and every step's tight end box.
+            let max_width = b
+                .widths
+                .iter()
+                .copied()
+                .chain(b.start.iter().map(|x| x.wid()))
+                .fold(0.0, f64::max);
+            let meets = if b.tolerance <= tolerance {
+                "meets"
+            } else {
+                "does NOT meet"
+            };
+            format!(
+                "    certified: {} steps, tolerance {:.3e} ({meets} {:.1e}), ends {} / {}, max width {:.3e}, {:.1} ms",
+                b.steps(),
+                b.tolerance,
+                tolerance,
+                certified_end_name(&b.ends[0]),
+                certified_end_name(&b.ends[1]),
+                max_width,
+                ms
+            )
+        }
+        Err(e) => format!("    certification FAILED ({ms:.1} ms): {e}"),
+    }
+}
+
+fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -> String {
     use std::fmt::Write;
     let mut out = String::new();
     let name = scene.options.name.as_deref().unwrap_or("scene");
+    let outcome = &report.outcome;
     let ix = &outcome.intersection;
     let _ = writeln!(
         out,
@@ -171,12 +242,24 @@ fn summary(scene: &Scene, outcome: &IntersectOutcome, seconds: f64) -> String {
             b.id,
             b.points.len()
         );
+        if let Some(c) = report.certificates.iter().find(|c| c.branch == b.id) {
+            let _ = writeln!(out, "{}", certificate_line(c, opts.tolerance));
+        }
     }
     for e in &ix.events {
         let _ = writeln!(
             out,
             "  event {:?} at xyz = ({:.6}, {:.6}, {:.6})",
             e.kind, e.xyz[0], e.xyz[1], e.xyz[2]
+        );
+    }
+    if opts.method != Method::March {
+        let _ = writeln!(
+            out,
+            "  time: marching {:.1} ms, certified {:.1} ms, ratio certified/marching {:.1}",
+            report.march_seconds * 1e3,
+            report.certify_seconds * 1e3,
+            report.certify_seconds / report.march_seconds.max(1e-9)
         );
     }
     let s = &outcome.stats;

@@ -1,12 +1,31 @@
 //! From a scene to a result: the top of the pipeline, used by the command line.
+//!
+//! `march` traces every branch with the floating-point marcher. `validated` and `both` march
+//! first (to find the branches) and then certify each branch from one of its points with
+//! [`certify_branch`], within step and arc-length budgets; a branch whose certification fails
+//! is reported as failed, the run goes on.
 
+use std::time::Instant;
+
+use crate::certified::{certify_branch, CertifiedBranch, CertifyOptions};
 use crate::error::{Error, Result};
-use crate::io::result_json::ResultMeta;
+use crate::geometry::RationalBezierPatch;
+use crate::intersection::Branch;
+use crate::io::result_json::{
+    certified_error_to_json, certified_events_to_json, certified_to_json, ResultMeta,
+};
 use crate::io::scene::{Method, Scene};
 use crate::marching::intersect::{intersect, IntersectOutcome};
 use crate::marching::start_points::SearchOptions;
 use crate::marching::MarchOptions;
+use inari::Interval;
 use serde_json::{json, Map, Value};
+
+/// Default certified step budget per half branch.
+pub const DEFAULT_MAX_STEPS: usize = 20_000;
+
+/// The arc-length budget of a certified half branch, as a multiple of the marched length.
+pub const LENGTH_BUDGET_FACTOR: f64 = 1.5;
 
 /// What to run on a scene (the scene's own options, possibly overridden on the command line).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -15,43 +34,276 @@ pub struct RunOptions {
     pub method: Method,
     /// The marching step L.
     pub step: f64,
+    /// The model-space tolerance a certified branch should meet (reported, not enforced).
+    pub tolerance: f64,
+    /// Certified step budget per half branch.
+    pub max_steps: usize,
+    /// Write the certified tube pieces into the result (large).
+    pub tubes: bool,
 }
 
 impl RunOptions {
-    /// The options a scene asks for.
+    /// The options a scene asks for (step budget [`DEFAULT_MAX_STEPS`], no tubes).
     pub fn from_scene(scene: &Scene) -> Self {
         RunOptions {
             method: scene.options.method,
             step: scene.options.step,
+            tolerance: scene.options.tolerance,
+            max_steps: DEFAULT_MAX_STEPS,
+            tubes: false,
         }
     }
 }
 
+/// The certification of one marched branch.
+#[derive(Debug)]
+pub struct BranchCertificate {
+    /// The id of the marched branch.
+    pub branch: usize,
+    /// The marched point `(σ, t, u, v)` the certified trace started from.
+    pub start: [f64; 4],
+    /// The arc-length budget per half branch that was given.
+    pub max_length: f64,
+    /// The certified branch, or why it could not be certified.
+    pub result: Result<CertifiedBranch>,
+    /// Wall-clock seconds spent.
+    pub seconds: f64,
+}
+
+impl BranchCertificate {
+    /// Whether the certified tolerance is at most `tolerance`; `None` when certification failed.
+    pub fn meets(&self, tolerance: f64) -> Option<bool> {
+        self.result.as_ref().ok().map(|c| c.tolerance <= tolerance)
+    }
+}
+
+/// Everything a run produced.
+#[derive(Debug)]
+pub struct RunReport {
+    /// The marched branches and events, with search statistics.
+    pub outcome: IntersectOutcome,
+    /// Scene name, method, stats and the certified members, ready for the result JSON.
+    pub meta: ResultMeta,
+    /// One entry per marched branch, in branch order, when the method certifies; else empty.
+    pub certificates: Vec<BranchCertificate>,
+    /// Wall-clock seconds of the marching stage (start-point search and marching).
+    pub march_seconds: f64,
+    /// Wall-clock seconds of all certification (0 for `march`).
+    pub certify_seconds: f64,
+}
+
 /// Traces every branch of the scene's surface pair with the requested method.
 ///
-/// Errors: a non-positive or non-finite step; a method that is not available yet.
+/// Errors: a non-positive or non-finite step or tolerance; a zero step budget. A branch whose
+/// certification fails is not an error of the run (see [`run`]).
 pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<(IntersectOutcome, ResultMeta)> {
+    let report = run(scene, opts)?;
+    Ok((report.outcome, report.meta))
+}
+
+/// Runs the requested method and keeps everything: the marched outcome, the result metadata
+/// (with a `"certified"` member per branch and the certified events when the method
+/// certifies) and the certificates themselves.
+///
+/// Errors: as [`run_scene`].
+pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     if !(opts.step.is_finite() && opts.step > 0.0) {
         return Err(Error::Scene(format!(
             "the step must be a positive number, not {}",
             opts.step
         )));
     }
-    if opts.method != Method::March {
+    if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
         return Err(Error::Scene(format!(
-            "method `{}` is not available yet: certified tracing is being built; use `march`",
-            opts.method.name()
+            "the tolerance must be a positive number, not {}",
+            opts.tolerance
         )));
+    }
+    if opts.max_steps == 0 {
+        return Err(Error::Scene("the step budget must be at least 1".into()));
     }
     let march = MarchOptions {
         step: opts.step,
         ..MarchOptions::default()
     };
     let [p, q] = &scene.surfaces;
+    let started = Instant::now();
     let outcome = intersect(p, q, &march, &SearchOptions::default());
+    let march_seconds = started.elapsed().as_secs_f64();
     let mut meta = ResultMeta::new(scene.options.name.clone(), opts.method.name());
     meta.stats = stats_json(&outcome, opts.step);
-    Ok((outcome, meta))
+    let mut certificates = Vec::new();
+    let mut certify_seconds = 0.0;
+    if opts.method != Method::March {
+        for b in &outcome.intersection.branches {
+            let cert = certify_marched_branch(p, q, b, opts);
+            certify_seconds += cert.seconds;
+            meta.certified
+                .insert(b.id, certificate_json(&cert, opts.tolerance, opts.tubes));
+            if let Ok(c) = &cert.result {
+                meta.certified_events
+                    .extend(certified_events_to_json(b.id, c, &|y| model_box(p, q, y)));
+            }
+            certificates.push(cert);
+        }
+        let steps: usize = certificates
+            .iter()
+            .filter_map(|c| c.result.as_ref().ok())
+            .map(|c| c.steps())
+            .sum();
+        let failed = certificates.iter().filter(|c| c.result.is_err()).count();
+        meta.stats.insert("certified_steps".into(), json!(steps));
+        meta.stats.insert("certify_failures".into(), json!(failed));
+        meta.stats
+            .insert("certify_seconds".into(), json!(certify_seconds));
+        meta.stats.insert("max_steps".into(), json!(opts.max_steps));
+        meta.stats.insert("tolerance".into(), json!(opts.tolerance));
+    }
+    Ok(RunReport {
+        outcome,
+        meta,
+        certificates,
+        march_seconds,
+        certify_seconds,
+    })
+}
+
+/// Model-space length of the marched polyline.
+fn marched_length(b: &Branch) -> f64 {
+    b.points
+        .windows(2)
+        .map(|w| {
+            (0..3)
+                .map(|i| (w[1].xyz[i] - w[0].xyz[i]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .sum()
+}
+
+/// `sin²` of the angle between the normals of P and Q at `y`: 1 for perpendicular surfaces,
+/// 0 at tangency (a floating-point estimate, used only to pick a start point).
+fn transversality(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[f64; 4]) -> f64 {
+    let (a, b) = (p.derivs_f64(y[0], y[1]), q.derivs_f64(y[2], y[3]));
+    let cross = |u: [f64; 3], v: [f64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let n2 = |u: [f64; 3]| u.iter().map(|x| x * x).sum::<f64>();
+    let (np, nq) = (cross(a.su, a.sv), cross(b.su, b.sv));
+    let s = n2(cross(np, nq)) / (n2(np) * n2(nq));
+    if s.is_finite() {
+        s
+    } else {
+        0.0
+    }
+}
+
+/// The start point of a certified trace: the middle point of the marched branch, unless a point
+/// at a quarter or a third of the way is at least twice as transversal.
+fn choose_start(p: &RationalBezierPatch, q: &RationalBezierPatch, b: &Branch) -> Option<[f64; 4]> {
+    let n = b.points.len();
+    if n == 0 {
+        return None;
+    }
+    let at = |i: usize| {
+        let c = &b.points[i.min(n - 1)];
+        [c.p[0], c.p[1], c.q[0], c.q[1]]
+    };
+    let middle = at(n / 2);
+    let mut best = (middle, 2.0 * transversality(p, q, &middle));
+    for i in [n / 4, n / 3, 2 * n / 3, 3 * n / 4] {
+        let y = at(i);
+        let s = transversality(p, q, &y);
+        if s > best.1 {
+            best = (y, s);
+        }
+    }
+    Some(best.0)
+}
+
+/// Certifies one marched branch within the budgets of `opts`: from its middle point (or a more
+/// transversal point at a quarter or a third of the way), with `opts.max_steps` steps and
+/// [`LENGTH_BUDGET_FACTOR`] × the marched length of arc per half branch. Never fails as a
+/// whole: a certification failure is kept in [`BranchCertificate::result`].
+pub fn certify_marched_branch(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &Branch,
+    opts: &RunOptions,
+) -> BranchCertificate {
+    let started = Instant::now();
+    let length = marched_length(b);
+    // A closed loop is traced once from its start, an open branch each way from the middle:
+    // 1.5 × the marched length covers either with room to spare.
+    let max_length = if length > 0.0 {
+        LENGTH_BUDGET_FACTOR * length
+    } else {
+        opts.step
+    };
+    let certify = CertifyOptions {
+        max_steps: opts.max_steps,
+        max_length,
+        ..CertifyOptions::default()
+    };
+    let (start, result) = match choose_start(p, q, b) {
+        Some(y) => (y, certify_branch(p, q, y, &certify)),
+        None => (
+            [f64::NAN; 4],
+            Err(Error::Certification {
+                reason: "the marched branch has no points".into(),
+                near: [f64::NAN; 4],
+            }),
+        ),
+    };
+    BranchCertificate {
+        branch: b.id,
+        start,
+        max_length,
+        result,
+        seconds: started.elapsed().as_secs_f64(),
+    }
+}
+
+/// The branch's `"certified"` object: [`certified_to_json`] (or `{"error": ...}`) plus
+/// `"meets_tolerance"` (only when certified), `"required_tolerance"`, `"start_point"` (when the
+/// branch had points), `"max_length"` and `"seconds"`.
+pub fn certificate_json(c: &BranchCertificate, tolerance: f64, tubes: bool) -> Value {
+    let mut v = match &c.result {
+        Ok(cb) => certified_to_json(cb, tubes),
+        Err(e) => certified_error_to_json(e),
+    };
+    if let Value::Object(m) = &mut v {
+        if let Some(ok) = c.meets(tolerance) {
+            m.insert("meets_tolerance".into(), json!(ok));
+        }
+        m.insert("required_tolerance".into(), json!(tolerance));
+        if c.start.iter().all(|x| x.is_finite()) {
+            m.insert("start_point".into(), json!(c.start));
+        }
+        m.insert("max_length".into(), json!(c.max_length));
+        m.insert("seconds".into(), json!(c.seconds));
+    }
+    v
+}
+
+/// `P([σ],[t]) ∩ Q([u],[v])` for a bounded parameter box; `None` if unbounded or empty.
+fn model_box(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y: &[Interval; 4],
+) -> Option<[Interval; 3]> {
+    if y.iter()
+        .any(|x| x.is_empty() || !x.inf().is_finite() || !x.sup().is_finite())
+    {
+        return None;
+    }
+    let (a, b) = (p.enclose(y[0], y[1]), q.enclose(y[2], y[3]));
+    let out: [Interval; 3] = std::array::from_fn(|i| a[i].intersection(b[i]));
+    (!out.iter().any(|x| x.is_empty())).then_some(out)
 }
 
 fn stats_json(o: &IntersectOutcome, step: f64) -> Map<String, Value> {

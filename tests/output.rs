@@ -371,18 +371,23 @@ fn svg_draws_overlay_boxes_and_survives_bad_numbers() {
     };
     let svg = render_svg_with_overlay(&result, domains(), "overlay", &overlay).unwrap();
     assert_xml_ish(&svg);
-    let grey = hex(plotters::style::RGBColor(120, 120, 120));
-    let filled_boxes = svg
-        .split("<rect")
+    // Certified boxes are translucent wide outlines over the curves: closed 5-point outlines in
+    // the parameter panels, 12 projected edges per model box, one key line in the legend.
+    let outlines: Vec<usize> = svg
+        .split("<polyline")
         .skip(1)
-        .filter(|t| t[..t.find("/>").unwrap_or(t.len())].contains(&format!("fill=\"{grey}\"")))
-        .count();
-    assert_eq!(filled_boxes, 3);
+        .map(|t| &t[..t.find("/>").unwrap_or(t.len())])
+        .filter(|t| t.contains("opacity=\"0.45\"") && t.contains("stroke-width=\"4\""))
+        .map(|t| t.matches(',').count())
+        .collect();
+    assert_eq!(outlines.iter().filter(|&&n| n == 5).count(), 3);
     assert_eq!(
-        polylines_in(&svg, &grey).len(),
-        12,
-        "one polyline per box edge"
+        outlines.iter().filter(|&&n| n == 2).count(),
+        12 + 1,
+        "one polyline per box edge, and the legend's key"
     );
+    assert_eq!(outlines.len(), 16);
+    assert!(svg.contains("certified box"));
     // The loop lost one point in P's panel only.
     let loop_ = polylines_in(&svg, &hex(branch_colour(1)));
     let mut lens: Vec<usize> = loop_.iter().map(Vec::len).collect();

@@ -11,10 +11,12 @@
 //!  "stats": {"points": 1}}
 //! ```
 //!
-//! Extension point: a branch object may carry a `"certified"` member (the validated engine's
-//! interval enclosures). It is written from [`ResultMeta::certified`] and read back verbatim,
-//! so adding it changes nothing for readers that ignore it. Interval bounds inside it are
-//! written with [`interval_to_json`].
+//! Certified output: a branch object may carry a `"certified"` member (the certified tracer's
+//! enclosures, ends and tolerance, built by [`certified_to_json`]), and `"events"` may hold
+//! certified boxes (`"singular_box"`, `"close_branches"`, built by [`certified_events_to_json`]).
+//! Both are written from [`ResultMeta`] and read back verbatim, so adding them changes nothing
+//! for readers that ignore the member. Interval bounds are written with [`interval_to_json`];
+//! [`enclosures_from_json`] reads a chain of boxes back bit for bit.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -22,6 +24,7 @@ use std::path::Path;
 use inari::Interval;
 use serde_json::{json, Map, Value};
 
+use crate::certified::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 use crate::intersection::{
     Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind, Intersection,
 };
@@ -41,8 +44,12 @@ pub struct ResultMeta {
     pub method: String,
     /// Free-form statistics (point counts, timings, ...), written as the `"stats"` object.
     pub stats: Map<String, Value>,
-    /// Per-branch `"certified"` objects, keyed by branch id (empty until certification exists).
+    /// Per-branch `"certified"` objects, keyed by branch id (see [`certified_to_json`]).
     pub certified: BTreeMap<usize, Value>,
+    /// Events of the certified tracer (`"kind"` is `"singular_box"` or `"close_branches"`, see
+    /// [`certified_events_to_json`]), written after the marcher's events in `"events"` and read
+    /// back verbatim.
+    pub certified_events: Vec<Value>,
 }
 
 impl ResultMeta {
@@ -91,7 +98,12 @@ pub fn result_to_json(result: &Intersection, meta: &ResultMeta) -> Value {
             Value::Object(obj)
         })
         .collect();
-    let events: Vec<Value> = result.events.iter().map(event_to_json).collect();
+    let events: Vec<Value> = result
+        .events
+        .iter()
+        .map(event_to_json)
+        .chain(meta.certified_events.iter().cloned())
+        .collect();
     json!({
         "format": FORMAT_NAME,
         "version": FORMAT_VERSION,
@@ -156,11 +168,19 @@ pub fn result_from_json(doc: &Value) -> Result<ResultDocument> {
         }
         branches.push(branch);
     }
-    let events = array(obj.get("events"), "events")?
-        .iter()
-        .enumerate()
-        .map(|(k, e)| event_from_json(e, k))
-        .collect::<Result<Vec<_>>>()?;
+    let mut events = Vec::new();
+    let mut certified_events = Vec::new();
+    for (k, e) in array(obj.get("events"), "events")?.iter().enumerate() {
+        match e.get("kind").and_then(Value::as_str) {
+            Some(CERTIFIED_SINGULAR_EVENT | CERTIFIED_CLOSE_EVENT) => {
+                if e.get("box").is_none() {
+                    return Err(bad(&format!("events[{k}]: `box` is missing")));
+                }
+                certified_events.push(e.clone());
+            }
+            _ => events.push(event_from_json(e, k)?),
+        }
+    }
     Ok(ResultDocument {
         intersection: Intersection { branches, events },
         meta: ResultMeta {
@@ -168,6 +188,7 @@ pub fn result_from_json(doc: &Value) -> Result<ResultDocument> {
             method,
             stats,
             certified,
+            certified_events,
         },
     })
 }
@@ -195,6 +216,185 @@ pub fn interval_from_json(v: &Value) -> Result<Interval> {
     let [lo, hi] = numbers::<2>(v, "interval")?;
     crate::scalar::interval(lo, hi)
         .ok_or_else(|| bad(&format!("interval [{lo}, {hi}] is inverted")))
+}
+
+/// `"kind"` of a certified event: a parameter box where the surface normals could not be
+/// proven apart (a singular or tangential point may lie in it).
+pub const CERTIFIED_SINGULAR_EVENT: &str = "singular_box";
+/// `"kind"` of a certified event: a parameter box where the certified step fell below its
+/// minimum with the normals proven apart (two branches closer than the tracer resolves).
+pub const CERTIFIED_CLOSE_EVENT: &str = "close_branches";
+
+/// `[lo, hi]` as [`interval_to_json`], or `null` for an interval with no finite form (empty or
+/// unbounded): `null` claims nothing.
+fn interval_or_null(x: Interval) -> Value {
+    interval_to_json(x).unwrap_or(Value::Null)
+}
+
+fn intervals_to_json(v: &[Interval]) -> Value {
+    Value::Array(v.iter().map(|x| interval_or_null(*x)).collect())
+}
+
+fn intervals_from_json<const N: usize>(v: &Value, what: &str) -> Result<[Interval; N]> {
+    let arr = v
+        .as_array()
+        .filter(|a| a.len() == N)
+        .ok_or_else(|| bad(&format!("`{what}` is not an array of {N} intervals")))?;
+    let mut out = [Interval::EMPTY; N];
+    for (o, x) in out.iter_mut().zip(arr) {
+        *o = interval_from_json(x).map_err(|e| bad(&format!("`{what}`: {e}")))?;
+    }
+    Ok(out)
+}
+
+/// One link of a certified chain as `{"s": [s0, s1], "p": [[lo, hi]; 2], "q": [[lo, hi]; 2],
+/// "xyz": [[lo, hi]; 3]}`; bounds are the exact outward-rounded `f64` bounds.
+pub fn enclosure_to_json(b: &EnclosureBox) -> Value {
+    json!({
+        "s": b.s,
+        "p": intervals_to_json(&b.p),
+        "q": intervals_to_json(&b.q),
+        "xyz": intervals_to_json(&b.xyz),
+    })
+}
+
+/// Reads [`enclosure_to_json`]'s object back, bit for bit. Every interval must be a finite
+/// `[lo, hi]` with `lo <= hi`, and `s[0] <= s[1]`.
+pub fn enclosure_from_json(v: &Value) -> Result<EnclosureBox> {
+    let s: [f64; 2] = numbers(field(v, "s", "enclosure")?, "enclosure.s")?;
+    if s[0] > s[1] {
+        return Err(bad("enclosure.s is inverted"));
+    }
+    Ok(EnclosureBox {
+        s,
+        p: intervals_from_json(field(v, "p", "enclosure")?, "enclosure.p")?,
+        q: intervals_from_json(field(v, "q", "enclosure")?, "enclosure.q")?,
+        xyz: intervals_from_json(field(v, "xyz", "enclosure")?, "enclosure.xyz")?,
+    })
+}
+
+/// The enclosures of a branch's `"certified"` object, in order along the branch.
+///
+/// Errors: the object has no `"enclosures"` array (e.g. it is an `{"error": ...}` object), or
+/// one of them is malformed.
+pub fn enclosures_from_json(certified: &Value) -> Result<Vec<EnclosureBox>> {
+    array(certified.get("enclosures"), "certified.enclosures")?
+        .iter()
+        .map(enclosure_from_json)
+        .collect()
+}
+
+/// A certified end as `{"kind": ..., ...}`: `"boundary"` with `"surface"`, `"closed_loop"`,
+/// `"singular"` with `"near"` (4 intervals σ, t, u, v), `"close_branches"` with `"h"` and
+/// `"near"`, `"unproven"` with `"reason"` and `"near"`.
+pub fn certified_end_to_json(e: &CertifiedEnd) -> Value {
+    let kind = e.kind();
+    match e {
+        CertifiedEnd::Boundary { surface } => json!({"kind": kind, "surface": surface}),
+        CertifiedEnd::ClosedLoop => json!({ "kind": kind }),
+        CertifiedEnd::Singular { near } => json!({"kind": kind, "near": intervals_to_json(near)}),
+        CertifiedEnd::CloseBranches { h, near } => {
+            json!({"kind": kind, "h": h, "near": intervals_to_json(near)})
+        }
+        CertifiedEnd::Unproven { reason, near } => {
+            json!({"kind": kind, "reason": reason, "near": intervals_to_json(near)})
+        }
+    }
+}
+
+/// One tube piece as `{"s0", "direction", "h", "coeffs": [[σ, t, u, v], ...], "radius_param",
+/// "radius_xyz"}` (see [`TubePiece`] for the meaning).
+pub fn tube_to_json(t: &TubePiece) -> Value {
+    json!({
+        "s0": t.s0,
+        "direction": t.direction,
+        "h": t.h,
+        "coeffs": t.coeffs,
+        "radius_param": t.radius_param,
+        "radius_xyz": t.radius_xyz,
+    })
+}
+
+/// A branch's `"certified"` object (layout in the README): the chain of enclosures, the
+/// certified tolerance, the step count, both ends, the start box, the fixed start coordinate,
+/// the largest tight-box width and, when `tubes` is set, the tube pieces.
+pub fn certified_to_json(c: &CertifiedBranch, tubes: bool) -> Value {
+    let max_width = c
+        .widths
+        .iter()
+        .copied()
+        .chain(c.start.iter().map(|x| x.wid()))
+        .fold(0.0, f64::max);
+    let mut obj = Map::new();
+    obj.insert(
+        "enclosures".into(),
+        Value::Array(c.boxes.iter().map(enclosure_to_json).collect()),
+    );
+    obj.insert("tolerance".into(), json!(c.tolerance));
+    obj.insert("steps".into(), json!(c.steps()));
+    obj.insert(
+        "end_reasons".into(),
+        Value::Array(c.ends.iter().map(certified_end_to_json).collect()),
+    );
+    obj.insert("start".into(), intervals_to_json(&c.start));
+    obj.insert("fixed".into(), json!(c.fixed));
+    obj.insert(
+        "start_uniqueness".into(),
+        intervals_to_json(&c.start_uniqueness),
+    );
+    obj.insert("max_width".into(), json!(max_width));
+    if tubes {
+        obj.insert(
+            "tubes".into(),
+            Value::Array(c.tubes.iter().map(tube_to_json).collect()),
+        );
+    }
+    Value::Object(obj)
+}
+
+/// The `"certified"` object of a branch whose certification failed: `{"error": "..."}`.
+pub fn certified_error_to_json(e: &Error) -> Value {
+    json!({ "error": e.to_string() })
+}
+
+/// The certified events of one branch: one object per end that is
+/// [`CertifiedEnd::Singular`] (`"kind": "singular_box"`) or [`CertifiedEnd::CloseBranches`]
+/// (`"kind": "close_branches"`, with the step `"h"`), each with `"branch"` (the branch id),
+/// `"end"` (0 = the end at the smallest arc length, 1 = the largest) and `"box"`:
+/// `{"p": [[lo, hi]; 2], "q": [[lo, hi]; 2], "xyz": [[lo, hi]; 3] or null}`. `xyz` is
+/// `xyz_of(box)`, the model-space box of the parameter box (`null` when not given).
+pub fn certified_events_to_json(
+    branch_id: usize,
+    c: &CertifiedBranch,
+    xyz_of: &dyn Fn(&[Interval; 4]) -> Option<[Interval; 3]>,
+) -> Vec<Value> {
+    let boxed = |near: &[Interval; 4]| {
+        json!({
+            "p": intervals_to_json(&near[..2]),
+            "q": intervals_to_json(&near[2..]),
+            "xyz": xyz_of(near).map_or(Value::Null, |x| intervals_to_json(&x)),
+        })
+    };
+    let mut out = Vec::new();
+    for (k, end) in c.ends.iter().enumerate() {
+        match end {
+            CertifiedEnd::Singular { near } => out.push(json!({
+                "kind": CERTIFIED_SINGULAR_EVENT,
+                "branch": branch_id,
+                "end": k,
+                "box": boxed(near),
+            })),
+            CertifiedEnd::CloseBranches { h, near } => out.push(json!({
+                "kind": CERTIFIED_CLOSE_EVENT,
+                "branch": branch_id,
+                "end": k,
+                "h": h,
+                "box": boxed(near),
+            })),
+            _ => {}
+        }
+    }
+    out
 }
 
 fn bad(msg: &str) -> Error {

@@ -17,6 +17,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use crate::certified::{CertifiedBranch, CertifiedEnd, EnclosureBox};
 use crate::geometry::surface::Domain;
 use crate::intersection::{Branch, BranchStatus, EndReason, EventKind, Intersection};
 use crate::{Error, Result};
@@ -62,6 +63,80 @@ pub struct Overlay {
     pub xyz_boxes: Vec<ModelBox>,
 }
 
+/// Outline colour of certified boxes (drawn translucent, over the curves).
+const BOX_COLOUR: RGBColor = RGBColor(0, 0, 0);
+/// Outline width of certified boxes in pixels.
+const BOX_STROKE: u32 = 4;
+
+/// How many boxes per certified branch [`certified_overlay`] draws by default.
+pub const DEFAULT_OVERLAY_BOXES: usize = 400;
+
+/// The hull of a run of consecutive enclosure boxes (it holds everything each of them holds).
+fn hull(run: &[EnclosureBox]) -> ([ParamBox; 2], ModelBox) {
+    let mut pb = [[[f64::INFINITY, f64::NEG_INFINITY]; 2]; 2];
+    let mut mb = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+    for b in run {
+        for k in 0..2 {
+            let (src, dst) = if k == 0 {
+                (&b.p, &mut pb[0])
+            } else {
+                (&b.q, &mut pb[1])
+            };
+            for i in 0..2 {
+                dst[i][0] = dst[i][0].min(src[i].inf());
+                dst[i][1] = dst[i][1].max(src[i].sup());
+            }
+        }
+        for (i, x) in b.xyz.iter().enumerate() {
+            mb[0][i] = mb[0][i].min(x.inf());
+            mb[1][i] = mb[1][i].max(x.sup());
+        }
+    }
+    (pb, mb)
+}
+
+fn finite_box<const N: usize>(b: &[[f64; N]; 2]) -> bool {
+    b.iter().flatten().all(|x| x.is_finite())
+}
+
+/// The overlay of certified branches: each branch's chain of enclosure boxes, consecutive
+/// boxes merged into their hulls so that at most `max_boxes` are drawn per branch (a hull holds
+/// the curve wherever its boxes do), plus the boxes of singular and close-branch ends.
+/// Boxes with a non-finite bound are left out.
+pub fn certified_overlay(branches: &[&CertifiedBranch], max_boxes: usize) -> Overlay {
+    let mut overlay = Overlay::default();
+    for c in branches {
+        let n = c.boxes.len();
+        let per = n.div_ceil(max_boxes.max(1)).max(1);
+        for run in c.boxes.chunks(per) {
+            let (pb, mb) = hull(run);
+            if finite_box(&pb[0]) && finite_box(&pb[1]) && finite_box(&mb) {
+                overlay.p_boxes.push(pb[0]);
+                overlay.q_boxes.push(pb[1]);
+                overlay.xyz_boxes.push(mb);
+            }
+        }
+        for end in &c.ends {
+            if let CertifiedEnd::Singular { near } | CertifiedEnd::CloseBranches { near, .. } = end
+            {
+                let pb = [
+                    [near[0].inf(), near[0].sup()],
+                    [near[1].inf(), near[1].sup()],
+                ];
+                let qb = [
+                    [near[2].inf(), near[2].sup()],
+                    [near[3].inf(), near[3].sup()],
+                ];
+                if finite_box(&pb) && finite_box(&qb) {
+                    overlay.p_boxes.push(pb);
+                    overlay.q_boxes.push(qb);
+                }
+            }
+        }
+    }
+    overlay
+}
+
 /// The colour of branch number `index` (its position in the result).
 pub fn branch_colour(index: usize) -> RGBColor {
     BRANCH_COLOURS[index % BRANCH_COLOURS.len()]
@@ -87,6 +162,21 @@ pub fn write_svg(
     title: &str,
 ) -> Result<()> {
     let text = render_svg(result, domains, title)?;
+    std::fs::write(path, text).map_err(|e| Error::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })
+}
+
+/// Writes [`render_svg_with_overlay`]'s picture to `path` (I/O failures become [`Error::Io`]).
+pub fn write_svg_with_overlay(
+    path: &Path,
+    result: &Intersection,
+    domains: [Domain; 2],
+    title: &str,
+    overlay: &Overlay,
+) -> Result<()> {
+    let text = render_svg_with_overlay(result, domains, title, overlay)?;
     std::fs::write(path, text).map_err(|e| Error::Io {
         path: path.display().to_string(),
         message: e.to_string(),
@@ -133,7 +223,7 @@ pub fn render_svg_with_overlay(
             &overlay.q_boxes,
         )?;
         draw_model_panel(&panels[2], result, &overlay.xyz_boxes)?;
-        draw_legend(&legend_area, result)?;
+        draw_legend(&legend_area, result, overlay.p_boxes.len())?;
         root.present().map_err(render_err)?;
     }
     Ok(buf)
@@ -334,14 +424,6 @@ fn draw_param_panel(
         .axis_desc_style(("sans-serif", 16))
         .draw()
         .map_err(render_err)?;
-    let fill = RGBColor(120, 120, 120).mix(0.25);
-    chart
-        .draw_series(
-            boxes
-                .iter()
-                .map(|b| Rectangle::new([(b[0][0], b[1][0]), (b[0][1], b[1][1])], fill.filled())),
-        )
-        .map_err(render_err)?;
     chart
         .draw_series(std::iter::once(Rectangle::new(
             [(domain.u[0], domain.v[0]), (domain.u[1], domain.v[1])],
@@ -352,6 +434,17 @@ fn draw_param_panel(
     for (k, b) in result.branches.iter().enumerate() {
         draw_branch(&mut chart, k, b, points_of(b), &mut labels)?;
     }
+    // Certified boxes on top of the curves: a translucent band (boxes thinner than a pixel still
+    // show as their outline) marks the certified stretch.
+    chart
+        .draw_series(boxes.iter().map(|b| {
+            let ([u0, u1], [v0, v1]) = (b[0], b[1]);
+            PathElement::new(
+                vec![(u0, v0), (u1, v0), (u1, v1), (u0, v1), (u0, v0)],
+                BOX_COLOUR.mix(0.45).stroke_width(BOX_STROKE),
+            )
+        }))
+        .map_err(render_err)?;
     for e in &result.events {
         draw_event_marker(&mut chart, e.kind, event_at(e))?;
     }
@@ -445,20 +538,17 @@ fn draw_model_panel(
             .draw_series(std::iter::once(Text::new(name, tip, ("sans-serif", 13))))
             .map_err(render_err)?;
     }
-    let grey = RGBColor(120, 120, 120).mix(0.6);
-    for b in boxes {
-        chart
-            .draw_series(
-                box_edges(b)
-                    .into_iter()
-                    .map(|e| PathElement::new(e.to_vec(), grey.stroke_width(1))),
-            )
-            .map_err(render_err)?;
-    }
     let mut labels = Vec::new();
     for (k, b) in result.branches.iter().enumerate() {
         let pts = b.points.iter().map(|c| isometric(c.xyz)).collect();
         draw_branch(&mut chart, k, b, pts, &mut labels)?;
+    }
+    for b in boxes {
+        chart
+            .draw_series(box_edges(b).into_iter().map(|e| {
+                PathElement::new(e.to_vec(), BOX_COLOUR.mix(0.45).stroke_width(BOX_STROKE))
+            }))
+            .map_err(render_err)?;
     }
     for e in &result.events {
         draw_event_marker(&mut chart, e.kind, isometric(e.xyz))?;
@@ -477,7 +567,11 @@ fn end_name(e: EndReason) -> &'static str {
     }
 }
 
-fn draw_legend(area: &DrawingArea<SVGBackend<'_>, Shift>, result: &Intersection) -> Result<()> {
+fn draw_legend(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    result: &Intersection,
+    certified_boxes: usize,
+) -> Result<()> {
     let font = ("sans-serif", 14).into_font();
     let (w, _) = area.dim_in_pixel();
     let x0 = 30i32;
@@ -492,10 +586,15 @@ fn draw_legend(area: &DrawingArea<SVGBackend<'_>, Shift>, result: &Intersection)
             .count(),
         result.events.len()
     );
+    let summary = if certified_boxes > 0 {
+        format!("{summary}, {certified_boxes} certified box(es)")
+    } else {
+        summary
+    };
     area.draw(&Text::new(summary, (x0, y), font.clone()))
         .map_err(render_err)?;
     // Marker key.
-    let kx = (w as i32 / 2).max(400);
+    let kx = (w as i32 / 2).max(400) - if certified_boxes > 0 { 140 } else { 0 };
     let key_y = y + 6;
     let mut kx_at = kx;
     let mut key = |label: &str, draw: &dyn Fn((i32, i32)) -> Result<()>| -> Result<()> {
@@ -544,6 +643,15 @@ fn draw_legend(area: &DrawingArea<SVGBackend<'_>, Shift>, result: &Intersection)
         ))
         .map_err(render_err)
     })?;
+    if certified_boxes > 0 {
+        key("certified box", &|p| {
+            area.draw(&PathElement::new(
+                vec![(p.0 - 6, p.1), (p.0 + 6, p.1)],
+                BOX_COLOUR.mix(0.45).stroke_width(BOX_STROKE),
+            ))
+            .map_err(render_err)
+        })?;
+    }
     y += 24;
     // One line per branch, in up to three columns.
     let rows = 5usize;
