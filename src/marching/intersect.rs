@@ -147,7 +147,8 @@ fn norm3(a: &[f64; 3]) -> f64 {
 }
 
 /// Whether the curve point with parameters `x` lies on `branch`: within `radius` of one of its
-/// chords in model space, with parameters within 2 % of the domain sizes of that chord's ends.
+/// chords in model space, with parameters inside that chord's parameter range widened by 2 % of
+/// the domain sizes (so a point of another sheet over the same model point is not covered).
 fn covers<P: ParametricSurface>(
     branch: &Branch,
     x: &[f64; 4],
@@ -157,18 +158,22 @@ fn covers<P: ParametricSurface>(
 ) -> bool {
     let pt = p.point(x[0], x[1]);
     let c = [pt.x, pt.y, pt.z];
-    let near_params =
-        |y: &[f64; 4]| (0..4).all(|i| (x[i] - y[i]).abs() <= 0.02 * scales[i] + 1e-12);
     let params = |k: usize| {
         let cp = &branch.points[k];
         [cp.p[0], cp.p[1], cp.q[0], cp.q[1]]
     };
+    // Parameters within the chord's parameter range, widened by 2 % of the domains.
+    let between = |a: &[f64; 4], b: &[f64; 4]| {
+        (0..4).all(|i| {
+            let slack = 0.02 * scales[i] + 1e-12;
+            x[i] >= a[i].min(b[i]) - slack && x[i] <= a[i].max(b[i]) + slack
+        })
+    };
     let n = branch.points.len();
     (0..n).any(|k| {
-        let a = &branch.points[k].xyz;
-        let b = &branch.points[(k + 1).min(n - 1)].xyz;
-        segment_distance(&c, a, b) <= radius
-            && (near_params(&params(k)) || near_params(&params((k + 1).min(n - 1))))
+        let next = (k + 1).min(n - 1);
+        let (a, b) = (&branch.points[k].xyz, &branch.points[next].xyz);
+        segment_distance(&c, a, b) <= radius && between(&params(k), &params(next))
     })
 }
 
