@@ -3,65 +3,17 @@
 //! order 30 by the tape recurrences versus the naive series evaluation.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use inari::Interval;
-use ssitrace::scalar::{interval, point};
+use ssitrace::validated::reference::{Pcr3bp, PCR3BP_T_END};
 use ssitrace::validated::series::naive_expand;
 use ssitrace::validated::tape::Tape;
-use ssitrace::validated::{Expansion, Integrator, IntegratorOptions, OdeSystem, TaylorAd};
-use ssitrace::Scalar;
+use ssitrace::validated::{Expansion, Integrator, IntegratorOptions, TaylorAd};
 use std::hint::black_box;
 
-fn decimal(s: &str) -> Interval {
-    let x: f64 = s.parse().unwrap();
-    interval(x.next_down(), x.next_up()).unwrap()
-}
-
-struct Pcr3bp {
-    mu: Interval,
-}
-
-impl OdeSystem for Pcr3bp {
-    fn dim(&self) -> usize {
-        4
-    }
-    fn eval<S: Scalar>(&self, s: &[S]) -> Vec<S> {
-        let (x, y, p, q) = (s[0], s[1], s[2], s[3]);
-        let mu = S::from_interval(self.mu);
-        let one = S::one();
-        let y2 = y.sqr();
-        let d1 = x + mu;
-        let d2 = x - one + mu;
-        let r1 = d1.sqr() + y2;
-        let r2 = d2.sqr() + y2;
-        let a = (one - mu) / (r1 * r1.sqrt());
-        let b = mu / (r2 * r2.sqrt());
-        let two = S::from_f64(2.0);
-        vec![
-            p,
-            q,
-            x - d1 * a - d2 * b + two * q,
-            y * (one - a - b) - two * p,
-        ]
-    }
-}
-
-fn initial(mu: Interval) -> [Interval; 4] {
-    let x0 = decimal("0.9208034913207400196");
-    let one = point(1.0);
-    let q0 = (x0.sqr()
-        + point(2.0) * ((one - mu) / (x0 + mu).abs() + mu / (x0 - one + mu).abs())
-        + mu * (one - mu)
-        - decimal("3.03"))
-    .sqrt();
-    [x0, point(0.0), point(0.0), q0]
-}
-
-const T_END: f64 = 3.082119126376508;
+const T_END: f64 = PCR3BP_T_END;
 
 fn pcr3bp_orders(c: &mut Criterion) {
-    let mu = decimal("0.0009537");
-    let sys = Pcr3bp { mu };
-    let y0 = initial(mu);
+    let sys = Pcr3bp::reference();
+    let y0 = sys.initial_state();
     let mut group = c.benchmark_group("pcr3bp_to_T");
     group.sample_size(10);
     for order in [10usize, 20, 30] {
@@ -101,9 +53,8 @@ fn pcr3bp_orders(c: &mut Criterion) {
 }
 
 fn expansion_schemes(c: &mut Criterion) {
-    let mu = decimal("0.0009537");
-    let sys = Pcr3bp { mu };
-    let y0 = initial(mu);
+    let sys = Pcr3bp::reference();
+    let y0 = sys.initial_state();
     let mut ad = TaylorAd::new(Tape::record(&sys).unwrap());
     let mut e = Expansion::default();
     let mut group = c.benchmark_group("expand_order_30");

@@ -64,6 +64,7 @@ pub mod enclosure;
 pub mod integrator;
 pub mod lohner;
 pub mod record;
+pub mod reference;
 pub mod series;
 pub mod system;
 pub mod tape;
