@@ -20,6 +20,7 @@ use super::field::{norm_sqr, transversal_field, ScalarSurface};
 use super::krawczyk::{best_fixed_coordinate, krawczyk, KrawczykResult};
 use super::ode::TransversalOde;
 use crate::error::{Error, Result};
+use crate::geometry::surface::{pair_bounds as bounds, pair_widths};
 use crate::geometry::{Domain, RationalBezierPatch};
 use crate::scalar::{interval, point};
 use crate::validated::{Integrator, IntegratorOptions, StepFailure, StepRecord};
@@ -74,16 +75,6 @@ fn transversal_width(v: &[Interval; 4], along: Option<usize>) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Bounds of parameter `i` of `(σ, t, u, v)`.
-fn bounds(dp: &Domain, dq: &Domain, i: usize) -> [f64; 2] {
-    match i {
-        0 => dp.u,
-        1 => dp.v,
-        2 => dq.u,
-        _ => dq.v,
-    }
-}
-
 /// Certifies the branch through `start ≈ (σ, t, u, v)` (a point on the curve from the marcher).
 ///
 /// Errors: the start cannot be proven (singular, or not near the curve) or an internal check of
@@ -96,10 +87,7 @@ pub fn certify_branch(
     opts: &CertifyOptions,
 ) -> Result<CertifiedBranch> {
     let (dp, dq) = (p.domain(), q.domain());
-    let scales: [f64; 4] = std::array::from_fn(|i| {
-        let b = bounds(&dp, &dq, i);
-        b[1] - b[0]
-    });
+    let scales = pair_widths(&dp, &dq);
     let fail = |reason: &str| Error::Certification {
         reason: reason.to_string(),
         near: start,
@@ -242,10 +230,7 @@ fn trace_half(
         end: CertifiedEnd::ClosedLoop,
     };
     let mut crossing_hull: Option<[Interval; 4]> = None;
-    let scales: [f64; 4] = std::array::from_fn(|i| {
-        let b = bounds(&dp, &dq, i);
-        b[1] - b[0]
-    });
+    let scales = pair_widths(&dp, &dq);
     let mut current = *y0;
     loop {
         if half.boxes.len() >= opts.max_steps || state.t >= opts.max_length {

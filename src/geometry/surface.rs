@@ -90,3 +90,21 @@ impl<T: ParametricSurface + ?Sized> ParametricSurface for &T {
         (**self).point(u, v)
     }
 }
+
+/// The range of parameter `i` of a surface pair's `(σ, t, u, v)`: `dp` is P's domain, `dq` Q's.
+pub fn pair_bounds(dp: &Domain, dq: &Domain, i: usize) -> [f64; 2] {
+    match i {
+        0 => dp.u,
+        1 => dp.v,
+        2 => dq.u,
+        _ => dq.v,
+    }
+}
+
+/// The widths of the four parameter ranges of a surface pair's `(σ, t, u, v)`.
+pub fn pair_widths(dp: &Domain, dq: &Domain) -> [f64; 4] {
+    std::array::from_fn(|i| {
+        let b = pair_bounds(dp, dq, i);
+        b[1] - b[0]
+    })
+}

@@ -6,7 +6,8 @@
 
 use super::start_points::{find_start_points, SearchOptions, SearchReport, StartPoint};
 use super::{trace_branch, MarchOptions};
-use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
+use crate::geometry::surface::pair_widths;
+use crate::geometry::{ParametricSurface, RationalBezierPatch};
 use crate::intersection::{Branch, EndReason, Event, EventKind, Intersection};
 use std::time::Instant;
 
@@ -67,7 +68,7 @@ pub fn intersect(
         search_seconds: (t1 - t0).as_secs_f64(),
         ..Default::default()
     };
-    let scales = param_scales(p.domain(), q.domain());
+    let scales = pair_widths(&p.domain(), &q.domain());
     let radius = march.step / 3.0;
     let mut branches: Vec<Branch> = Vec::new();
     let mut events: Vec<Event> = Vec::new();
@@ -127,15 +128,6 @@ pub fn intersect(
         intersection: Intersection { branches, events },
         stats,
     }
-}
-
-fn param_scales(dp: Domain, dq: Domain) -> [f64; 4] {
-    [
-        dp.u[1] - dp.u[0],
-        dp.v[1] - dp.v[0],
-        dq.u[1] - dq.u[0],
-        dq.v[1] - dq.v[0],
-    ]
 }
 
 fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {

@@ -31,6 +31,7 @@ use super::tangent::{curve_frame, parameter_direction, CurveFrame};
 use super::tangent_step::tangent_step;
 use super::StepPrediction;
 use crate::error::{Error, InputProblem, Result};
+use crate::geometry::surface::pair_bounds as bounds;
 use crate::geometry::{Domain, ParametricSurface, Vec3};
 use crate::intersection::{Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind};
 use std::f64::consts::PI;
@@ -84,16 +85,6 @@ struct Half {
 
 fn bad(field: &str, problem: InputProblem) -> Error {
     Error::input(field, problem)
-}
-
-/// Bounds of parameter `i` of `(σ, t, u, v)`.
-fn bounds(dp: &Domain, dq: &Domain, i: usize) -> [f64; 2] {
-    match i {
-        0 => dp.u,
-        1 => dp.v,
-        2 => dq.u,
-        _ => dq.v,
-    }
 }
 
 fn make_event(kind: EventKind, n: &Node) -> Event {
