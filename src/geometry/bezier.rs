@@ -381,6 +381,7 @@ impl RationalBezierPatch {
     /// Bernstein sums whose large terms cancel. The power-basis coefficients at the centre are
     /// `C(m,k)·C(n,l)·Σᵢⱼ (Δₛᵏ Δᵣˡ h)ᵢⱼ Bᵢ^{m−k}(cs) Bⱼ^{n−l}(cr)` (forward differences of the
     /// homogeneous net), formed in `S` (rigorous in intervals).
+    #[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
     pub fn scaled_partials_centred<S: Scalar>(
         &self,
         u: S,
@@ -545,7 +546,7 @@ fn forward_difference<S: Scalar>(
     for a in 0..=k {
         for b in 0..=l {
             let c = binomial(k, a) * binomial(l, b);
-            let sign = if (k - a + l - b) % 2 == 0 { c } else { -c };
+            let sign = if (k - a + l - b).is_multiple_of(2) { c } else { -c };
             let p = net(i + a, j + b);
             let f = S::from_f64(sign);
             for x in 0..4 {
