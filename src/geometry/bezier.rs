@@ -546,7 +546,11 @@ fn forward_difference<S: Scalar>(
     for a in 0..=k {
         for b in 0..=l {
             let c = binomial(k, a) * binomial(l, b);
-            let sign = if (k - a + l - b).is_multiple_of(2) { c } else { -c };
+            let sign = if (k - a + l - b).is_multiple_of(2) {
+                c
+            } else {
+                -c
+            };
             let p = net(i + a, j + b);
             let f = S::from_f64(sign);
             for x in 0..4 {
