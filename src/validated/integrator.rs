@@ -133,6 +133,7 @@ pub struct Integrator {
     options: IntegratorOptions,
     exp_center: Expansion,
     exp_box: Expansion,
+    exp_jac: Expansion,
     scratch: Expansion,
 }
 
@@ -164,6 +165,7 @@ impl Integrator {
             options,
             exp_center: Expansion::default(),
             exp_box: Expansion::default(),
+            exp_jac: Expansion::default(),
             scratch: Expansion::default(),
         })
     }
@@ -260,7 +262,7 @@ impl Integrator {
             .expand_tight(&center, k, false, &mut self.exp_center)
             .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
         self.ad
-            .expand(&range, k, true, &mut self.exp_box)
+            .expand(&range, k, false, &mut self.exp_box)
             .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
 
         // Step size from the last two terms at the centre.
@@ -339,21 +341,34 @@ impl Integrator {
         let hp = h_iv;
         let h = h_iv.sup();
         let hk = hp.powi(k as i32);
-        let mut u: Vec<Interval> = apriori.remainder_coeff.iter().map(|r| *r * hk).collect();
-        {
-            let mut poly = self.exp_center.coeff(k - 1).to_vec();
-            for i in (0..k - 1).rev() {
-                for (p, c) in poly.iter_mut().zip(self.exp_center.coeff(i)) {
-                    *p = *p * hp + *c;
+        // Mean-value form for the orders below p only: for i ≥ p the range yᵢ([y]) itself
+        // enters u (a box, so it wraps, but its width times hⁱ is below a tenth of the
+        // remainder target), which saves the Jacobians' O(n·k²) recurrences above order p.
+        let p = self.jacobian_order(k, h, rem_target);
+        self.ad
+            .expand(&range, p, true, &mut self.exp_jac)
+            .map_err(|e| fail(state, h, StepFailure::Domain(e)))?;
+        let low_high: Vec<&[Interval]> = (0..k)
+            .map(|i| {
+                if i < p {
+                    self.exp_center.coeff(i)
+                } else {
+                    self.exp_box.coeff(i)
                 }
-            }
-            for (uj, pj) in u.iter_mut().zip(&poly) {
-                *uj += *pj;
+            })
+            .collect();
+        let mut poly = low_high[k - 1].to_vec();
+        for c in low_high[..k - 1].iter().rev() {
+            for (pj, cj) in poly.iter_mut().zip(c.iter()) {
+                *pj = *pj * hp + *cj;
             }
         }
-        let mut s = self.exp_box.jacobian(k - 1).to_vec();
-        for i in (0..k - 1).rev() {
-            for (sv, jv) in s.iter_mut().zip(self.exp_box.jacobian(i)) {
+        let u: Vec<Interval> = (0..n)
+            .map(|j| apriori.remainder_coeff[j] * hk + poly[j])
+            .collect();
+        let mut s = self.exp_jac.jacobian(p - 1).to_vec();
+        for i in (0..p - 1).rev() {
+            for (sv, jv) in s.iter_mut().zip(self.exp_jac.jacobian(i)) {
                 *sv = *sv * hp + *jv;
             }
         }
@@ -391,8 +406,8 @@ impl Integrator {
             coeffs: (0..k).map(|i| self.exp_box.coeff(i).to_vec()).collect(),
             remainder_coeff: apriori.remainder_coeff,
             method: apriori.method,
-            center_coeffs: (0..k).map(|i| self.exp_center.coeff(i).to_vec()).collect(),
-            jacobians: (0..k).map(|i| self.exp_box.jacobian(i).to_vec()).collect(),
+            center_coeffs: low_high.iter().map(|c| c.to_vec()).collect(),
+            jacobians: (0..p).map(|i| self.exp_jac.jacobian(i).to_vec()).collect(),
             basis,
             r: state.set.r.clone(),
         };
@@ -403,6 +418,29 @@ impl Integrator {
         state.set = next;
         state.boxed = end;
         Ok(record)
+    }
+}
+
+impl Integrator {
+    /// The smallest order `p ∈ 1..=k` such that the widths of the range coefficients above it,
+    /// `Σ_{p ≤ i < k} w(yᵢ([y]))·hⁱ`, stay below a tenth of the remainder target.
+    fn jacobian_order(&self, k: usize, h: f64, rem_target: f64) -> usize {
+        let mut tail = 0.0;
+        let mut p = k;
+        while p > 1 {
+            let w = self
+                .exp_box
+                .coeff(p - 1)
+                .iter()
+                .fold(0.0f64, |m, c| m.max(c.wid()));
+            let next = tail + w * h.powi(p as i32 - 1);
+            if !(next <= 0.1 * rem_target) {
+                break;
+            }
+            tail = next;
+            p -= 1;
+        }
+        p
     }
 }
 
