@@ -1,18 +1,21 @@
 //! The driver: step-size control, phase I, phase II (mean-value form + Lohner QR), output.
 //!
 //! One step from `t` with initial set `x̂ + A·[r]` (interval hull `[y]`):
-//! 1. expand at the centre `x̂` (coefficients only) and over `B = hull([y], x̂)` (coefficients to
-//!    order `k` and Jacobians `Jᵢ`, `i < k`);
+//! 1. expand at the centre `x̂` and over `B = hull([y], x̂)` (coefficients to order `k`);
 //! 2. step size `h = min_{i ∈ {k−1, k}, i ≥ 2} (ε/‖yᵢ(x̂)‖∞)^{1/i}`, `ε = tol·max(1, ‖x̂‖∞)`, then
 //!    scaled by the ratio accepted at the previous step, capped by `h_max` and the time left;
 //! 3. phase I ([`prove_apriori`]) proves `[ỹ]` over `[t, t + h]`; on failure `h` shrinks by 0.7
 //!    until `h_min`, below which the integrator stops with [`Error::StepFailed`]; if the validated
 //!    remainder `hᵏ·‖y_k([ỹ])‖` exceeds ε (or 1e-9 of the set's width, if larger), `h` shrinks
 //!    and phase I runs again (at most 6 times);
-//! 4. phase II: `u = Σ_{i<k} yᵢ(x̂) hⁱ + hᵏ·y_k([ỹ])`, `S = Σ_{i<k} Jᵢ hⁱ`; then every solution at
-//!    `t + h` lies in `u + S·A·[r]` (mean-value theorem over the convex box `B`, Taylor with the
-//!    Lagrange remainder over `[ỹ]`), which the [`LohnerSet`] update re-encloses without wrapping;
-//!    the end box is the hull of the new set intersected with `u + S·([y] − x̂)` and `[ỹ]`.
+//! 4. phase II: `u = Σ_{i<p} yᵢ(x̂) hⁱ + Σ_{p≤i<k} yᵢ(B) hⁱ + hᵏ·y_k([ỹ])`, `S = Σ_{i<p} Jᵢ hⁱ`;
+//!    then every solution at `t + h` lies in `u + S·A·[r]` (mean-value theorem over the convex box
+//!    `B` for the orders below `p`, the range over `B` for the others, Taylor with the Lagrange
+//!    remainder over `[ỹ]`), which the [`LohnerSet`] update re-encloses without wrapping; the end
+//!    box is the hull of the new set intersected with `u + S·([y] − x̂)` and `[ỹ]`. `p ≤ k` is the
+//!    smallest order for which the widths `Σ_{p≤i<k} w(yᵢ(B)) hⁱ` (the part that wraps) stay below
+//!    a tenth of the remainder target; the Jacobians, `n` times the cost of the coefficients, are
+//!    then computed to order `p` only (on thin sets `p` is a few units, not `k`).
 
 use super::ad::{DomainError, Expansion, TaylorAd};
 use super::enclosure::prove_apriori;
