@@ -437,7 +437,8 @@ impl Integrator {
                 .iter()
                 .fold(0.0f64, |m, c| m.max(c.wid()));
             let next = tail + w * h.powi(p as i32 - 1);
-            if !(next <= 0.1 * rem_target) {
+            // (A NaN width fails the test and keeps the Jacobians.)
+            if next.is_nan() || next > 0.1 * rem_target {
                 break;
             }
             tail = next;
