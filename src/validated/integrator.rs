@@ -1,8 +1,9 @@
 //! The driver: step-size control, phase I, phase II (mean-value form + Lohner QR), output.
 //!
 //! One step from `t` with initial set `x̂ + A·[r]` (interval hull `[y]`):
-//! 1. expand at the centre `x̂` and over `B = hull([y], x̂)` (coefficients to order `k`);
-//! 2. step size `h = min_{i ∈ {k−1, k}, i ≥ 2} (ε/‖yᵢ(x̂)‖∞)^{1/i}`, `ε = tol·max(1, ‖x̂‖∞)`, then
+//! 1. expand over `B = hull([y], x̂)` (coefficients to order `k`);
+//! 2. step size `h = min_{i ∈ {k−1, k}, i ≥ 2} (ε/‖mid yᵢ(B)‖∞)^{1/i}` (the midpoints estimate
+//!    the coefficients at the centre), `ε = tol·max(1, ‖x̂‖∞)`, then
 //!    scaled by the ratio accepted at the previous step, capped by `h_max` and the time left;
 //! 3. phase I ([`prove_apriori`]) proves `[ỹ]` over `[t, t + h]`; on failure `h` shrinks by 0.7
 //!    until `h_min`, below which the integrator stops with [`Error::StepFailed`]; if the validated
@@ -15,7 +16,8 @@
 //!    box is the hull of the new set intersected with `u + S·([y] − x̂)` and `[ỹ]`. `p ≤ k` is the
 //!    smallest order for which the widths `Σ_{p≤i<k} w(yᵢ(B)) hⁱ` (the part that wraps) stay below
 //!    a tenth of the remainder target; the Jacobians, `n` times the cost of the coefficients, are
-//!    then computed to order `p` only (on thin sets `p` is a few units, not `k`).
+//!    then computed to order `p` only (on thin sets `p` is a few units, not `k`), and so is the
+//!    expansion at the centre `x̂`.
 
 use super::ad::{DomainError, Expansion, TaylorAd};
 use super::enclosure::prove_apriori;
@@ -262,23 +264,21 @@ impl Integrator {
             .map(|(b, c)| b.convex_hull(*c))
             .collect();
         self.ad
-            .expand_tight(&center, k, false, &mut self.exp_center)
-            .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
-        self.ad
             .expand(&range, k, false, &mut self.exp_box)
             .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
 
-        // Step size from the last two terms at the centre.
+        // Step size from the last two terms, estimated at the centre by the midpoints of their
+        // ranges over B (the expansion at the centre itself is needed to order p only, below).
         let scale = state.set.center.iter().fold(1.0f64, |m, c| m.max(c.abs()));
         let eps = self.options.tolerance * scale;
         let mut h = self.options.h_max;
         // (The first-order term is skipped for k ≥ 2: (ε/‖y₁‖)¹ would force h ≈ ε.)
         for i in [k.saturating_sub(1).max(2).min(k), k] {
             let norm = self
-                .exp_center
+                .exp_box
                 .coeff(i)
                 .iter()
-                .fold(0.0f64, |m, c| m.max(c.mag()));
+                .fold(0.0f64, |m, c| m.max(c.mid().abs()));
             if norm > 0.0 {
                 h = h.min((eps / norm).powf(1.0 / i as f64));
             }
@@ -350,6 +350,9 @@ impl Integrator {
         let p = self.jacobian_order(k, h, rem_target);
         self.ad
             .expand(&range, p, true, &mut self.exp_jac)
+            .map_err(|e| fail(state, h, StepFailure::Domain(e)))?;
+        self.ad
+            .expand_tight(&center, p, false, &mut self.exp_center)
             .map_err(|e| fail(state, h, StepFailure::Domain(e)))?;
         let low_high: Vec<&[Interval]> = (0..k)
             .map(|i| {
