@@ -197,3 +197,86 @@ fn centred_tape_expands_to_the_exact_coefficients() {
         widths[0], widths[1]
     );
 }
+
+/// y' = y² (plain form), for the integrator tests below.
+struct PlainSquare;
+
+impl OdeSystem for PlainSquare {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
+        vec![y[0].sqr()]
+    }
+}
+
+#[test]
+fn remainder_over_pieces_is_sound() {
+    use ssitrace::validated::{Integrator, IntegratorOptions};
+    let y0 = [interval(0.5, 0.5 + 1e-6).unwrap()];
+    let mut counts = Vec::new();
+    for pieces in [1, 4] {
+        let opts = IntegratorOptions {
+            order: 12,
+            tolerance: 1e-14,
+            ..Default::default()
+        };
+        let mut integ = Integrator::new(&PlainSquare, opts).unwrap();
+        integ.set_remainder_pieces(pieces);
+        let traj = integ.integrate(&y0, 0.0, 1.5).unwrap();
+        // Exact solution y₀/(1 − y₀t) at every step end, for both ends of the initial box.
+        for s in &traj.steps {
+            for x in [0.5, 0.5 + 1e-6] {
+                let exact = point(x) / (point(1.0) - point(x) * point(s.t1));
+                assert!(
+                    s.end[0].contains(exact.mid()),
+                    "pieces {pieces} at t = {}",
+                    s.t1
+                );
+                let half = s.enclose_on(0.0, s.h).unwrap();
+                let mid = point(x) / (point(1.0) - point(x) * point(s.t0 + s.h / 2.0));
+                assert!(half[0].contains(mid.mid()));
+            }
+        }
+        counts.push(traj.steps.len());
+    }
+    println!(
+        "y' = y², steps to t = 1.5: 1 piece {}, 4 pieces {}",
+        counts[0], counts[1]
+    );
+}
+
+#[test]
+fn remainder_over_pieces_lengthens_steps_of_the_intersection_ode() {
+    use ssitrace::certified::ode::TransversalOde;
+    use ssitrace::io::scene::Scene;
+    use ssitrace::validated::{Integrator, IntegratorOptions};
+    let scene = Scene::from_path(std::path::Path::new("scenes/sphere_patch_plane.json")).unwrap();
+    let [p, q] = &scene.surfaces;
+    // A point of P away from (25/16, 0, 0), where the sphere's normal is the plane's, and one of
+    // the plane Q: the ODE is defined there (non-parallel normals).
+    let y0 = [0.85, 0.5, 0.5, 0.5].map(point);
+    let ode = TransversalOde {
+        p,
+        q,
+        orientation: 1.0,
+    };
+    let mut counts = Vec::new();
+    for pieces in [1, 4] {
+        let opts = IntegratorOptions {
+            order: 20,
+            tolerance: 1e-13,
+            h_max: 0.25,
+            ..Default::default()
+        };
+        let mut integ = Integrator::new(&ode, opts).unwrap();
+        integ.set_remainder_pieces(pieces);
+        let traj = integ.integrate(&y0, 0.0, 0.5).unwrap();
+        counts.push(traj.steps.len());
+    }
+    println!(
+        "intersection ODE, steps for arc length 0.5: 1 piece {}, 4 pieces {}",
+        counts[0], counts[1]
+    );
+    assert!(counts[1] < counts[0], "{counts:?}");
+}

@@ -20,7 +20,7 @@
 //!    expansion at the centre `x̂`.
 
 use super::ad::{DomainError, Expansion, TaylorAd};
-use super::enclosure::prove_apriori;
+use super::enclosure::{prove_apriori, refine_remainder};
 use super::lohner::{mat_mul, mat_vec, LohnerSet};
 use super::record::StepRecord;
 use super::system::OdeSystem;
@@ -140,6 +140,7 @@ pub struct Integrator {
     exp_box: Expansion,
     exp_jac: Expansion,
     scratch: Expansion,
+    remainder_pieces: usize,
 }
 
 impl Integrator {
@@ -172,7 +173,18 @@ impl Integrator {
             exp_box: Expansion::default(),
             exp_jac: Expansion::default(),
             scratch: Expansion::default(),
+            remainder_pieces: 1,
         })
+    }
+
+    /// Re-encloses a remainder that misses its target over `pieces` sub-intervals of the step
+    /// before shrinking the step (1, the default, never does). Interval Taylor coefficients over
+    /// a box grow much faster than linearly with its size, so this buys longer steps for `pieces`
+    /// more expansions. Measured on the certified intersection ODE (order 20): 2 pieces make the
+    /// steps ≈ 1.25× and 4 pieces ≈ 1.4× longer, at ≈ 1.2× and ≈ 1.6× the total time. `pieces`
+    /// is clamped to `1..=64`.
+    pub fn set_remainder_pieces(&mut self, pieces: usize) {
+        self.remainder_pieces = pieces.clamp(1, 64);
     }
 
     /// The options in use.
@@ -311,11 +323,27 @@ impl Integrator {
                 h_try,
                 &mut self.scratch,
             ) {
-                Ok(a) => {
+                Ok(mut a) => {
                     // Remainder control: the interval remainder over the a-priori box can be far
-                    // larger than the point estimate used above; shrink until it meets ε.
-                    let rem = a.remainder_coeff.iter().fold(0.0f64, |m, c| m.max(c.mag()))
-                        * h_try.powi(k as i32);
+                    // larger than the point estimate used above; re-enclose it over pieces of the
+                    // step if needed, then shrink until it meets ε.
+                    let rem_of = |a: &super::enclosure::Apriori| {
+                        a.remainder_coeff.iter().fold(0.0f64, |m, c| m.max(c.mag()))
+                            * h_try.powi(k as i32)
+                    };
+                    let mut rem = rem_of(&a);
+                    if rem > rem_target && self.remainder_pieces > 1 {
+                        a.remainder_coeff = refine_remainder(
+                            &mut self.ad,
+                            &self.exp_box,
+                            k,
+                            h_try,
+                            &a,
+                            self.remainder_pieces,
+                            &mut self.scratch,
+                        );
+                        rem = rem_of(&a);
+                    }
                     if rem <= rem_target
                         || shrinks >= MAX_REMAINDER_SHRINKS
                         || h_try <= self.options.h_min
