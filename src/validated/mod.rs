@@ -63,7 +63,11 @@
 //! * **Jacobians to a lower order** ([`integrator`]): only up to the order `p` above which the
 //!   coefficients' ranges over the initial box may enter the set as a box (their width times `hⁱ`
 //!   is below a tenth of the remainder target): 2× cheaper certified steps, same PCR3BP widths.
-//! * **Step size**: from the last two Taylor terms at the centre, then reduced until the validated
+//! * **Remainder over pieces of the step** (opt-in, [`Integrator::set_remainder_pieces`]): the
+//!   Lagrange remainder re-enclosed over sub-boxes of the a-priori box (longer steps, more
+//!   expansions; off by default because it did not pay in total time on the certified scenes).
+//! * **Step size**: from the last two Taylor terms (the midpoints of their ranges over the set,
+//!   which estimate the values at its centre), then reduced until the validated
 //!   remainder `hᵏ·y_k([ỹ])` meets the tolerance (the interval remainder over the a-priori box is
 //!   often many orders of magnitude above the point estimate).
 //!
