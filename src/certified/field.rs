@@ -11,6 +11,26 @@
 //! which follow from c = P_σ σ' + P_t t' = Q_u u' + Q_v v'. The field is written once over
 //! [`Scalar`], so it runs in `f64`, in intervals and in Taylor series. Along it P − Q is constant
 //! (a first integral): a solution that starts on the intersection stays on it.
+//!
+//! **Evaluated form.** With m = N^P × N^Q, the Lagrange identity
+//! `(a×b)·(c×d) = (a·c)(b·d) − (a·d)(b·c)` and `N^P·P_σ = N^P·P_t = 0` turn the determinants into
+//!
+//! ```text
+//! σ' = −(N^Q·P_t)/|m|    t' = (N^Q·P_σ)/|m|    u' = (N^P·Q_v)/|m|    v' = −(N^P·Q_u)/|m|
+//! ```
+//!
+//! (e.g. `det(c, P_t, N^P)·|m| = (N^P × N^Q)·(P_t × N^P) = −|N^P|²(N^Q·P_t)`). This form has no
+//! division by `|N^P|²`, `|N^Q|²` and none of the identically vanishing products `N^P·P_t` that
+//! interval and Taylor arithmetic cannot cancel, so its interval Taylor coefficients are far
+//! tighter. The partials may moreover be scaled by any positive factor per surface
+//! ([`ScalarSurface::scaled_first_order`]): with `S_u = a/g`, `S_v = b/g`, `g > 0`, and
+//! `ñ = a × b`, `m̃ = ñ^P × ñ^Q`,
+//!
+//! ```text
+//! σ' = −g_P (ñ^Q·b_P)/|m̃|   t' = g_P (ñ^Q·a_P)/|m̃|   u' = g_Q (ñ^P·b_Q)/|m̃|   v' = −g_Q (ñ^P·a_Q)/|m̃|
+//! ```
+//!
+//! which lets a rational patch skip its quotient rule (`g = w²`).
 
 use crate::Scalar;
 
@@ -20,16 +40,48 @@ pub trait ScalarSurface {
     fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3];
     /// `[S, S_u, S_v, S_uu, S_uv, S_vv]` evaluated in `T` (rigorous when `T` is).
     fn second_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 6];
+    /// `(a, b, g)` with `S_u = a/g`, `S_v = b/g` and `g > 0` on the domain (rigorous when `T`
+    /// is). The default is `(S_u, S_v, 1)`; a rational surface can return its homogeneous
+    /// numerators and save the quotient rule.
+    fn scaled_first_order<T: Scalar>(&self, u: T, v: T) -> ([T; 3], [T; 3], T) {
+        let [_, a, b] = self.first_order(u, v);
+        (a, b, T::one())
+    }
+    /// The same quantities as [`scaled_first_order`](Self::scaled_first_order), possibly written
+    /// around the centre `(cu, cv)` for tighter interval and Taylor enclosures (the default
+    /// ignores the centre).
+    fn scaled_first_order_centred<T: Scalar>(
+        &self,
+        u: T,
+        v: T,
+        cu: T,
+        cv: T,
+    ) -> ([T; 3], [T; 3], T) {
+        let _ = (cu, cv);
+        self.scaled_first_order(u, v)
+    }
 }
 
 impl ScalarSurface for crate::geometry::RationalBezierPatch {
     fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3] {
-        let d = self.eval_derivs(u, v);
-        [d.p, d.su, d.sv]
+        let [p, su, sv] = self.first_derivs(u, v);
+        [p, su, sv]
     }
     fn second_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 6] {
         let d = self.eval_derivs(u, v);
         [d.p, d.su, d.sv, d.suu, d.suv, d.svv]
+    }
+    fn scaled_first_order<T: Scalar>(&self, u: T, v: T) -> ([T; 3], [T; 3], T) {
+        self.scaled_partials(u, v)
+    }
+    fn scaled_first_order_centred<T: Scalar>(
+        &self,
+        u: T,
+        v: T,
+        cu: T,
+        cv: T,
+    ) -> ([T; 3], [T; 3], T) {
+        self.scaled_partials_centred(u, v, cu, cv)
     }
 }
 
@@ -69,32 +121,113 @@ pub struct FieldPoint<T> {
 }
 
 /// The transversal intersection field at `y = (σ, t, u, v)`, with direction `orientation` = ±1
-/// (the sign applied to c).
+/// (the sign applied to c). All four outputs are enclosures when `T` is rigorous.
 pub fn transversal_field<T, P, Q>(p: &P, q: &Q, y: &[T; 4], orientation: f64) -> FieldPoint<T>
 where
     T: Scalar,
     P: ScalarSurface + ?Sized,
     Q: ScalarSurface + ?Sized,
 {
-    let [_, ps, pt] = p.first_order(y[0], y[1]);
-    let [_, qu, qv] = q.first_order(y[2], y[3]);
-    let np = cross(&ps, &pt);
-    let nq = cross(&qu, &qv);
-    let m = cross(&np, &nq);
-    let m2 = norm_sqr(&m);
-    let scale = T::from_f64(orientation) / m2.sqrt();
-    let c = [m[0] * scale, m[1] * scale, m[2] * scale];
-    let np2 = norm_sqr(&np);
-    let nq2 = norm_sqr(&nq);
+    let f = ScaledField::new(p, q, y, orientation);
+    let inv_len = T::one() / f.m2.sqrt();
+    let sign = T::from_f64(orientation);
+    let gg = (f.gp * f.gq).sqr();
     FieldPoint {
-        velocity: [
-            det(&c, &pt, &np) / np2,
-            det(&ps, &c, &np) / np2,
-            det(&c, &qv, &nq) / nq2,
-            det(&qu, &c, &nq) / nq2,
-        ],
-        tangent: c,
-        cross_norm_sqr: m2,
+        velocity: f.velocity(),
+        tangent: f.m.map(|x| sign * x * inv_len),
+        cross_norm_sqr: f.m2 / gg.sqr(),
+    }
+}
+
+/// Only the velocity `(σ', t', u', v')` of [`transversal_field`] (what the ODE integrates).
+pub fn transversal_velocity<T, P, Q>(p: &P, q: &Q, y: &[T; 4], orientation: f64) -> [T; 4]
+where
+    T: Scalar,
+    P: ScalarSurface + ?Sized,
+    Q: ScalarSurface + ?Sized,
+{
+    ScaledField::new(p, q, y, orientation).velocity()
+}
+
+/// [`transversal_velocity`] with both surfaces written around the centre `c` (same function; the
+/// centre only changes interval widths, see [`ScalarSurface::scaled_first_order_centred`]).
+pub fn transversal_velocity_centred<T, P, Q>(
+    p: &P,
+    q: &Q,
+    y: &[T; 4],
+    c: &[T; 4],
+    orientation: f64,
+) -> [T; 4]
+where
+    T: Scalar,
+    P: ScalarSurface + ?Sized,
+    Q: ScalarSurface + ?Sized,
+{
+    let pp = p.scaled_first_order_centred(y[0], y[1], c[0], c[1]);
+    let qq = q.scaled_first_order_centred(y[2], y[3], c[2], c[3]);
+    ScaledField::from_parts(pp, qq, orientation).velocity()
+}
+
+/// The scaled quantities of the evaluated form (see the module documentation).
+struct ScaledField<T> {
+    ap: [T; 3],
+    bp: [T; 3],
+    gp: T,
+    aq: [T; 3],
+    bq: [T; 3],
+    gq: T,
+    np: [T; 3],
+    nq: [T; 3],
+    m: [T; 3],
+    m2: T,
+    orientation: f64,
+}
+
+impl<T: Scalar> ScaledField<T> {
+    fn new<P, Q>(p: &P, q: &Q, y: &[T; 4], orientation: f64) -> Self
+    where
+        P: ScalarSurface + ?Sized,
+        Q: ScalarSurface + ?Sized,
+    {
+        let pp = p.scaled_first_order(y[0], y[1]);
+        let qq = q.scaled_first_order(y[2], y[3]);
+        Self::from_parts(pp, qq, orientation)
+    }
+
+    fn from_parts(
+        (ap, bp, gp): ([T; 3], [T; 3], T),
+        (aq, bq, gq): ([T; 3], [T; 3], T),
+        orientation: f64,
+    ) -> Self {
+        let np = cross(&ap, &bp);
+        let nq = cross(&aq, &bq);
+        let m = cross(&np, &nq);
+        let m2 = norm_sqr(&m);
+        ScaledField {
+            ap,
+            bp,
+            gp,
+            aq,
+            bq,
+            gq,
+            np,
+            nq,
+            m,
+            m2,
+            orientation,
+        }
+    }
+
+    fn velocity(&self) -> [T; 4] {
+        let scale = T::from_f64(self.orientation) / self.m2.sqrt();
+        let sp = self.gp * scale;
+        let sq = self.gq * scale;
+        [
+            -(dot(&self.nq, &self.bp) * sp),
+            dot(&self.nq, &self.ap) * sp,
+            dot(&self.np, &self.bq) * sq,
+            -(dot(&self.np, &self.aq) * sq),
+        ]
     }
 }
 

@@ -1,6 +1,6 @@
 //! The intersection ODE as an [`OdeSystem`] for the validated engine.
 
-use super::field::{transversal_field, ScalarSurface};
+use super::field::{transversal_velocity, transversal_velocity_centred, ScalarSurface};
 use crate::validated::OdeSystem;
 use crate::Scalar;
 
@@ -24,8 +24,14 @@ impl<P: ScalarSurface + ?Sized, Q: ScalarSurface + ?Sized> OdeSystem for Transve
     }
     fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
         let y4 = [y[0], y[1], y[2], y[3]];
-        transversal_field(self.p, self.q, &y4, self.orientation)
-            .velocity
-            .to_vec()
+        transversal_velocity(self.p, self.q, &y4, self.orientation).to_vec()
+    }
+    fn eval_centred<S: Scalar>(&self, y: &[S], c: &[S]) -> Vec<S> {
+        let y4 = [y[0], y[1], y[2], y[3]];
+        let c4 = [c[0], c[1], c[2], c[3]];
+        transversal_velocity_centred(self.p, self.q, &y4, &c4, self.orientation).to_vec()
+    }
+    fn uses_centre(&self) -> bool {
+        true
     }
 }

@@ -334,6 +334,127 @@ impl RationalBezierPatch {
         rational_derivs(&h, ku, kv)
     }
 
+    /// The point and its first partials `[S, S_u, S_v]` in the declared parameters, evaluated in
+    /// `S` (intervals: rigorous enclosures). Cheaper than [`eval_derivs`](Self::eval_derivs): no
+    /// second derivatives are formed.
+    pub fn first_derivs<S: Scalar>(&self, u: S, v: S) -> [[S; 3]; 3] {
+        let (s, r, ku, kv) = self.normalise(u, v);
+        let [h, hs, hr] = homogeneous_first(self.degree, s, r, |k| {
+            self.homogeneous[k].map(S::from_interval)
+        });
+        let inv_w = S::one() / h[3];
+        let z = S::zero();
+        let mut out = [[z; 3]; 3];
+        for c in 0..3 {
+            let x = h[c] * inv_w;
+            out[0][c] = x;
+            out[1][c] = (hs[c] - x * hs[3]) * inv_w * ku;
+            out[2][c] = (hr[c] - x * hr[3]) * inv_w * kv;
+        }
+        out
+    }
+
+    /// `(a, b, g)` with `S_u = a/g`, `S_v = b/g`, `g = w² > 0` (`w` the weight function): the
+    /// quotient rule without its division, `a = (H_u w − H w_u)`, `b = (H_v w − H w_v)` on the
+    /// homogeneous point `(H, w)`. Rigorous in intervals. `g` is formed as `(√(w²))²`, so a
+    /// rigorous evaluation (and the validated engine's domain guard) fails rather than returning
+    /// a value where `w` may vanish (where the patch is undefined).
+    pub fn scaled_partials<S: Scalar>(&self, u: S, v: S) -> ([S; 3], [S; 3], S) {
+        let (s, r, ku, kv) = self.normalise(u, v);
+        let [h, hs, hr] = homogeneous_first(self.degree, s, r, |k| {
+            self.homogeneous[k].map(S::from_interval)
+        });
+        let w = h[3];
+        let z = S::zero();
+        let (mut a, mut b) = ([z; 3], [z; 3]);
+        for c in 0..3 {
+            a[c] = (hs[c] * w - h[c] * hs[3]) * ku;
+            b[c] = (hr[c] * w - h[c] * hr[3]) * kv;
+        }
+        (a, b, w.sqr().sqrt().sqr())
+    }
+
+    /// As [`scaled_partials`](Self::scaled_partials), with the patch written in the power basis
+    /// around the centre `(cu, cv)` (any values; the result is the same function, only its
+    /// interval widths change). Near the centre the terms are powers of the small offsets
+    /// `u − cu`, `v − cv`, so interval and Taylor arithmetic see little dependency, unlike the
+    /// Bernstein sums whose large terms cancel. The power-basis coefficients at the centre are
+    /// `C(m,k)·C(n,l)·Σᵢⱼ (Δₛᵏ Δᵣˡ h)ᵢⱼ Bᵢ^{m−k}(cs) Bⱼ^{n−l}(cr)` (forward differences of the
+    /// homogeneous net), formed in `S` (rigorous in intervals).
+    #[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
+    pub fn scaled_partials_centred<S: Scalar>(
+        &self,
+        u: S,
+        v: S,
+        cu: S,
+        cv: S,
+    ) -> ([S; 3], [S; 3], S) {
+        let [m, n] = self.degree;
+        let d = &self.domain;
+        let du = S::from_f64(d.u[1]) - S::from_f64(d.u[0]);
+        let dv = S::from_f64(d.v[1]) - S::from_f64(d.v[0]);
+        let cs = (cu - S::from_f64(d.u[0])) / du;
+        let cr = (cv - S::from_f64(d.v[0])) / dv;
+        let ds = (u - cu) / du;
+        let dr = (v - cv) / dv;
+        let (ku, kv) = (S::one() / du, S::one() / dv);
+        let z = S::zero();
+        // Forward differences Δₛᵏ Δᵣˡ of the homogeneous net, then the coefficients T_kl.
+        let net = |i: usize, j: usize| self.homogeneous[i * (n + 1) + j].map(S::from_interval);
+        let mut t = vec![[z; 4]; (m + 1) * (n + 1)];
+        let mut bs = vec![z; m + 1];
+        let mut br = vec![z; n + 1];
+        for k in 0..=m {
+            bernstein_values(m - k, cs, &mut bs);
+            for l in 0..=n {
+                bernstein_values(n - l, cr, &mut br);
+                let mut acc = [z; 4];
+                for i in 0..=m - k {
+                    for j in 0..=n - l {
+                        let diff = forward_difference(&net, i, j, k, l);
+                        let b = bs[i] * br[j];
+                        for c in 0..4 {
+                            acc[c] = acc[c] + b * diff[c];
+                        }
+                    }
+                }
+                let scale = S::from_f64(binomial(m, k) * binomial(n, l));
+                t[k * (n + 1) + l] = acc.map(|x| x * scale);
+            }
+        }
+        // H, H_s, H_r by Horner in (ds, dr).
+        let mut h = [z; 4];
+        let mut hs = [z; 4];
+        let mut hr = [z; 4];
+        for k in (0..=m).rev() {
+            let mut row = [z; 4];
+            let mut row_r = [z; 4];
+            for l in (0..=n).rev() {
+                let c = t[k * (n + 1) + l];
+                for x in 0..4 {
+                    row[x] = row[x] * dr + c[x];
+                    if l >= 1 {
+                        row_r[x] = row_r[x] * dr + c[x] * S::from_f64(l as f64);
+                    }
+                }
+            }
+            for x in 0..4 {
+                h[x] = h[x] * ds + row[x];
+                hr[x] = hr[x] * ds + row_r[x];
+                if k >= 1 {
+                    hs[x] = hs[x] * ds + row[x] * S::from_f64(k as f64);
+                }
+            }
+        }
+        let w = h[3];
+        let (mut a, mut b) = ([z; 3], [z; 3]);
+        for c in 0..3 {
+            a[c] = (hs[c] * w - h[c] * hs[3]) * ku;
+            b[c] = (hr[c] * w - h[c] * hr[3]) * kv;
+        }
+        (a, b, w.sqr().sqrt().sqr())
+    }
+
     /// Fast `f64` point and derivatives from the midpoint net (non-rigorous).
     pub fn derivs_f64(&self, u: f64, v: f64) -> PatchDerivs<f64> {
         let (s, r, ku, kv) = self.normalise(u, v);
@@ -404,6 +525,100 @@ fn bernstein_values<S: Scalar>(deg: usize, t: S, b: &mut [S]) {
             b[i] = one_minus * b[i] + t * b[i - 1];
         }
         b[0] = one_minus * b[0];
+    }
+}
+
+/// The binomial coefficient `C(n, k)` (exact in `f64` for the degrees of a patch).
+fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+/// The forward difference `Δₛᵏ Δᵣˡ` of a net at `(i, j)`: `Σ (−1)^{k−a+l−b} C(k,a) C(l,b) net(i+a, j+b)`.
+fn forward_difference<S: Scalar>(
+    net: &impl Fn(usize, usize) -> [S; 4],
+    i: usize,
+    j: usize,
+    k: usize,
+    l: usize,
+) -> [S; 4] {
+    let z = S::zero();
+    let mut out = [z; 4];
+    for a in 0..=k {
+        for b in 0..=l {
+            let c = binomial(k, a) * binomial(l, b);
+            let sign = if (k - a + l - b).is_multiple_of(2) {
+                c
+            } else {
+                -c
+            };
+            let p = net(i + a, j + b);
+            let f = S::from_f64(sign);
+            for x in 0..4 {
+                out[x] = out[x] + f * p[x];
+            }
+        }
+    }
+    out
+}
+
+/// Bernstein basis values `B_i^deg(t)` and their first derivatives in `t`.
+fn bernstein_first<S: Scalar>(deg: usize, t: S, b: &mut [S], d1: &mut [S]) {
+    // Basis of level deg − 1, then B'_i = deg(B_{i−1} − B_i) on it, then raise once more.
+    bernstein_values(deg - 1, t, b);
+    b[deg] = S::zero();
+    let c = S::from_f64(deg as f64);
+    for i in 0..=deg {
+        let a = if i >= 1 { b[i - 1] } else { S::zero() };
+        d1[i] = c * (a - b[i]);
+    }
+    let one_minus = S::one() - t;
+    b[deg] = t * b[deg - 1];
+    for i in (1..deg).rev() {
+        b[i] = one_minus * b[i] + t * b[i - 1];
+    }
+    b[0] = one_minus * b[0];
+}
+
+/// Homogeneous point and its first partials in the normalised parameters: `[H, H_s, H_r]`.
+#[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
+fn homogeneous_first<S: Scalar>(
+    [m, n]: [usize; 2],
+    s: S,
+    r: S,
+    coeff: impl Fn(usize) -> [S; 4],
+) -> [[S; 4]; 3] {
+    let z = S::zero();
+    let sum = |bu: &[S], du: &[S], bv: &[S], dv: &[S]| {
+        let mut out = [[z; 4]; 3];
+        for i in 0..=m {
+            let mut row = [[z; 4]; 2];
+            for j in 0..=n {
+                let p = coeff(i * (n + 1) + j);
+                for c in 0..4 {
+                    row[0][c] = row[0][c] + bv[j] * p[c];
+                    row[1][c] = row[1][c] + dv[j] * p[c];
+                }
+            }
+            for c in 0..4 {
+                out[0][c] = out[0][c] + bu[i] * row[0][c];
+                out[1][c] = out[1][c] + du[i] * row[0][c];
+                out[2][c] = out[2][c] + bu[i] * row[1][c];
+            }
+        }
+        out
+    };
+    if m.max(n) <= STACK_DEGREE {
+        let mut buf = [[z; STACK_DEGREE + 1]; 4];
+        let [bu, du, bv, dv] = &mut buf;
+        bernstein_first(m, s, bu, du);
+        bernstein_first(n, r, bv, dv);
+        sum(bu, du, bv, dv)
+    } else {
+        let (mut bu, mut du) = (vec![z; m + 1], vec![z; m + 1]);
+        let (mut bv, mut dv) = (vec![z; n + 1], vec![z; n + 1]);
+        bernstein_first(m, s, &mut bu, &mut du);
+        bernstein_first(n, r, &mut bv, &mut dv);
+        sum(&bu, &du, &bv, &dv)
     }
 }
 

@@ -159,25 +159,36 @@ impl TaylorAd {
                     }
                 }
                 Op::Const(c) => self.coef[v * s] = c,
+                // The centre is the box's midpoint, an exact double: a thin constant.
+                Op::Centre(j) => self.coef[v * s] = point(y0[j].mid()),
                 _ => {}
             }
         }
         let ops = &self.tape.ops;
+        let tc = &self.tape.time_constant;
         for i in 0..order {
             for (v, op) in ops.iter().enumerate() {
+                // Time-constant operations have only their value (coefficient 0).
+                if tc[v] && i > 0 {
+                    continue;
+                }
                 if i < tight_below {
-                    coef_step::<InariDot>(ops, &mut self.coef, s, v, *op, i)?;
+                    coef_step::<InariDot>(tc, &mut self.coef, s, v, *op, i)?;
                 } else {
-                    coef_step::<DotAcc>(ops, &mut self.coef, s, v, *op, i)?;
+                    coef_step::<DotAcc>(tc, &mut self.coef, s, v, *op, i)?;
                 }
             }
             let jac_here = with_jacobian && i + 1 < order;
             if jac_here {
                 for (v, op) in ops.iter().enumerate() {
+                    // Neither constants nor the centre depend on the initial value.
+                    if tc[v] {
+                        continue;
+                    }
                     if i < tight_below {
-                        deriv_step::<InariDot>(ops, &self.coef, &mut self.dcoef, s, n, v, *op, i);
+                        deriv_step::<InariDot>(tc, &self.coef, &mut self.dcoef, s, n, v, *op, i);
                     } else {
-                        deriv_step::<DotAcc>(ops, &self.coef, &mut self.dcoef, s, n, v, *op, i);
+                        deriv_step::<DotAcc>(tc, &self.coef, &mut self.dcoef, s, n, v, *op, i);
                     }
                 }
             }
@@ -228,13 +239,14 @@ impl TaylorAd {
     }
 }
 
-fn is_const(ops: &[Op], a: u32) -> bool {
-    matches!(ops[a as usize], Op::Const(_))
+/// Whether operand `a` is constant in time (all its coefficients above the 0-th vanish).
+fn is_const(tc: &[bool], a: u32) -> bool {
+    tc[a as usize]
 }
 
 /// Computes coefficient `i` of operation `v` from coefficients `0..=i` of its operands.
 fn coef_step<D: IntervalDot>(
-    ops: &[Op],
+    ops: &[bool],
     coef: &mut [Interval],
     s: usize,
     v: usize,
@@ -245,7 +257,7 @@ fn coef_step<D: IntervalDot>(
     let c = &mut rest[..s];
     let ser = |a: u32| &done[a as usize * s..a as usize * s + s];
     match op {
-        Op::Input(_) | Op::Const(_) => {}
+        Op::Input(_) | Op::Const(_) | Op::Centre(_) => {}
         Op::Add(a, b) => c[i] = ser(a)[i] + ser(b)[i],
         Op::Sub(a, b) => c[i] = ser(a)[i] - ser(b)[i],
         Op::Neg(a) => c[i] = -ser(a)[i],
@@ -318,7 +330,7 @@ fn coef_step<D: IntervalDot>(
 /// Computes the `n` partial derivatives of coefficient `i` of operation `v`.
 #[allow(clippy::too_many_arguments)]
 fn deriv_step<D: IntervalDot>(
-    ops: &[Op],
+    ops: &[bool],
     coef: &[Interval],
     dcoef: &mut [Interval],
     s: usize,
@@ -334,7 +346,7 @@ fn deriv_step<D: IntervalDot>(
         let d = |a: u32| &done[(a as usize * n + l) * s..(a as usize * n + l) * s + s];
         let dc = &mut rest[l * s..l * s + s];
         match op {
-            Op::Input(_) | Op::Const(_) => {}
+            Op::Input(_) | Op::Const(_) | Op::Centre(_) => {}
             Op::Add(a, b) => dc[i] = d(a)[i] + d(b)[i],
             Op::Sub(a, b) => dc[i] = d(a)[i] - d(b)[i],
             Op::Neg(a) => dc[i] = -d(a)[i],

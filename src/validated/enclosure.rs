@@ -218,6 +218,75 @@ fn tighten(
     })
 }
 
+/// Tightens the remainder coefficient of a proven a-priori enclosure: the solutions visit, over
+/// the piece `[tₘ, tₘ₊₁]` of `[0, h]`, only `Zₘ = (Σ_{i<k} yᵢ([y]) tⁱ + y_k([ỹ]) tᵏ) ∩ [ỹ]`, so the
+/// Lagrange remainder `y_k(y(ξ))`, `ξ ∈ [0, h]`, lies in the hull of the `y_k(Zₘ)` (and in
+/// `y_k([ỹ])`; the result is the intersection). Interval Taylor coefficients over a box grow much
+/// faster than linearly with its size, so `pieces` boxes a `pieces`-th of the length give a far
+/// smaller remainder, hence longer steps. Falls back to the given coefficient where an expansion
+/// fails.
+pub(crate) fn refine_remainder(
+    ad: &mut TaylorAd,
+    exp_box: &Expansion,
+    k: usize,
+    h: f64,
+    apriori: &Apriori,
+    pieces: usize,
+    scratch: &mut Expansion,
+) -> Vec<Interval> {
+    let rem = &apriori.remainder_coeff;
+    let bounds: Vec<f64> = (0..=pieces)
+        .map(|m| {
+            if m == pieces {
+                h
+            } else {
+                h * m as f64 / pieces as f64
+            }
+        })
+        .collect();
+    let mut hull: Option<Vec<Interval>> = None;
+    for m in 0..pieces {
+        let Some(t) = interval(bounds[m], bounds[m + 1]) else {
+            return rem.clone();
+        };
+        let z: Vec<Interval> = taylor_poly(exp_box, k, t, Some(rem))
+            .iter()
+            .zip(&apriori.boxed)
+            .map(|(p, b)| {
+                let c = p.intersection(*b);
+                if c.is_empty() {
+                    *b
+                } else {
+                    c
+                }
+            })
+            .collect();
+        if ad.expand(&z, k, false, scratch).is_err() {
+            return rem.clone();
+        }
+        let c = scratch.coeff(k);
+        hull = Some(match hull {
+            None => c.to_vec(),
+            Some(hv) => hv.iter().zip(c).map(|(a, b)| a.convex_hull(*b)).collect(),
+        });
+    }
+    match hull {
+        Some(hv) => hv
+            .iter()
+            .zip(rem)
+            .map(|(a, r)| {
+                let c = a.intersection(*r);
+                if c.is_empty() {
+                    *r
+                } else {
+                    c
+                }
+            })
+            .collect(),
+        None => rem.clone(),
+    }
+}
+
 /// The interval `[−r, r]` (r ≥ 0; non-finite r gives the whole line).
 pub fn symmetric(r: f64) -> Interval {
     if r.is_finite() {

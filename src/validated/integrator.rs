@@ -1,21 +1,26 @@
 //! The driver: step-size control, phase I, phase II (mean-value form + Lohner QR), output.
 //!
 //! One step from `t` with initial set `x̂ + A·[r]` (interval hull `[y]`):
-//! 1. expand at the centre `x̂` (coefficients only) and over `B = hull([y], x̂)` (coefficients to
-//!    order `k` and Jacobians `Jᵢ`, `i < k`);
-//! 2. step size `h = min_{i ∈ {k−1, k}, i ≥ 2} (ε/‖yᵢ(x̂)‖∞)^{1/i}`, `ε = tol·max(1, ‖x̂‖∞)`, then
+//! 1. expand over `B = hull([y], x̂)` (coefficients to order `k`);
+//! 2. step size `h = min_{i ∈ {k−1, k}, i ≥ 2} (ε/‖mid yᵢ(B)‖∞)^{1/i}` (the midpoints estimate
+//!    the coefficients at the centre), `ε = tol·max(1, ‖x̂‖∞)`, then
 //!    scaled by the ratio accepted at the previous step, capped by `h_max` and the time left;
 //! 3. phase I ([`prove_apriori`]) proves `[ỹ]` over `[t, t + h]`; on failure `h` shrinks by 0.7
 //!    until `h_min`, below which the integrator stops with [`Error::StepFailed`]; if the validated
 //!    remainder `hᵏ·‖y_k([ỹ])‖` exceeds ε (or 1e-9 of the set's width, if larger), `h` shrinks
 //!    and phase I runs again (at most 6 times);
-//! 4. phase II: `u = Σ_{i<k} yᵢ(x̂) hⁱ + hᵏ·y_k([ỹ])`, `S = Σ_{i<k} Jᵢ hⁱ`; then every solution at
-//!    `t + h` lies in `u + S·A·[r]` (mean-value theorem over the convex box `B`, Taylor with the
-//!    Lagrange remainder over `[ỹ]`), which the [`LohnerSet`] update re-encloses without wrapping;
-//!    the end box is the hull of the new set intersected with `u + S·([y] − x̂)` and `[ỹ]`.
+//! 4. phase II: `u = Σ_{i<p} yᵢ(x̂) hⁱ + Σ_{p≤i<k} yᵢ(B) hⁱ + hᵏ·y_k([ỹ])`, `S = Σ_{i<p} Jᵢ hⁱ`;
+//!    then every solution at `t + h` lies in `u + S·A·[r]` (mean-value theorem over the convex box
+//!    `B` for the orders below `p`, the range over `B` for the others, Taylor with the Lagrange
+//!    remainder over `[ỹ]`), which the [`LohnerSet`] update re-encloses without wrapping; the end
+//!    box is the hull of the new set intersected with `u + S·([y] − x̂)` and `[ỹ]`. `p ≤ k` is the
+//!    smallest order for which the widths `Σ_{p≤i<k} w(yᵢ(B)) hⁱ` (the part that wraps) stay below
+//!    a tenth of the remainder target; the Jacobians, `n` times the cost of the coefficients, are
+//!    then computed to order `p` only (on thin sets `p` is a few units, not `k`), and so is the
+//!    expansion at the centre `x̂`.
 
 use super::ad::{DomainError, Expansion, TaylorAd};
-use super::enclosure::prove_apriori;
+use super::enclosure::{prove_apriori, refine_remainder};
 use super::lohner::{mat_mul, mat_vec, LohnerSet};
 use super::record::StepRecord;
 use super::system::OdeSystem;
@@ -133,7 +138,9 @@ pub struct Integrator {
     options: IntegratorOptions,
     exp_center: Expansion,
     exp_box: Expansion,
+    exp_jac: Expansion,
     scratch: Expansion,
+    remainder_pieces: usize,
 }
 
 impl Integrator {
@@ -164,8 +171,20 @@ impl Integrator {
             options,
             exp_center: Expansion::default(),
             exp_box: Expansion::default(),
+            exp_jac: Expansion::default(),
             scratch: Expansion::default(),
+            remainder_pieces: 1,
         })
+    }
+
+    /// Re-encloses a remainder that misses its target over `pieces` sub-intervals of the step
+    /// before shrinking the step (1, the default, never does). Interval Taylor coefficients over
+    /// a box grow much faster than linearly with its size, so this buys longer steps for `pieces`
+    /// more expansions. Measured on the certified intersection ODE (order 20): 2 pieces make the
+    /// steps ≈ 1.25× and 4 pieces ≈ 1.4× longer, at ≈ 1.2× and ≈ 1.6× the total time. `pieces`
+    /// is clamped to `1..=64`.
+    pub fn set_remainder_pieces(&mut self, pieces: usize) {
+        self.remainder_pieces = pieces.clamp(1, 64);
     }
 
     /// The options in use.
@@ -257,23 +276,21 @@ impl Integrator {
             .map(|(b, c)| b.convex_hull(*c))
             .collect();
         self.ad
-            .expand_tight(&center, k, false, &mut self.exp_center)
-            .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
-        self.ad
-            .expand(&range, k, true, &mut self.exp_box)
+            .expand(&range, k, false, &mut self.exp_box)
             .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
 
-        // Step size from the last two terms at the centre.
+        // Step size from the last two terms, estimated at the centre by the midpoints of their
+        // ranges over B (the expansion at the centre itself is needed to order p only, below).
         let scale = state.set.center.iter().fold(1.0f64, |m, c| m.max(c.abs()));
         let eps = self.options.tolerance * scale;
         let mut h = self.options.h_max;
         // (The first-order term is skipped for k ≥ 2: (ε/‖y₁‖)¹ would force h ≈ ε.)
         for i in [k.saturating_sub(1).max(2).min(k), k] {
             let norm = self
-                .exp_center
+                .exp_box
                 .coeff(i)
                 .iter()
-                .fold(0.0f64, |m, c| m.max(c.mag()));
+                .fold(0.0f64, |m, c| m.max(c.mid().abs()));
             if norm > 0.0 {
                 h = h.min((eps / norm).powf(1.0 / i as f64));
             }
@@ -306,11 +323,27 @@ impl Integrator {
                 h_try,
                 &mut self.scratch,
             ) {
-                Ok(a) => {
+                Ok(mut a) => {
                     // Remainder control: the interval remainder over the a-priori box can be far
-                    // larger than the point estimate used above; shrink until it meets ε.
-                    let rem = a.remainder_coeff.iter().fold(0.0f64, |m, c| m.max(c.mag()))
-                        * h_try.powi(k as i32);
+                    // larger than the point estimate used above; re-enclose it over pieces of the
+                    // step if needed, then shrink until it meets ε.
+                    let rem_of = |a: &super::enclosure::Apriori| {
+                        a.remainder_coeff.iter().fold(0.0f64, |m, c| m.max(c.mag()))
+                            * h_try.powi(k as i32)
+                    };
+                    let mut rem = rem_of(&a);
+                    if rem > rem_target && self.remainder_pieces > 1 {
+                        a.remainder_coeff = refine_remainder(
+                            &mut self.ad,
+                            &self.exp_box,
+                            k,
+                            h_try,
+                            &a,
+                            self.remainder_pieces,
+                            &mut self.scratch,
+                        );
+                        rem = rem_of(&a);
+                    }
                     if rem <= rem_target
                         || shrinks >= MAX_REMAINDER_SHRINKS
                         || h_try <= self.options.h_min
@@ -339,21 +372,37 @@ impl Integrator {
         let hp = h_iv;
         let h = h_iv.sup();
         let hk = hp.powi(k as i32);
-        let mut u: Vec<Interval> = apriori.remainder_coeff.iter().map(|r| *r * hk).collect();
-        {
-            let mut poly = self.exp_center.coeff(k - 1).to_vec();
-            for i in (0..k - 1).rev() {
-                for (p, c) in poly.iter_mut().zip(self.exp_center.coeff(i)) {
-                    *p = *p * hp + *c;
+        // Mean-value form for the orders below p only: for i ≥ p the range yᵢ([y]) itself
+        // enters u (a box, so it wraps, but its width times hⁱ is below a tenth of the
+        // remainder target), which saves the Jacobians' O(n·k²) recurrences above order p.
+        let p = self.jacobian_order(k, h, rem_target);
+        self.ad
+            .expand(&range, p, true, &mut self.exp_jac)
+            .map_err(|e| fail(state, h, StepFailure::Domain(e)))?;
+        self.ad
+            .expand_tight(&center, p, false, &mut self.exp_center)
+            .map_err(|e| fail(state, h, StepFailure::Domain(e)))?;
+        let low_high: Vec<&[Interval]> = (0..k)
+            .map(|i| {
+                if i < p {
+                    self.exp_center.coeff(i)
+                } else {
+                    self.exp_box.coeff(i)
                 }
-            }
-            for (uj, pj) in u.iter_mut().zip(&poly) {
-                *uj += *pj;
+            })
+            .collect();
+        let mut poly = low_high[k - 1].to_vec();
+        for c in low_high[..k - 1].iter().rev() {
+            for (pj, cj) in poly.iter_mut().zip(c.iter()) {
+                *pj = *pj * hp + *cj;
             }
         }
-        let mut s = self.exp_box.jacobian(k - 1).to_vec();
-        for i in (0..k - 1).rev() {
-            for (sv, jv) in s.iter_mut().zip(self.exp_box.jacobian(i)) {
+        let u: Vec<Interval> = (0..n)
+            .map(|j| apriori.remainder_coeff[j] * hk + poly[j])
+            .collect();
+        let mut s = self.exp_jac.jacobian(p - 1).to_vec();
+        for i in (0..p - 1).rev() {
+            for (sv, jv) in s.iter_mut().zip(self.exp_jac.jacobian(i)) {
                 *sv = *sv * hp + *jv;
             }
         }
@@ -391,8 +440,8 @@ impl Integrator {
             coeffs: (0..k).map(|i| self.exp_box.coeff(i).to_vec()).collect(),
             remainder_coeff: apriori.remainder_coeff,
             method: apriori.method,
-            center_coeffs: (0..k).map(|i| self.exp_center.coeff(i).to_vec()).collect(),
-            jacobians: (0..k).map(|i| self.exp_box.jacobian(i).to_vec()).collect(),
+            center_coeffs: low_high.iter().map(|c| c.to_vec()).collect(),
+            jacobians: (0..p).map(|i| self.exp_jac.jacobian(i).to_vec()).collect(),
             basis,
             r: state.set.r.clone(),
         };
@@ -403,6 +452,30 @@ impl Integrator {
         state.set = next;
         state.boxed = end;
         Ok(record)
+    }
+}
+
+impl Integrator {
+    /// The smallest order `p ∈ 1..=k` such that the widths of the range coefficients above it,
+    /// `Σ_{p ≤ i < k} w(yᵢ([y]))·hⁱ`, stay below a tenth of the remainder target.
+    fn jacobian_order(&self, k: usize, h: f64, rem_target: f64) -> usize {
+        let mut tail = 0.0;
+        let mut p = k;
+        while p > 1 {
+            let w = self
+                .exp_box
+                .coeff(p - 1)
+                .iter()
+                .fold(0.0f64, |m, c| m.max(c.wid()));
+            let next = tail + w * h.powi(p as i32 - 1);
+            // (A NaN width fails the test and keeps the Jacobians.)
+            if next.is_nan() || next > 0.1 * rem_target {
+                break;
+            }
+            tail = next;
+            p -= 1;
+        }
+        p
     }
 }
 

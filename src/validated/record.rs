@@ -33,9 +33,10 @@ pub struct StepRecord {
     pub remainder_coeff: Vec<Interval>,
     /// Which phase-I test proved the a-priori box.
     pub method: EnclosureMethod,
-    /// Mean-value data: Taylor coefficients at the centre `x̂` of the initial set.
+    /// Mean-value data: Taylor coefficients at the centre `x̂` of the initial set for `i < p`, and
+    /// over the initial box for `p ≤ i < k` (`p` = the number of Jacobians).
     pub(crate) center_coeffs: Vec<Vec<Interval>>,
-    /// Mean-value data: `Jᵢ` (`i < k`) row-major over the initial box.
+    /// Mean-value data: `Jᵢ` (`i < p`, `1 ≤ p ≤ k`) row-major over the initial box.
     pub(crate) jacobians: Vec<Vec<Interval>>,
     /// Mean-value data: the initial set is `x̂ + A·[r]`; this is `A` (interval copy of exact values).
     pub(crate) basis: Vec<Interval>,
@@ -65,7 +66,6 @@ impl StepRecord {
         }
         let t = interval(a, b).unwrap_or(Interval::ENTIRE);
         let n = self.start.len();
-        let k = self.order();
         let horner = |cs: &[Vec<Interval>], top: &[Interval]| -> Vec<Interval> {
             let mut acc = top.to_vec();
             for c in cs.iter().rev() {
@@ -77,9 +77,10 @@ impl StepRecord {
         };
         let direct = horner(&self.coeffs, &self.remainder_coeff);
         let central = horner(&self.center_coeffs, &self.remainder_coeff);
-        // S(τ) = Σ_{i<k} Jᵢ τⁱ, by Horner on matrices.
-        let mut s = self.jacobians[k - 1].clone();
-        for jac in self.jacobians[..k - 1].iter().rev() {
+        // S(τ) = Σ_{i<p} Jᵢ τⁱ, by Horner on matrices (orders p..k are ranges in `central`).
+        let p = self.jacobians.len();
+        let mut s = self.jacobians[p - 1].clone();
+        for jac in self.jacobians[..p - 1].iter().rev() {
             for (sv, jv) in s.iter_mut().zip(jac) {
                 *sv = *sv * t + *jv;
             }

@@ -24,6 +24,9 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 pub enum Op {
     /// The `j`-th component of the state.
     Input(usize),
+    /// The `j`-th component of the expansion's centre (the midpoint of the box being expanded):
+    /// a value constant in time that does not depend on the initial value.
+    Centre(usize),
     /// A constant, enclosed by an interval.
     Const(Interval),
     /// `a + b`.
@@ -173,6 +176,8 @@ pub struct Tape {
     pub ops: Vec<Op>,
     /// Index of the operation giving each component `f_j`.
     pub outputs: Vec<usize>,
+    /// Whether operation `v` is constant in time (built from constants and the centre only).
+    pub time_constant: Vec<bool>,
     /// The dimension `n`.
     pub dim: usize,
 }
@@ -189,7 +194,12 @@ impl Tape {
         }
         let saved = RECORDING.with(|t| std::mem::take(&mut *t.borrow_mut()));
         let inputs: Vec<Var> = (0..dim).map(|j| push(Op::Input(j))).collect();
-        let out = system.eval(&inputs);
+        let out = if system.uses_centre() {
+            let centre: Vec<Var> = (0..dim).map(|j| push(Op::Centre(j))).collect();
+            system.eval_centred(&inputs, &centre)
+        } else {
+            system.eval(&inputs)
+        };
         let ops = RECORDING.with(|t| std::mem::replace(&mut *t.borrow_mut(), saved));
         if out.len() != dim {
             return Err(Error::BadIntegratorSetup(format!(
@@ -197,8 +207,96 @@ impl Tape {
                 out.len()
             )));
         }
-        let outputs = out.iter().map(|v| v.index()).collect();
-        Ok(Tape { ops, outputs, dim })
+        let outputs: Vec<usize> = out.iter().map(|v| v.index()).collect();
+        Ok(Tape::new(ops, outputs, dim).simplified())
+    }
+
+    /// The same program without dead operations (not needed by any output) and with repeated
+    /// operations (same kind, same operands, or equal constants) merged. Inputs keep their
+    /// positions `0..dim`; the outputs' values are unchanged (the same operations on the same
+    /// operands, so the same enclosures).
+    pub fn simplified(&self) -> Tape {
+        let n = self.ops.len();
+        let mut live = vec![false; n];
+        for &o in &self.outputs {
+            live[o] = true;
+        }
+        for v in (0..n).rev() {
+            if !live[v] {
+                continue;
+            }
+            match self.ops[v] {
+                Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => {
+                    live[a as usize] = true;
+                    live[b as usize] = true;
+                }
+                Op::Neg(a) | Op::Sqr(a) | Op::Sqrt(a) => live[a as usize] = true,
+                Op::Input(_) | Op::Centre(_) | Op::Const(_) => {}
+            }
+        }
+        let mut map = vec![u32::MAX; n];
+        let mut ops: Vec<Op> = Vec::new();
+        let mut seen: std::collections::HashMap<(u8, u64, u64), u32> =
+            std::collections::HashMap::new();
+        for v in 0..n {
+            let is_input = matches!(self.ops[v], Op::Input(_));
+            if !live[v] && !is_input {
+                continue;
+            }
+            let r = |a: u32| map[a as usize];
+            let op = match self.ops[v] {
+                Op::Add(a, b) => Op::Add(r(a), r(b)),
+                Op::Sub(a, b) => Op::Sub(r(a), r(b)),
+                Op::Mul(a, b) => Op::Mul(r(a), r(b)),
+                Op::Div(a, b) => Op::Div(r(a), r(b)),
+                Op::Neg(a) => Op::Neg(r(a)),
+                Op::Sqr(a) => Op::Sqr(r(a)),
+                Op::Sqrt(a) => Op::Sqrt(r(a)),
+                other => other,
+            };
+            let key = match op {
+                Op::Input(j) => (0, j as u64, 0),
+                Op::Const(c) => (1, c.inf().to_bits(), c.sup().to_bits()),
+                Op::Add(a, b) => (2, a.min(b) as u64, a.max(b) as u64),
+                Op::Sub(a, b) => (3, a as u64, b as u64),
+                Op::Mul(a, b) => (4, a.min(b) as u64, a.max(b) as u64),
+                Op::Div(a, b) => (5, a as u64, b as u64),
+                Op::Neg(a) => (6, a as u64, 0),
+                Op::Sqr(a) => (7, a as u64, 0),
+                Op::Sqrt(a) => (8, a as u64, 0),
+                Op::Centre(j) => (9, j as u64, 0),
+            };
+            map[v] = *seen.entry(key).or_insert_with(|| {
+                ops.push(op);
+                (ops.len() - 1) as u32
+            });
+        }
+        Tape::new(
+            ops,
+            self.outputs.iter().map(|&o| map[o] as usize).collect(),
+            self.dim,
+        )
+    }
+
+    /// A tape from its parts (inputs first), with the time-constant flags derived.
+    pub fn new(ops: Vec<Op>, outputs: Vec<usize>, dim: usize) -> Tape {
+        let mut tc: Vec<bool> = Vec::with_capacity(ops.len());
+        for op in &ops {
+            let c = |a: u32| tc[a as usize];
+            let flag = match *op {
+                Op::Input(_) => false,
+                Op::Const(_) | Op::Centre(_) => true,
+                Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => c(a) && c(b),
+                Op::Neg(a) | Op::Sqr(a) | Op::Sqrt(a) => c(a),
+            };
+            tc.push(flag);
+        }
+        Tape {
+            ops,
+            outputs,
+            dim,
+            time_constant: tc,
+        }
     }
 }
 

@@ -1,0 +1,75 @@
+//! Benchmarks of certified branch tracing: one whole branch of the sphere-patch/plane circle and
+//! of the bicubic transversal scene at the default `CertifyOptions`, and one Taylor expansion of
+//! the intersection ODE (order 20, with and without Jacobians) over a small box.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use ssitrace::certified::ode::TransversalOde;
+use ssitrace::certified::{certify_branch, CertifyOptions};
+use ssitrace::io::scene::Scene;
+use ssitrace::pipeline::{run_scene, RunOptions};
+use ssitrace::scalar::interval;
+use ssitrace::validated::tape::Tape;
+use ssitrace::validated::{Expansion, TaylorAd};
+use std::hint::black_box;
+use std::path::Path;
+
+fn scene_and_start(file: &str) -> (Scene, [f64; 4]) {
+    let scene = Scene::from_path(Path::new(file)).expect("scene");
+    let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
+    let b = &outcome.intersection.branches[0];
+    let pt = b.points[b.points.len() / 2];
+    (scene, [pt.p[0], pt.p[1], pt.q[0], pt.q[1]])
+}
+
+fn bench_certify(c: &mut Criterion) {
+    let mut group = c.benchmark_group("certify_branch");
+    group.sample_size(10);
+    for (name, file) in [
+        ("sphere_patch_plane", "scenes/sphere_patch_plane.json"),
+        ("bicubic_transversal", "scenes/bicubic_transversal.json"),
+    ] {
+        let (scene, start) = scene_and_start(file);
+        let [p, q] = &scene.surfaces;
+        let opts = CertifyOptions::default();
+        let steps = certify_branch(p, q, start, &opts)
+            .expect("certify")
+            .boxes
+            .len();
+        println!("{name}: {steps} steps per branch");
+        group.bench_function(name, |b| {
+            b.iter(|| certify_branch(p, q, black_box(start), &opts).expect("certify"))
+        });
+    }
+    group.finish();
+}
+
+fn bench_expand(c: &mut Criterion) {
+    let (scene, start) = scene_and_start("scenes/sphere_patch_plane.json");
+    let [p, q] = &scene.surfaces;
+    let ode = TransversalOde {
+        p,
+        q,
+        orientation: 1.0,
+    };
+    let mut ad = TaylorAd::new(Tape::record(&ode).expect("tape"));
+    let y0: Vec<_> = start
+        .iter()
+        .map(|x| interval(x - 1e-3, x + 1e-3).expect("box"))
+        .collect();
+    let mut out = Expansion::default();
+    c.bench_function("transversal_expand_order20", |b| {
+        b.iter(|| {
+            ad.expand(black_box(&y0), 20, false, &mut out)
+                .expect("expand")
+        })
+    });
+    c.bench_function("transversal_expand_order20_jacobian", |b| {
+        b.iter(|| {
+            ad.expand(black_box(&y0), 20, true, &mut out)
+                .expect("expand")
+        })
+    });
+}
+
+criterion_group!(benches, bench_certify, bench_expand);
+criterion_main!(benches);
