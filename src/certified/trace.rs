@@ -35,7 +35,9 @@ pub struct CertifyOptions {
     pub step_tolerance: f64,
     /// Smallest step before the tracer reports branches closer than can be resolved.
     pub h_min: f64,
-    /// Largest step (arc length).
+    /// Largest step (arc length). The tracer also caps it at 1/8 of the smaller patch's model
+    /// size, so a step never reaches far outside the domains (where interval bounds of the patch
+    /// extension are loose).
     pub h_max: f64,
     /// Step budget per half branch.
     pub max_steps: usize,
@@ -217,7 +219,7 @@ fn trace_half(
             order: opts.order,
             tolerance: opts.step_tolerance,
             h_min: opts.h_min,
-            h_max: opts.h_max,
+            h_max: h_max_for(p, q, opts),
             qr: true,
             max_steps: usize::MAX,
         },
@@ -244,7 +246,7 @@ fn trace_half(
             };
             return Ok(half);
         }
-        let limit = state.t + opts.h_max;
+        let limit = state.t + integ.options().h_max;
         let rec = match integ.step(&mut state, limit) {
             Ok(r) => r,
             Err(Error::StepFailed { step, reason, .. }) => {
@@ -325,6 +327,18 @@ fn contract(
             (!out.iter().any(|x| x.is_empty())).then_some(out)
         }
         KrawczykResult::NotProven(_) => None,
+    }
+}
+
+/// The largest step: `opts.h_max`, at most 1/8 of the smaller model-space diameter of the two
+/// patches.
+fn h_max_for(p: &RationalBezierPatch, q: &RationalBezierPatch, opts: &CertifyOptions) -> f64 {
+    let diameter = |b: [Interval; 3]| b.iter().map(|x| x.wid()).fold(0.0, f64::max);
+    let size = diameter(p.bounding_box()).min(diameter(q.bounding_box()));
+    if size.is_finite() && size > 0.0 {
+        opts.h_max.min(0.125 * size)
+    } else {
+        opts.h_max
     }
 }
 
