@@ -491,13 +491,23 @@ fn closes(
             x.sup() < value
         }
     };
-    const PIECES: usize = 8;
-    for m in 0..PIECES {
-        let a = rec.h * m as f64 / PIECES as f64;
-        let b = if m + 1 == PIECES {
+    // Pieces short enough that the curve moves (in parameters) at most a quarter of the
+    // uniqueness box's narrowest free width over one piece, so a crossing fits inside it.
+    let speed = rec
+        .coeffs
+        .get(1)
+        .map_or(1.0, |c| c.iter().map(|x| x.mag()).fold(0.0, f64::max));
+    let narrowest = (0..4)
+        .filter(|&i| i != k)
+        .map(|i| uniq[i].wid())
+        .fold(f64::INFINITY, f64::min);
+    let pieces = ((4.0 * speed * rec.h / narrowest).ceil() as usize).clamp(8, 4096);
+    for m in 0..pieces {
+        let a = rec.h * m as f64 / pieces as f64;
+        let b = if m + 1 == pieces {
             rec.h
         } else {
-            rec.h * (m + 1) as f64 / PIECES as f64
+            rec.h * (m + 1) as f64 / pieces as f64
         };
         let at_a = to4(&rec.enclose_on(a, a)?);
         let piece = to4(&rec.enclose_on(a, b)?);
