@@ -1,11 +1,14 @@
 //! Benchmarks of certified branch tracing: one whole branch of the sphere-patch/plane circle and
-//! of the bicubic transversal scene at the default `CertifyOptions`, and one Taylor expansion of
+//! of the bicubic transversal scene at the default `CertifyOptions`, next to the marcher on the
+//! same branch and the certified trace without contraction (ratios in one process), and one
+//! Taylor expansion of
 //! the intersection ODE (order 20, with and without Jacobians) over a small box.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use ssitrace::certified::ode::TransversalOde;
 use ssitrace::certified::{certify_branch, CertifyOptions};
 use ssitrace::io::scene::Scene;
+use ssitrace::marching::{trace_branch, MarchOptions};
 use ssitrace::pipeline::{run_scene, RunOptions};
 use ssitrace::scalar::interval;
 use ssitrace::validated::tape::Tape;
@@ -38,6 +41,22 @@ fn bench_certify(c: &mut Criterion) {
         println!("{name}: {steps} steps per branch");
         group.bench_function(name, |b| {
             b.iter(|| certify_branch(p, q, black_box(start), &opts).expect("certify"))
+        });
+        // Baselines in the same process: the marcher on the same branch, and the certified
+        // trace without the contraction onto P = Q.
+        let march = MarchOptions {
+            step: scene.options.step,
+            ..MarchOptions::default()
+        };
+        group.bench_function(format!("{name}/march_same_branch"), |b| {
+            b.iter(|| trace_branch(p, q, black_box(start), &march).expect("march"))
+        });
+        let plain = CertifyOptions {
+            contract: false,
+            ..CertifyOptions::default()
+        };
+        group.bench_function(format!("{name}/no_contraction"), |b| {
+            b.iter(|| certify_branch(p, q, black_box(start), &plain).expect("certify"))
         });
     }
     group.finish();
