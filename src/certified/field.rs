@@ -64,8 +64,7 @@ pub trait ScalarSurface {
 
 impl ScalarSurface for crate::geometry::RationalBezierPatch {
     fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3] {
-        let [p, su, sv] = self.first_derivs(u, v);
-        [p, su, sv]
+        self.first_derivs(u, v)
     }
     fn second_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 6] {
         let d = self.eval_derivs(u, v);
