@@ -231,7 +231,7 @@ fn trace_half(
         widths: Vec::new(),
         end: CertifiedEnd::ClosedLoop,
     };
-    let mut crossing_hull: Option<[Interval; 4]> = None;
+    let mut crossing = Crossing::default();
     let scales = pair_widths(&dp, &dq);
     let mut current = *y0;
     loop {
@@ -295,7 +295,7 @@ fn trace_half(
             return Ok(half);
         }
         if let Some(c) = closure {
-            if closes(&rec, &apriori, c, &mut crossing_hull)? {
+            if closes(&rec, &apriori, c, &mut crossing)? {
                 half.end = CertifiedEnd::ClosedLoop;
                 return Ok(half);
             }
@@ -459,24 +459,40 @@ fn tube_piece(p: &RationalBezierPatch, rec: &StepRecord, dir: f64) -> Result<Tub
     })
 }
 
+/// Progress of the loop-closing test along the forward half.
+#[derive(Debug, Default)]
+struct Crossing {
+    /// The curve has been wholly outside the start's uniqueness box for a step.
+    left: bool,
+    /// The enclosure since the curve was last strictly on the returning side (may span steps).
+    hull: Option<[Interval; 4]>,
+}
+
 /// The loop-closing proof for one step: the fixed coordinate `k` crosses its start value `c`,
 /// from the side it returns from to the side it left to, inside the uniqueness box (in the other
-/// coordinates). Then the crossing point is the start point. `hull` carries the enclosure since
+/// coordinates). Then the crossing point is the start point. `state.hull` carries the enclosure since
 /// the curve was last strictly on the returning side (it may span steps).
 fn closes(
     rec: &StepRecord,
     apriori: &[Interval; 4],
     c: Closure,
-    hull: &mut Option<[Interval; 4]>,
+    state: &mut Crossing,
 ) -> Result<bool> {
     let (k, value, uniq, speed) = c;
     let free = |y: &[Interval; 4], f: &dyn Fn(Interval, Interval) -> bool| {
         (0..4).filter(|&i| i != k).all(|i| f(y[i], uniq[i]))
     };
     if !free(apriori, &|a, u| !a.disjoint(u)) {
-        *hull = None;
+        state.left = true;
+        state.hull = None;
         return Ok(false);
     }
+    // No loop lies wholly inside the uniqueness box (it would meet the start value twice), so
+    // nothing can close before the curve has been outside it once: skip the costly test.
+    if !state.left {
+        return Ok(false);
+    }
+    let hull = &mut state.hull;
     let before = |x: Interval| {
         if speed > 0.0 {
             x.sup() < value
