@@ -14,15 +14,9 @@ use ssitrace::marching::{trace_branch, MarchOptions, StepMethod};
 fn bezier_pair() -> (RationalBezierPatch, RationalBezierPatch) {
     let d = Domain::new(-1.0, 1.0, -1.0, 1.0);
     let graph = |z: Vec<(u32, u32, f64)>| {
-        PowerSurface {
-            domain: d,
-            x: vec![(1, 0, 1.0)],
-            y: vec![(0, 1, 1.0)],
-            z,
-            w: None,
-        }
-        .to_bezier()
-        .expect("valid surface")
+        PowerSurface::graph(d, z)
+            .to_bezier()
+            .expect("valid surface")
     };
     let p = graph(vec![
         (2, 0, 1.0),

@@ -10,15 +10,9 @@ use ssitrace::certified::{certify_branch, CertifiedEnd, CertifyOptions};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
 
 fn graph(z: Vec<(u32, u32, f64)>) -> RationalBezierPatch {
-    PowerSurface {
-        domain: Domain::new(-1.0, 1.0, -1.0, 1.0),
-        x: vec![(1, 0, 1.0)],
-        y: vec![(0, 1, 1.0)],
-        z,
-        w: None,
-    }
-    .to_bezier()
-    .expect("valid surface")
+    PowerSurface::graph(Domain::new(-1.0, 1.0, -1.0, 1.0), z)
+        .to_bezier()
+        .expect("valid surface")
 }
 
 #[test]

@@ -19,13 +19,10 @@ fn near(x: Interval, v: f64) -> bool {
 
 /// z = a·(u² + v²) + b·u·v + c·u + d over [−1, 1]² as a Bézier patch.
 fn graph(a: f64, b: f64, c: f64, d: f64) -> RationalBezierPatch {
-    PowerSurface {
-        domain: Domain::new(-1.0, 1.0, -1.0, 1.0),
-        x: vec![(1, 0, 1.0)],
-        y: vec![(0, 1, 1.0)],
-        z: vec![(2, 0, a), (0, 2, a), (1, 1, b), (1, 0, c), (0, 0, d)],
-        w: None,
-    }
+    PowerSurface::graph(
+        Domain::new(-1.0, 1.0, -1.0, 1.0),
+        vec![(2, 0, a), (0, 2, a), (1, 1, b), (1, 0, c), (0, 0, d)],
+    )
     .to_bezier()
     .expect("valid surface")
 }

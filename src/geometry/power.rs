@@ -77,6 +77,25 @@ fn monomial_bernstein(deg: usize, lo: f64, hi: f64, c: &[Vec<Interval>]) -> Vec<
 }
 
 impl PowerSurface {
+    /// The height field `(u, v, z(u, v))` over `domain`, `z` a sum of terms `c·uⁱ·vʲ`.
+    ///
+    /// ```
+    /// use ssitrace::geometry::{Domain, PowerSurface};
+    /// let bowl = PowerSurface::graph(Domain::new(-1.0, 1.0, -1.0, 1.0), vec![(2, 0, 1.0), (0, 2, 1.0)]);
+    /// let patch = bowl.to_bezier()?;
+    /// assert_eq!(patch.degree(), [2, 2]);
+    /// # Ok::<(), ssitrace::Error>(())
+    /// ```
+    pub fn graph(domain: Domain, z: Vec<PowerTerm>) -> Self {
+        PowerSurface {
+            domain,
+            x: vec![(1, 0, 1.0)],
+            y: vec![(0, 1, 1.0)],
+            z,
+            w: None,
+        }
+    }
+
     /// The degree `[m, n]` the Bézier form will have: the largest exponent of `u` and of `v`
     /// over all components, at least 1.
     pub fn degree(&self) -> [usize; 2] {

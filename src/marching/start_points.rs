@@ -325,13 +325,10 @@ mod tests {
 
     /// The graph z = a·(u² + v²) + c·u + d over [−1, 1]², as a Bézier patch.
     fn graph(a: f64, c: f64, d: f64) -> RationalBezierPatch {
-        PowerSurface {
-            domain: Domain::new(-1.0, 1.0, -1.0, 1.0),
-            x: vec![(1, 0, 1.0)],
-            y: vec![(0, 1, 1.0)],
-            z: vec![(2, 0, a), (0, 2, a), (1, 0, c), (0, 0, d), (1, 1, 0.0)],
-            w: None,
-        }
+        PowerSurface::graph(
+            Domain::new(-1.0, 1.0, -1.0, 1.0),
+            vec![(2, 0, a), (0, 2, a), (1, 0, c), (0, 0, d), (1, 1, 0.0)],
+        )
         .to_bezier()
         .unwrap()
     }
