@@ -51,7 +51,7 @@ impl Default for CertifyOptions {
     fn default() -> Self {
         CertifyOptions {
             order: 20,
-            step_tolerance: 1e-13,
+            step_tolerance: 1e-15,
             h_min: 1e-9,
             h_max: 0.25,
             max_steps: 200_000,
