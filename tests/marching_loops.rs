@@ -297,3 +297,55 @@ fn nested_ellipses_close_once_from_any_start() {
     }
     println!("{runs} runs closed once; worst relative arc-length deficit {worst_rel:.1e}");
 }
+
+/// The same S11/S12 loop with crossing enabled: both singular points are reported and crossed
+/// (the circular step keeps to the branch of the right curvature at the tacnode), and the loop
+/// closes exactly once at its start, with rotation index 2 in the parameter domain (the paper's
+/// turning 12.554 ≈ 4π).
+#[test]
+fn s11_s12_loop_closes_once_through_its_singular_points() {
+    let d = Domain::new(-2.0, 2.0, -0.5, 2.5);
+    let s11 = AnalyticSurface::new(d, |u: Jet2, v: Jet2| {
+        [u, v, 0.2 * u.powi(4) + 0.1 * v.powi(4)]
+    });
+    let s12 = AnalyticSurface::new(d, |s: Jet2, w: Jet2| {
+        [s, w, 0.3 * s * s * w - 0.1 * w * w + 0.2 * w.powi(3)]
+    });
+    let opts = MarchOptions {
+        step: 0.1,
+        cross_singular: 8,
+        ..MarchOptions::default()
+    };
+    let b = trace_branch(&s11, &s12, [1.20, 0.97, 1.20, 0.97], &opts).expect("refines");
+    let sing = b
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::Singular)
+        .count();
+    println!(
+        "S11/S12 crossing: {} points, ends {:?}, {} singular events, turning {:.3} / {:.3}",
+        b.branch.points.len(),
+        b.branch.ends,
+        sing,
+        b.turning,
+        b.turning_q
+    );
+    assert_eq!(
+        b.branch.ends,
+        [EndReason::ClosedLoop, EndReason::ClosedLoop]
+    );
+    assert!(sing >= 2, "both singular points reported");
+    // Every point is on the curve h(u, v) = 0.
+    for pt in &b.branch.points {
+        let [u, v] = pt.p;
+        let h = 0.2 * u.powi(4) + 0.1 * v.powi(4) - 0.3 * u * u * v + 0.1 * v * v - 0.2 * v.powi(3);
+        assert!(h.abs() < 1e-8, "off the curve: {h}");
+    }
+    // Traced once: no point except the closing copy comes back to the start.
+    let first = b.branch.points[0].xyz;
+    let n = b.branch.points.len();
+    for pt in &b.branch.points[2..n - 2] {
+        let dist = (V::from(pt.xyz) - V::from(first)).norm();
+        assert!(dist > 0.02, "passes the start again");
+    }
+}

@@ -42,6 +42,11 @@ pub struct MarchOptions {
     pub rotation_tolerance: f64,
     /// Parameter tolerance for "on the domain boundary" / "inside the domain".
     pub domain_tolerance: f64,
+    /// At a singular point (branch point, tangential point) report it, then try to continue
+    /// along the same branch: a circular step of length `L` across it, refined by Newton, kept
+    /// only if it lands on a regular point ahead with a tangent within 45° of the incoming one.
+    /// At most this many crossings per half branch; 0 stops at the first singular point.
+    pub cross_singular: usize,
 }
 
 impl Default for MarchOptions {
@@ -58,6 +63,7 @@ impl Default for MarchOptions {
             first_step_fraction: 0.01,
             rotation_tolerance: 0.5,
             domain_tolerance: 1e-9,
+            cross_singular: 0,
         }
     }
 }

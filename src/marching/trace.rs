@@ -296,6 +296,7 @@ where
     };
     let mut prev: Option<Node> = None;
     let mut cur = *start;
+    let mut crossings = 0;
     loop {
         if half.nodes.len() >= budget {
             half.end = EndReason::PointLimit;
@@ -401,12 +402,81 @@ where
         half.nodes.push(node);
         if node.frame.sine < opts.singular_sine {
             half.events.push(make_event(EventKind::Singular, &node));
-            half.end = EndReason::Singular;
-            return half;
+            match (crossings < opts.cross_singular)
+                .then(|| cross_singular_point(p, q, &cur, &node, opts))
+                .flatten()
+            {
+                Some(beyond) => {
+                    crossings += 1;
+                    add_turn(&mut half.turning, turn(&node.frame, &beyond.frame));
+                    half.nodes.push(beyond);
+                    prev = Some(node);
+                    cur = beyond;
+                    continue;
+                }
+                None => {
+                    half.end = EndReason::Singular;
+                    return half;
+                }
+            }
         }
         prev = Some(cur);
         cur = node;
     }
+}
+
+/// One step of length `L` across the singular point `at` (reached from `before`): a circular
+/// prediction through both (which keeps to the branch of the right curvature at a tacnode),
+/// refined by Newton on the plane through the prediction. Kept only if the point is regular,
+/// ahead, and its tangent turns less than 45° from the incoming one.
+fn cross_singular_point<S1, S2>(
+    p: &S1,
+    q: &S2,
+    before: &Node,
+    at: &Node,
+    opts: &MarchOptions,
+) -> Option<Node>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let incoming = at.frame.xyz - before.frame.xyz;
+    let len = incoming.norm();
+    if len == 0.0 || !len.is_finite() {
+        return None;
+    }
+    let heading = incoming / len;
+    // The tangent at the singular point itself is meaningless: use the chord direction.
+    let mut at_dir = *at;
+    at_dir.frame.tangent = heading;
+    let pred = predict(Some(before), &at_dir, opts, opts.step);
+    let dir = pred.point - at.frame.xyz;
+    let dlen = dir.norm();
+    if dlen == 0.0 || !dlen.is_finite() {
+        return None;
+    }
+    let guess = predict_parameters(p, q, &at.x, &pred.point);
+    let constraint = Constraint::Plane {
+        point: pred.point,
+        normal: dir / dlen,
+    };
+    let r = refine(
+        p,
+        q,
+        guess,
+        constraint,
+        opts.tolerance,
+        opts.max_newton_iterations,
+    )
+    .ok()?;
+    if !inside(&r.x, &p.domain(), &q.domain(), opts.domain_tolerance) {
+        return None;
+    }
+    let chord = p.point(r.x[0], r.x[1]) - at.frame.xyz;
+    let node = node_at(p, q, r.x, r.iterations, Some(chord));
+    let ahead = chord.dot(&heading) > 0.5 * chord.norm();
+    let smooth = node.frame.tangent.dot(&heading) > std::f64::consts::FRAC_1_SQRT_2;
+    (node.frame.sine >= opts.singular_sine && ahead && smooth).then_some(node)
 }
 
 fn check_options(opts: &MarchOptions) -> Result<()> {
