@@ -144,8 +144,10 @@ fn s11_s12_loop_through_branch_and_tangential_points_stops_and_reports() {
     // Singular points of h = 0.2u⁴ + 0.1v⁴ − 0.3u²v + 0.1v² − 0.2v³ = 0 (gradient zero):
     // the tangential point (0, 0) and the branch point (0, 1).
     let singular = [V::new(0.0, 0.0, 0.0), V::new(0.0, 1.0, 0.1)];
+    // Stopping at singular points (crossing off): the branch runs from one to the other.
     let opts = MarchOptions {
         step: 0.1,
+        cross_singular: 0,
         ..MarchOptions::default()
     };
     let b = trace_branch(&s11, &s12, [1.20, 0.97, 1.20, 0.97], &opts).expect("refines");

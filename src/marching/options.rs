@@ -45,7 +45,10 @@ pub struct MarchOptions {
     /// At a singular point (branch point, tangential point) report it, then try to continue
     /// along the same branch: a circular step of length `L` across it, refined by Newton, kept
     /// only if it lands on a regular point ahead with a tangent within 45° of the incoming one.
-    /// At most this many crossings per half branch; 0 stops at the first singular point.
+    /// At most this many crossings per half branch; 0 (the default) stops at the first
+    /// singular point. Opt-in: the closing test does not yet count loops at branch points
+    /// (seed 004's bookkeeping), so on some curves (Fig. 8 from its left start) a crossing march
+    /// goes round until this budget is spent instead of closing.
     pub cross_singular: usize,
 }
 
