@@ -385,10 +385,6 @@ fn classify_failure(
     dp: &Domain,
     dq: &Domain,
 ) -> CertifiedEnd {
-    if let Some(surface) = straddles(y, dp, dq) {
-        // Outside the domain the patch extension is not ours to trace.
-        return CertifiedEnd::Boundary { surface };
-    }
     // Near a singular point the Taylor coefficients blow up (their radius of convergence is the
     // distance to it), so the step collapses at a distance of many steps. Look for `0 ∈ m2` in
     // boxes of radius 10ʲ·h·(1 + speed), j = 0..3, around the current box.
@@ -406,6 +402,16 @@ fn classify_failure(
         if m2.contains(0.0) || m2.is_empty() {
             return CertifiedEnd::Singular { near };
         }
+    }
+    // A box reaching over a boundary does not prove that the curve leaves there (it may only
+    // touch it): say so instead of claiming a boundary end.
+    if let Some(surface) = straddles(y, dp, dq) {
+        return CertifiedEnd::Unproven {
+            reason: format!(
+                "no step could be proven from a box reaching over the boundary of surface {surface} ({reason})"
+            ),
+            near: *y,
+        };
     }
     match reason {
         StepFailure::BelowMinimumStep { .. } => CertifiedEnd::CloseBranches { h, near: *y },
