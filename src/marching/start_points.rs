@@ -12,11 +12,12 @@
 //! no intersection. Leaves where Newton fails are counted as *undecided* and reported, never
 //! silently dropped.
 
+use super::newton::{refine, Constraint};
 use crate::geometry::enclosure::boxes_disjoint;
 use crate::geometry::subdivision::SubPatch;
-use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch, Vec3};
+use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use inari::Interval;
-use nalgebra::{Matrix3, Matrix3x4, Vector3};
+use nalgebra::{Matrix3x4, Vector3};
 
 /// Tuning of the start-point search.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -230,39 +231,22 @@ fn split_direction(piece: &SubPatch) -> usize {
     usize::from(dv * (n as f64) > du * (m as f64))
 }
 
-/// Newton on `A(edge) − B(u, v) = 0` with the boundary parameter of `A` held fixed: three
-/// unknowns, three equations. `x = (a0, a1, b0, b1)` in the parameters of `A` then `B`.
+/// Newton on `A(edge) − B(u, v) = 0`: the marcher's [`refine`] with the boundary parameter of
+/// `A` held fixed. `x = (a0, a1, b0, b1)` in the parameters of `A` then `B`.
 fn edge_newton(
     a: &RationalBezierPatch,
     b: &RationalBezierPatch,
     edge: &SubPatch,
-    mut x: [f64; 4],
+    x: [f64; 4],
     tol: f64,
 ) -> Option<[f64; 4]> {
-    // The free parameter of the edge: 1 (v) when u is fixed (degree 0 in u), else 0.
-    let free = usize::from(edge.degree()[0] == 0);
-    for _ in 0..40 {
-        let da = a.derivs(x[0], x[1]);
-        let db = b.derivs(x[2], x[3]);
-        let f: Vec3 = da.p - db.p;
-        let ds = if free == 1 { da.sv } else { da.su };
-        let jac = Matrix3::from_columns(&[ds, -db.su, -db.sv]);
-        let step = jac.lu().solve(&f)?;
-        x[free] -= step[0];
-        x[2] -= step[1];
-        x[3] -= step[2];
-        if !x.iter().all(|v| v.is_finite()) {
-            return None;
-        }
-        if f.norm() <= tol && step.norm() <= 1e-10 {
-            return Some(x);
-        }
-        if step.norm() <= 1e-15 * (1.0 + x.iter().map(|v| v.abs()).fold(0.0, f64::max)) {
-            let r = (a.point(x[0], x[1]) - b.point(x[2], x[3])).norm();
-            return (r <= tol).then_some(x);
-        }
-    }
-    None
+    // The fixed parameter of the edge: 0 (u) when the piece has degree 0 in u, else 1 (v).
+    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let constraint = Constraint::Fixed {
+        index,
+        value: x[index],
+    };
+    refine(a, b, x, constraint, tol, 40).ok().map(|r| r.x)
 }
 
 /// Gauss–Newton (minimum-norm steps) from `x` onto `P(σ,t) = Q(u,v)`; `None` if it does not
