@@ -292,16 +292,7 @@ fn coef_step<D: IntervalDot>(
         }
         Op::Sqr(a) => {
             let x = ser(a);
-            let mut dot = D::start();
-            for m in 0..i.div_ceil(2) {
-                dot.add(x[m], x[i - m]);
-            }
-            let mut acc = dot.total();
-            acc = acc + acc;
-            if i.is_multiple_of(2) {
-                acc += x[i / 2].sqr();
-            }
-            c[i] = acc;
+            c[i] = square_coefficient::<D>(x, 0, i);
         }
         Op::Sqrt(a) => {
             let x = ser(a);
@@ -311,15 +302,7 @@ fn coef_step<D: IntervalDot>(
                 }
                 c[0] = x[0].sqrt();
             } else {
-                let mut dot = D::start();
-                for m in 1..i.div_ceil(2) {
-                    dot.add(c[m], c[i - m]);
-                }
-                let mut acc = dot.total();
-                acc = acc + acc;
-                if i.is_multiple_of(2) {
-                    acc += c[i / 2].sqr();
-                }
+                let acc = square_coefficient::<D>(c, 1, i);
                 c[i] = (x[i] - acc) / (c[0] + c[0]);
             }
         }
@@ -400,4 +383,19 @@ fn deriv_step<D: IntervalDot>(
             }
         }
     }
+}
+
+/// `Σ_{m=from}^{i−from} a_m·a_{i−m}`, the order-`i` coefficient of a square with the terms below
+/// `from` (and their mirror images) left out, summed once per symmetric pair.
+fn square_coefficient<D: IntervalDot>(a: &[Interval], from: usize, i: usize) -> Interval {
+    let mut dot = D::start();
+    for m in from..i.div_ceil(2) {
+        dot.add(a[m], a[i - m]);
+    }
+    let mut acc = dot.total();
+    acc = acc + acc;
+    if i.is_multiple_of(2) {
+        acc += a[i / 2].sqr();
+    }
+    acc
 }
