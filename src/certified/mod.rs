@@ -10,6 +10,7 @@ pub mod field;
 pub mod krawczyk;
 pub mod ode;
 pub mod tangential;
+pub mod tangential_ode;
 pub mod trace;
 
 pub use curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
