@@ -5,6 +5,8 @@
 //! [`tangential`] classifies tangential contacts; [`trace`] certifies a branch; [`curve`] is what
 //! a certified branch reports.
 
+pub mod centred_second_order;
+pub mod contact;
 pub mod contact_cover;
 pub mod curve;
 pub mod field;
@@ -14,6 +16,7 @@ pub mod tangential;
 pub mod tangential_ode;
 pub mod trace;
 
+pub use contact::{certify_contact, certify_contact_events, CertifiedContact, ContactOptions};
 pub use curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 pub use trace::{certify_branch, CertifyOptions};
 
