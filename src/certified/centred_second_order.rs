@@ -169,8 +169,13 @@ mod tests {
                 ws.push(1.0 + 0.4 * ((i + 2 * j) % 3) as f64);
             }
         }
-        RationalBezierPatch::from_f64_points([m, n], &pts, Some(&ws), Domain::new(-1.0, 2.0, 0.5, 1.5))
-            .unwrap()
+        RationalBezierPatch::from_f64_points(
+            [m, n],
+            &pts,
+            Some(&ws),
+            Domain::new(-1.0, 2.0, 0.5, 1.5),
+        )
+        .unwrap()
     }
 
     #[test]
@@ -182,12 +187,18 @@ mod tests {
             let got = p.second_order_centred(u, v, 0.3, 1.1);
             for (a, b) in want.iter().zip(&got) {
                 for x in 0..3 {
-                    assert!((a[x] - b[x]).abs() < 1e-9 * (1.0 + a[x].abs()), "{a:?} vs {b:?}");
+                    assert!(
+                        (a[x] - b[x]).abs() < 1e-9 * (1.0 + a[x].abs()),
+                        "{a:?} vs {b:?}"
+                    );
                 }
             }
         }
         // Over a small box: both enclose the point values, the centred form is tighter.
-        let (u, v) = (interval(0.299, 0.301).unwrap(), interval(1.099, 1.101).unwrap());
+        let (u, v) = (
+            interval(0.299, 0.301).unwrap(),
+            interval(1.099, 1.101).unwrap(),
+        );
         let plain: [[Interval; 3]; 6] = p.second_order(u, v);
         let centred = p.second_order_centred(u, v, point(0.3), point(1.1));
         let at = p.second_order(0.3005, 1.0995);

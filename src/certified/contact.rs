@@ -20,9 +20,9 @@
 //!    [`ContactOptions::cover_margin`]: every intersection point of that region lies in a kept
 //!    box.
 
+use super::centred_second_order::CentredSecondOrder;
 use super::contact_cover::{contact_cover, ContactCover, CoverOptions};
 use super::curve::TubePiece;
-use super::centred_second_order::CentredSecondOrder;
 use super::field::{norm_sqr, ScalarSurface};
 use super::tangential::{contact_quadratic, tangential_velocity, ContactCase, TangentialFormula};
 use super::tangential_ode::{ScaledContact, TangentialOde};
@@ -392,8 +392,17 @@ pub fn certify_contact_events(
 
 /// The searched region: runs of consecutive a-priori boxes whose hull spans at most eight
 /// margins (relative to the domain widths), each hull widened by the margin.
-fn grouped_region(steps: &[ContactStep], widths: &[f64; 4], margin: [f64; 4]) -> Vec<[Interval; 4]> {
-    let span = 8.0 * margin.iter().zip(widths).map(|(m, w)| m / w).fold(0.0, f64::max);
+fn grouped_region(
+    steps: &[ContactStep],
+    widths: &[f64; 4],
+    margin: [f64; 4],
+) -> Vec<[Interval; 4]> {
+    let span = 8.0
+        * margin
+            .iter()
+            .zip(widths)
+            .map(|(m, w)| m / w)
+            .fold(0.0, f64::max);
     let mut out = Vec::new();
     let mut hull: Option<[Interval; 4]> = None;
     for s in steps {
@@ -426,7 +435,12 @@ fn tube_samples(p: &RationalBezierPatch, tubes: &[TubePiece], start: [f64; 4]) -
     out
 }
 
-fn statement(steps: &[ContactStep], tube: f64, cover: &ContactCover, opts: &ContactOptions) -> String {
+fn statement(
+    steps: &[ContactStep],
+    tube: f64,
+    cover: &ContactCover,
+    opts: &ContactOptions,
+) -> String {
     let tangential = steps
         .iter()
         .filter(|s| s.case == StepCase::TangentialCurve)

@@ -4,7 +4,8 @@
 //! `P − Q` vanishes to second order, so its enclosures only ever *contain* zero. What can be
 //! proven is where the intersection is **not**: a 4-D parameter box `[σ]×[t]×[u]×[v]` whose
 //! model-space enclosures `P([σ],[t])` and `Q([u],[v])` ([`RationalBezierPatch::enclose`], convex
-//! hull of the sub-patch net ∩ naive interval evaluation) are disjoint holds no point with
+//! hull of the sub-patch net ∩ naive interval evaluation) are disjoint, or on which
+//! `n·(P − Q)` is proven non-zero for a fixed vector `n` (mean-value form), holds no point with
 //! `P(σ,t) = Q(u,v)`. [`contact_cover`] bisects a region and drops every such box; the kept boxes
 //! therefore contain every intersection point of the region. They do not prove that any
 //! intersection exists.
@@ -18,7 +19,7 @@
 use crate::geometry::enclosure::boxes_disjoint;
 use crate::geometry::surface::{pair_bounds, pair_widths};
 use crate::geometry::RationalBezierPatch;
-use crate::scalar::interval;
+use crate::scalar::{interval, point};
 use inari::Interval;
 
 /// Parameters of [`contact_cover`].
@@ -101,6 +102,31 @@ pub fn clip_to_domains(
     Some(out)
 }
 
+/// Whether `n·(P(σ,t) − Q(u,v)) ≠ 0` is proven on the box, `n` the normal of P at the box
+/// centre (any fixed vector would be sound). Mean-value form: `g(c) + Σᵢ ∂ᵢg(box)·(yᵢ − cᵢ)`,
+/// with the partials enclosed over the box. Near a contact the partials of `g` are `O(w)` (the
+/// tangents are normal to `n`), so this excludes boxes at distance `≳ w` from the contact where
+/// the hull test, whose ranges carry the surfaces' slope `O(w)`, needs distance `≳ √w`.
+fn normal_separates(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Interval; 4]) -> bool {
+    let c = y.map(|x| x.mid());
+    let d = p.derivs_f64(c[0], c[1]);
+    let n = crate::certified::field::cross(&d.su, &d.sv);
+    if !n.iter().all(|x| x.is_finite()) {
+        return false;
+    }
+    let n = [point(n[0]), point(n[1]), point(n[2])];
+    let dot = |a: &[Interval; 3]| n[0] * a[0] + n[1] * a[1] + n[2] * a[2];
+    let pc = p.eval(point(c[0]), point(c[1]));
+    let qc = q.eval(point(c[2]), point(c[3]));
+    let [_, ps, pt] = p.first_derivs(y[0], y[1]);
+    let [_, qu, qv] = q.first_derivs(y[2], y[3]);
+    let off = |i: usize| y[i] - point(c[i]);
+    let g = dot(&pc) - dot(&qc) + dot(&ps) * off(0) + dot(&pt) * off(1)
+        - dot(&qu) * off(2)
+        - dot(&qv) * off(3);
+    !g.is_empty() && !g.contains(0.0)
+}
+
 /// Bisects every box of `region` (clipped to both domains) and keeps the sub-boxes on which
 /// `P` and `Q` may meet; see [`ContactCover`] for the guarantee.
 pub fn contact_cover(
@@ -125,6 +151,10 @@ pub fn contact_cover(
     }
     while let Some((y, bp, bq)) = stack.pop() {
         if boxes_disjoint(&bp, &bq) {
+            continue;
+        }
+        cover.evaluations += 1;
+        if normal_separates(p, q, &y) {
             continue;
         }
         let widest = (0..4)

@@ -86,7 +86,9 @@ impl<P: CentredSecondOrder + ?Sized, Q: CentredSecondOrder + ?Sized> TangentialO
     }
 }
 
-impl<P: CentredSecondOrder + ?Sized, Q: CentredSecondOrder + ?Sized> OdeSystem for TangentialOde<'_, P, Q> {
+impl<P: CentredSecondOrder + ?Sized, Q: CentredSecondOrder + ?Sized> OdeSystem
+    for TangentialOde<'_, P, Q>
+{
     fn dim(&self) -> usize {
         4
     }

@@ -537,3 +537,84 @@ fn event_from_json(v: &Value, k: usize) -> Result<Event> {
         xyz: c.xyz,
     })
 }
+
+/// A certified tangential contact as `{"tangential": {...}}`: the start box and its case, the
+/// per-step cases with their a-priori boxes (`"p"`, `"q"`, `"xyz"`, `"s"`), the ends, the tube
+/// radius and (when `tubes` is set) the tube pieces, the cover (`"region"`: searched 4-D boxes,
+/// `"boxes"`: kept boxes, `"resolved"`), the f64 band diagnostic and the proven statement. All
+/// bounds are the exact outward-rounded `f64` bounds, as in [`enclosure_to_json`].
+pub fn certified_contact_to_json(
+    c: &crate::certified::contact::CertifiedContact,
+    tubes: bool,
+) -> Value {
+    use crate::certified::contact::ContactEnd;
+    let case =
+        |k: crate::certified::contact::StepCase| serde_json::to_value(k).unwrap_or(Value::Null);
+    let end = |e: &ContactEnd| match e {
+        ContactEnd::Boundary { surface } => json!({"kind": "boundary", "surface": surface}),
+        ContactEnd::CaseChanged { case: k, near } => {
+            json!({"kind": "case_changed", "case": case(*k), "near": intervals_to_json(near)})
+        }
+        ContactEnd::StepFailed { reason, near } => {
+            json!({"kind": "step_failed", "reason": reason, "near": intervals_to_json(near)})
+        }
+        ContactEnd::Budget { length } => json!({"kind": "budget", "length": length}),
+        ContactEnd::NotTraced => json!({"kind": "not_traced"}),
+    };
+    let steps: Vec<Value> = c
+        .steps
+        .iter()
+        .map(|s| {
+            json!({
+                "s": s.s,
+                "case": case(s.case),
+                "p": intervals_to_json(&s.apriori[..2]),
+                "q": intervals_to_json(&s.apriori[2..]),
+                "xyz": intervals_to_json(&s.xyz),
+            })
+        })
+        .collect();
+    let boxes: Vec<Value> = c
+        .cover
+        .boxes
+        .iter()
+        .map(|b| {
+            json!({
+                "p": intervals_to_json(&b.p),
+                "q": intervals_to_json(&b.q),
+                "xyz": intervals_to_json(&b.xyz),
+            })
+        })
+        .collect();
+    let region: Vec<Value> = c
+        .cover
+        .region
+        .iter()
+        .map(|r| intervals_to_json(r))
+        .collect();
+    let mut obj = Map::new();
+    obj.insert("start".into(), intervals_to_json(&c.start));
+    obj.insert("start_case".into(), case(c.start_case));
+    obj.insert("steps".into(), Value::Array(steps));
+    obj.insert("ends".into(), json!([end(&c.ends[0]), end(&c.ends[1])]));
+    obj.insert("tube_radius".into(), json!(c.tube_radius));
+    if tubes {
+        obj.insert(
+            "tubes".into(),
+            Value::Array(c.tubes.iter().map(tube_to_json).collect()),
+        );
+    }
+    obj.insert(
+        "cover".into(),
+        json!({
+            "region": region,
+            "boxes": boxes,
+            "resolved": c.cover.resolved,
+            "evaluations": c.cover.evaluations,
+            "max_xyz_width": c.cover.max_xyz_width,
+        }),
+    );
+    obj.insert("cover_band".into(), json!(c.cover_band));
+    obj.insert("proven_statement".into(), json!(c.proven_statement));
+    json!({ "tangential": Value::Object(obj) })
+}
