@@ -161,6 +161,7 @@ impl<T: Scalar> ScaledContact<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::certified::field::ScalarSurface;
     use crate::certified::fixtures::Bowl;
     use crate::certified::tangential::{contact_quadratic, tangential_velocity};
     use crate::scalar::{interval, point};
