@@ -3,7 +3,9 @@
 //! [`field`] writes the intersection ODE once over [`crate::Scalar`]; [`ode`] hands it to the
 //! validated engine; [`krawczyk`] proves curve points and contracts boxes onto `P = Q`;
 //! [`tangential`] classifies tangential contacts; [`trace`] certifies a branch; [`curve`] is what
-//! a certified branch reports.
+//! a certified branch reports. Tangential contacts: [`tangential_ode`] (the tangential field),
+//! [`centred_second_order`] (tight second derivatives for it), [`contact_cover`] (proven covers)
+//! and [`contact`] (the entry point [`certify_contact`]).
 
 pub mod centred_second_order;
 pub mod contact;
