@@ -390,14 +390,16 @@ pub fn certify_contact_events(
     Ok(out)
 }
 
-/// The searched region: runs of consecutive a-priori boxes whose hull spans at most eight
-/// margins (relative to the domain widths), each hull widened by the margin.
+/// The searched region: runs of consecutive a-priori boxes whose hull spans at most two
+/// margins (relative to the domain widths), each hull widened by the margin. (Longer runs save
+/// duplicated work where region boxes overlap, but a hull of a diagonal run reaches far from
+/// the curve and the cover then keeps more boxes.)
 fn grouped_region(
     steps: &[ContactStep],
     widths: &[f64; 4],
     margin: [f64; 4],
 ) -> Vec<[Interval; 4]> {
-    let span = 8.0
+    let span = 2.0
         * margin
             .iter()
             .zip(widths)

@@ -102,6 +102,10 @@ pub fn clip_to_domains(
     Some(out)
 }
 
+/// The normal test runs on leaf-sized boxes only (it costs ≈ 5 hull tests; measured on the
+/// cubic × quadratic contact, testing from 2 leaf widths up took 3× longer for the same boxes).
+const NORMAL_TEST_LEAVES: f64 = 1.0;
+
 /// Whether `n·(P(σ,t) − Q(u,v)) ≠ 0` is proven on the box, `n` the normal of P at the box
 /// centre (any fixed vector would be sound). Mean-value form: `g(c) + Σᵢ ∂ᵢg(box)·(yᵢ − cᵢ)`,
 /// with the partials enclosed over the box. Near a contact the partials of `g` are `O(w)` (the
@@ -118,8 +122,12 @@ fn normal_separates(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Inter
     let dot = |a: &[Interval; 3]| n[0] * a[0] + n[1] * a[1] + n[2] * a[2];
     let pc = p.eval(point(c[0]), point(c[1]));
     let qc = q.eval(point(c[2]), point(c[3]));
-    let [_, ps, pt] = p.first_derivs(y[0], y[1]);
-    let [_, qu, qv] = q.first_derivs(y[2], y[3]);
+    // Partials over the box, written around its centre (tight: no Bernstein cancellation).
+    let ci = c.map(point);
+    let (pa, pb, pg) = p.scaled_partials_centred(y[0], y[1], ci[0], ci[1]);
+    let (qa, qb, qg) = q.scaled_partials_centred(y[2], y[3], ci[2], ci[3]);
+    let (ps, pt) = (pa.map(|x| x / pg), pb.map(|x| x / pg));
+    let (qu, qv) = (qa.map(|x| x / qg), qb.map(|x| x / qg));
     let off = |i: usize| y[i] - point(c[i]);
     let g = dot(&pc) - dot(&qc) + dot(&ps) * off(0) + dot(&pt) * off(1)
         - dot(&qu) * off(2)
@@ -153,9 +161,13 @@ pub fn contact_cover(
         if boxes_disjoint(&bp, &bq) {
             continue;
         }
-        cover.evaluations += 1;
-        if normal_separates(p, q, &y) {
-            continue;
+        // The normal test pays off only on the smallest boxes (it is far costlier than the hull).
+        let near_leaf = (0..4).all(|i| y[i].wid() <= NORMAL_TEST_LEAVES * leaf[i]);
+        if near_leaf {
+            cover.evaluations += 1;
+            if normal_separates(p, q, &y) {
+                continue;
+            }
         }
         let widest = (0..4)
             .max_by(|&a, &b| (y[a].wid() / widths[a]).total_cmp(&(y[b].wid() / widths[b])))
