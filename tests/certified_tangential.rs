@@ -435,3 +435,50 @@ fn scene_contact_events_off_the_line_feed_the_contact_certifier() {
         t.elapsed().as_secs_f64()
     );
 }
+
+#[test]
+fn contact_that_meets_a_crossing_branch_stops_with_the_case_change() {
+    // z = x·y² on z = 0: they touch along y = 0 (doubly), and cross along x = 0. At the origin
+    // the contact quadratic vanishes (b11 = b12 = b22 = 0): the tracer must stop there with a
+    // reported case, not run through it.
+    let p = PowerSurface::graph(SQUARE, vec![(1, 2, 1.0)])
+        .to_bezier()
+        .unwrap();
+    let q = PowerSurface::graph(SQUARE, vec![]).to_bezier().unwrap();
+    let row = run(
+        "touch meets crossing",
+        &p,
+        &q,
+        [0.5, 0.0, 0.5, 0.0],
+        &opts(1.0 / 32.0),
+    );
+    let r = &row.r;
+    assert_eq!(r.start_case, StepCase::TangentialCurve);
+    let stops: Vec<_> = r
+        .ends
+        .iter()
+        .filter_map(|e| match e {
+            ContactEnd::CaseChanged { case, near } => Some((*case, *near)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(stops.len(), 1, "{:?}", r.ends);
+    let (case, near) = stops[0];
+    assert_ne!(case, StepCase::TangentialCurve);
+    assert!(
+        near[0].mag() < 0.1,
+        "stopped away from the origin: {near:?}"
+    );
+    assert!(r
+        .ends
+        .iter()
+        .any(|e| matches!(e, ContactEnd::Boundary { .. })));
+    // Every traced step lies on the x > 0 side, and the line y = 0 is traced.
+    assert!(r.steps.iter().all(|s| s.apriori[0].sup() > 0.0));
+    println!(
+        "touch meets crossing: stopped with {case:?} at σ ∈ [{}, {}]",
+        near[0].inf(),
+        near[0].sup()
+    );
+    print_table(&[row]);
+}
