@@ -9,6 +9,7 @@ pub mod curve;
 pub mod field;
 pub mod krawczyk;
 pub mod ode;
+pub mod straying;
 pub mod tangential;
 pub mod trace;
 
