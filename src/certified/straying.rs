@@ -139,16 +139,7 @@ pub fn check_branch(
     let pts = &marched.points;
     let n = pts.len();
     let marched_length = polyline_length(pts);
-    let s_min = own
-        .boxes
-        .iter()
-        .map(|b| b.s[0])
-        .fold(f64::INFINITY, f64::min);
-    let s_max = own
-        .boxes
-        .iter()
-        .map(|b| b.s[1])
-        .fold(f64::NEG_INFINITY, f64::max);
+    let [s_min, s_max] = certified_span(p, q, own);
     let certified_length = if s_max > s_min { s_max - s_min } else { 0.0 };
     let max_h = own.tubes.iter().map(|t| t.h).fold(0.0, f64::max);
     let proven_loop = own.ends == [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop];
@@ -235,8 +226,19 @@ pub fn check_branch(
     let mut spans: Vec<[f64; 2]> = Vec::new();
     let mut progress = 0.0;
     for i in 0..n.saturating_sub(1) {
-        let (Some(a), Some(b)) = (near_s(i), near_s(i + 1)) else {
-            continue;
+        let (a, b) = match (near_s(i), near_s(i + 1)) {
+            (Some(a), Some(b)) => (a, b),
+            // The march leaves the certified arc through an end that does not cover the rest:
+            // it covers the arc up to that end.
+            (Some(a), None) if unchecked.binary_search(&(i + 1)).is_ok() => {
+                spans.push(nearest_end(a, s_min, s_max));
+                continue;
+            }
+            (None, Some(b)) if unchecked.binary_search(&i).is_ok() => {
+                spans.push(nearest_end(b, s_min, s_max));
+                continue;
+            }
+            _ => continue,
         };
         let mut d = b - a;
         if proven_loop && certified_length > 0.0 {
@@ -269,6 +271,79 @@ pub fn check_branch(
         covered_fraction,
         marched_length,
         certified_length,
+    }
+}
+
+/// The arc-length range of the certified chain, `[s_min, s_max]`. At a `boundary` end the last
+/// box straddles the boundary, so the range is cut where the reported tube polynomial leaves the
+/// domains; on a closed loop the last step crosses the start, so the range ends at the reported
+/// point closest to the start (floating-point estimates, to compare with the marcher).
+fn certified_span(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    c: &CertifiedBranch,
+) -> [f64; 2] {
+    let lo = c.boxes.iter().map(|b| b.s[0]).fold(f64::INFINITY, f64::min);
+    let hi = c
+        .boxes
+        .iter()
+        .map(|b| b.s[1])
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (dp, dq) = (p.domain(), q.domain());
+    let inside = |y: [f64; 4]| dp.contains(y[0], y[1], 0.0) && dq.contains(y[2], y[3], 0.0);
+    // The arc length where the piece's reported curve leaves the domains, by bisection between
+    // its inner end (τ = 0, towards the start point) and its outer end.
+    let exit = |t: &TubePiece| -> Option<f64> {
+        if !inside(t.eval(0.0)) || inside(t.eval(t.h)) {
+            return None;
+        }
+        let (mut a, mut b) = (0.0, t.h);
+        for _ in 0..60 {
+            let m = 0.5 * (a + b);
+            if inside(t.eval(m)) {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        Some(t.s0 + t.direction * a)
+    };
+    let mut span = [lo, hi];
+    if c.ends[1] == CertifiedEnd::ClosedLoop {
+        // The last step crosses the start: the loop ends at the closest reported point to it.
+        let start = c.start.map(|x| x.mid());
+        let k = c.tubes.len().saturating_sub(3);
+        let end = c.tubes[k..]
+            .iter()
+            .map(|t| {
+                let (tau, d) = closest(t, &start);
+                (d, t.s0 + t.direction * tau)
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((_, s)) = end {
+            span[1] = s.min(hi);
+        }
+        return span;
+    }
+    if let (CertifiedEnd::Boundary { .. }, Some(t)) = (&c.ends[0], c.tubes.first()) {
+        if let Some(s) = exit(t) {
+            span[0] = s.max(lo);
+        }
+    }
+    if let (CertifiedEnd::Boundary { .. }, Some(t)) = (&c.ends[1], c.tubes.last()) {
+        if let Some(s) = exit(t) {
+            span[1] = s.min(hi);
+        }
+    }
+    span
+}
+
+/// The arc-length span from `s` to the nearer end of `[s_min, s_max]`.
+fn nearest_end(s: f64, s_min: f64, s_max: f64) -> [f64; 2] {
+    if s - s_min <= s_max - s {
+        [s_min, s.max(s_min)]
+    } else {
+        [s.min(s_max), s_max]
     }
 }
 
@@ -332,45 +407,68 @@ fn box_distance(b: &[Interval; 4], y: &[f64; 4]) -> f64 {
 }
 
 /// Locates `y` on the chain: proven farther than `slack` from every piece, or near.
+///
+/// The proof aims at half the estimated distance (so the reported lower bound is close to the
+/// truth), and falls back to `slack` itself.
 fn locate(c: &CertifiedBranch, y: &[f64; 4], slack: f64) -> Verdict {
-    let mut proven = f64::INFINITY;
+    let pieces: Vec<(f64, &TubePiece)> = c
+        .boxes
+        .iter()
+        .zip(&c.tubes)
+        .map(|(bx, t)| (box_distance(&bx.params(), y), t))
+        .collect();
+    // The closest reported point among the pieces whose boxes come within the slack.
     let mut best: Option<(f64, f64)> = None; // (estimate, arc length)
-    for (bx, tube) in c.boxes.iter().zip(&c.tubes) {
-        let d_box = box_distance(&bx.params(), y);
-        if d_box > slack {
-            proven = proven.min(d_box);
+    let mut provable = true;
+    for (d_box, t) in &pieces {
+        if *d_box > slack {
             continue;
         }
-        let (tau, est) = closest(tube, y);
+        let (tau, est) = closest(t, y);
         if best.is_none_or(|(e, _)| est < e) {
-            best = Some((est, tube.s0 + tube.direction * tau));
+            best = Some((est, t.s0 + t.direction * tau));
         }
-        // Not provably farther than the slack if the estimate (an upper bound up to rounding)
-        // is within it: skip the proof.
-        let d_tube = if est - tube.radius_param <= slack {
-            0.0
-        } else {
-            tube_lower_bound(tube, y, tau, slack)
-        };
-        proven = proven.min(d_box.max(d_tube));
+        // The estimate bounds the distance from above (up to rounding): no proof beyond it.
+        provable &= est - t.radius_param > slack;
     }
-    match best {
-        Some((estimate, _)) if proven > slack => Verdict::Far {
-            distance: proven,
-            estimate,
-        },
-        Some((_, s)) => Verdict::Near { s },
-        None => {
-            let estimate = c
-                .tubes
-                .iter()
-                .map(|t| closest(t, y).1)
-                .fold(f64::INFINITY, f64::min);
-            Verdict::Far {
-                distance: proven,
-                estimate,
-            }
-        }
+    let Some((estimate, s)) = best else {
+        // Outside every box by more than the slack: the boxes alone prove it.
+        let (distance, nearest) = pieces
+            .iter()
+            .fold((f64::INFINITY, None), |(d, n), (db, t)| {
+                if *db < d {
+                    (*db, Some(*t))
+                } else {
+                    (d, n)
+                }
+            });
+        let estimate = nearest.map_or(f64::INFINITY, |t| closest(t, y).1);
+        return Verdict::Far { distance, estimate };
+    };
+    if !provable {
+        return Verdict::Near { s };
+    }
+    let prove = |target: f64| -> f64 {
+        pieces
+            .iter()
+            .map(|(d_box, t)| {
+                if *d_box > target {
+                    return *d_box;
+                }
+                let (tau, _) = closest(t, y);
+                d_box.max(tube_lower_bound(t, y, tau, target))
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let aim = 0.5 * estimate;
+    let mut distance = if aim > slack { prove(aim) } else { 0.0 };
+    if distance <= slack {
+        distance = prove(slack);
+    }
+    if distance > slack {
+        Verdict::Far { distance, estimate }
+    } else {
+        Verdict::Near { s }
     }
 }
 
@@ -481,8 +579,8 @@ fn enclose_poly(coeffs: &[Interval], tau: Interval) -> Interval {
 /// reported polynomial over `[0, h]` minus `radius_param`), by bisection of `[0, h]`: each
 /// sub-interval is bounded below by its components' magnitudes and by the projection onto the
 /// direction `n` from the closest reported point to `y` (`|g|∞ ≥ |n·g| / ‖n‖₁`, which is nearly
-/// exact near the closest point). Returns 0 when it cannot prove more than `slack`.
-fn tube_lower_bound(t: &TubePiece, y: &[f64; 4], tau_star: f64, slack: f64) -> f64 {
+/// exact near the closest point). Returns a bound above `target`, or 0 when it cannot prove one.
+fn tube_lower_bound(t: &TubePiece, y: &[f64; 4], tau_star: f64, target: f64) -> f64 {
     let (v, _) = eval_with_derivative(t, tau_star);
     let n: [f64; 4] = std::array::from_fn(|i| y[i] - v[i]);
     let n1 = (0..4).fold(point(0.0), |acc, i| acc + point(n[i].abs()));
@@ -524,7 +622,7 @@ fn tube_lower_bound(t: &TubePiece, y: &[f64; 4], tau_star: f64, slack: f64) -> f
     while let Some((tau, depth)) = stack.pop() {
         work += 1;
         let lb = bound(tau);
-        if lb > slack {
+        if lb > target {
             lowest = lowest.min(lb);
             continue;
         }
