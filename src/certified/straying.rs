@@ -516,7 +516,7 @@ fn closest(t: &TubePiece, y: &[f64; 4]) -> (f64, f64) {
         let (v, dv) = eval_with_derivative(t, tau);
         let phi: f64 = (0..4).map(|i| (v[i] - y[i]) * dv[i]).sum();
         let dphi: f64 = (0..4).map(|i| dv[i] * dv[i]).sum();
-        if !(dphi > 0.0) {
+        if dphi.is_nan() || dphi <= 0.0 {
             break;
         }
         let next = (tau - phi / dphi).clamp(0.0, t.h);
