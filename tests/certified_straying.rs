@@ -364,3 +364,67 @@ fn the_command_line_defaults_to_both() {
     assert!(doc["stats"].get("straying_points").is_none());
     assert!(!stdout.contains("certified:"));
 }
+
+#[test]
+fn the_command_line_warns_when_the_march_loops() {
+    // S31/S32 marched with L = 1: today's marcher goes round one loop almost twice (found by
+    // trying large steps); the fine march (the scene's L = 0.02) goes round each loop once.
+    let path = format!(
+        "{}/scenes/two_loops_s31_s32.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let dir = std::env::temp_dir().join(format!("ssitrace-loops-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("r.json");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_ssitrace"))
+        .args(["trace", &path, "--method", "both", "--step", "1.0", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(run.status.success());
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    println!("{stdout}");
+    let doc: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    // The loop lengths, independently: the fine march's polylines.
+    let fine: Vec<f64> = march(&scene("two_loops_s31_s32.json"))
+        .iter()
+        .map(|b| {
+            b.points
+                .windows(2)
+                .map(|w| {
+                    (0..3)
+                        .map(|i| (w[1].xyz[i] - w[0].xyz[i]).powi(2))
+                        .sum::<f64>()
+                        .sqrt()
+                })
+                .sum()
+        })
+        .collect();
+    assert_eq!(fine.len(), 2);
+    let mut looping = 0;
+    for b in doc["branches"].as_array().unwrap() {
+        let st = &b["certified"]["straying"];
+        let (marched, certified) = (
+            st["marched_length"].as_f64().unwrap(),
+            st["certified_length"].as_f64().unwrap(),
+        );
+        // The certified loop is one of the two loops.
+        assert!(
+            fine.iter().any(|l| (l - certified).abs() < 1e-3 * l),
+            "{certified} vs {fine:?}"
+        );
+        assert_eq!(st["straying_points"].as_array().map(Vec::len), Some(0));
+        if st["looping"] == true {
+            looping += 1;
+            // Chords never exceed the arcs: more than one loop's length is a second round.
+            assert!(marched > 1.5 * certified, "{marched} vs {certified}");
+        }
+    }
+    assert!(
+        looping >= 1,
+        "no looping march at L = 1: pick another fault"
+    );
+    assert_eq!(doc["stats"]["looping_branches"], looping);
+    assert!(stdout.contains("warning: the march goes round the loop more than once"));
+}

@@ -26,9 +26,14 @@
 //! `singular`, `close_branches`), is **unchecked**, not straying. `boundary` and `closed_loop`
 //! ends cover the branch to its end, so every point beyond them strays.
 //!
+//! The model-space point `xyz` of a marched point is not compared (the marcher computes it from
+//! the parameters); a branch whose chain is empty counts as not certified.
+//!
 //! **Looping**: on a proven closed loop of certified length `L`, the marcher's progress along the
-//! loop (arc length of each non-straying point's closest tube parameter, unwrapped modulo `L`),
-//! or the length of its polyline, exceeds `L` by more than `1% · L` plus two certified steps.
+//! loop (arc length of each non-straying point's closest tube parameter, unwrapped modulo `L`;
+//! not used when consecutive points are more than `L/4` apart, as the direction is then
+//! unclear), or the length of its polyline (chords are never longer than the arcs they span),
+//! exceeds `L` by more than `1% · L` plus two certified steps.
 //! **Covered fraction**: the part of the certified arc length spanned by consecutive
 //! non-straying marched points, so a marcher that stopped early shows a fraction below 1.
 
@@ -126,7 +131,7 @@ pub fn check_branches(
 }
 
 /// Checks one marched branch against its certificate `own` (see the module docs for the
-/// test); `others` are the certified branches a straying point may have strayed onto, with
+/// test; a certificate without boxes gives [`StrayReport::uncertified`]); `others` are the certified branches a straying point may have strayed onto, with
 /// their ids. `tolerance` is the marcher's Newton tolerance (model units).
 pub fn check_branch(
     p: &RationalBezierPatch,
@@ -136,6 +141,9 @@ pub fn check_branch(
     others: &[(usize, &CertifiedBranch)],
     tolerance: f64,
 ) -> StrayReport {
+    if own.boxes.is_empty() || own.boxes.len() != own.tubes.len() {
+        return StrayReport::uncertified(marched);
+    }
     let pts = &marched.points;
     let n = pts.len();
     let marched_length = polyline_length(pts);
@@ -225,6 +233,7 @@ pub fn check_branch(
     // Progress along the chain between consecutive near points.
     let mut spans: Vec<[f64; 2]> = Vec::new();
     let mut progress = 0.0;
+    let mut jumps = false;
     for i in 0..n.saturating_sub(1) {
         let (a, b) = match (near_s(i), near_s(i + 1)) {
             (Some(a), Some(b)) => (a, b),
@@ -243,6 +252,8 @@ pub fn check_branch(
         let mut d = b - a;
         if proven_loop && certified_length > 0.0 {
             d -= certified_length * (d / certified_length).round();
+            // A jump of more than a quarter of the loop has no clear direction.
+            jumps |= d.abs() > 0.25 * certified_length;
         }
         progress += d;
         let (lo, hi) = if d >= 0.0 { (a, a + d) } else { (a + d, a) };
@@ -260,7 +271,7 @@ pub fn check_branch(
     let margin = 0.01 * certified_length + 2.0 * max_h;
     let looping = proven_loop
         && certified_length > 0.0
-        && (progress.abs() > certified_length + margin
+        && ((!jumps && progress.abs() > certified_length + margin)
             || marched_length > certified_length + margin);
 
     StrayReport {
