@@ -169,12 +169,17 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
             .iter()
             .map(|c| c.result.as_ref().ok())
             .collect();
+        let checking = Instant::now();
         straying = check_branches(
             p,
             q,
             &outcome.intersection.branches,
             &certified,
             march.tolerance,
+        );
+        meta.stats.insert(
+            "straying_seconds".into(),
+            json!(checking.elapsed().as_secs_f64()),
         );
         for r in &straying {
             if let Some(Value::Object(m)) = meta.certified.get_mut(&r.branch) {
