@@ -428,3 +428,44 @@ fn the_command_line_warns_when_the_march_loops() {
     assert_eq!(doc["stats"]["looping_branches"], looping);
     assert!(stdout.contains("warning: the march goes round the loop more than once"));
 }
+
+#[test]
+fn an_open_branch_marched_part_way_and_an_uncertified_branch() {
+    let s = scene("bicubic_transversal.json");
+    let [p, q] = &s.surfaces;
+    let b = march(&s).remove(0);
+    let c = certify(&s, &b.points[b.points.len() / 2], 20_000);
+    assert_eq!(
+        [c.ends[0].kind(), c.ends[1].kind()],
+        ["boundary", "boundary"]
+    );
+    // The branch is σ = 1/2, t ∈ [0, 1] on P: its length is that of the curve
+    // (1/2, t, z(t)), which the fine marched polyline approximates from below.
+    let full = check_branch(p, q, &b, &c, &[], TOL);
+    print_report("bicubic branch", &b, &full);
+    assert!(full.straying.is_empty() && full.unchecked.is_empty() && !full.looping);
+    assert!(full.covered_fraction > 0.9999, "{}", full.covered_fraction);
+    assert!((full.certified_length - full.marched_length).abs() < 1e-3 * full.marched_length);
+    // Stopped at t ≈ 0.6: about 0.6 of the arc by length, and visible as such.
+    let k = b.points.iter().position(|c| c.p[1] > 0.6).unwrap();
+    let stopped = Branch {
+        status: BranchStatus::Incomplete,
+        ends: [b.ends[0], EndReason::NewtonFailed],
+        points: b.points[..=k].to_vec(),
+        ..b.clone()
+    };
+    let r = check_branch(p, q, &stopped, &c, &[], TOL);
+    print_report("bicubic branch to t = 0.6", &stopped, &r);
+    assert!(r.straying.is_empty() && r.unchecked.is_empty());
+    let expect = r.marched_length / r.certified_length;
+    assert!(
+        (r.covered_fraction - expect).abs() < 1e-3,
+        "{} vs {expect}",
+        r.covered_fraction
+    );
+    assert!(r.covered_fraction < 0.8);
+    // Without a certificate every point is unchecked and nothing is covered.
+    let none = check_branches(p, q, std::slice::from_ref(&b), &[None], TOL);
+    assert_eq!(none[0].unchecked, (0..b.points.len()).collect::<Vec<_>>());
+    assert!(none[0].straying.is_empty() && none[0].covered_fraction == 0.0);
+}
