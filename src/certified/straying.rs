@@ -41,12 +41,12 @@ use inari::Interval;
 use nalgebra::{Matrix3, Matrix3x4};
 
 use super::curve::{CertifiedBranch, CertifiedEnd, TubePiece};
-use tube_distance::{closest, eval_interval, tube_lower_bound};
-
-mod tube_distance;
 use crate::geometry::RationalBezierPatch;
 use crate::intersection::{Branch, CurvePoint, EndReason};
 use crate::scalar::point;
+use tube_distance::{closest, eval_interval, tube_lower_bound};
+
+mod tube_distance;
 
 /// One marched point proven off its branch's certified curve.
 #[derive(Debug, Clone, Copy, PartialEq)]
