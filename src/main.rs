@@ -1,6 +1,7 @@
 //! The `ssitrace` command line: `ssitrace trace SCENE.json ...` and `ssitrace demo`.
 
 use clap::{Parser, Subcommand, ValueEnum};
+use ssitrace::certified::straying::StrayReport;
 use ssitrace::certified::CertifiedEnd;
 use ssitrace::intersection::{BranchStatus, EndReason};
 use ssitrace::io::result_json::write_result;
@@ -51,7 +52,7 @@ enum Command {
     Trace {
         /// The scene file (JSON; format in the README).
         scene: PathBuf,
-        /// Tracing method (default: the scene's, else `march`).
+        /// Tracing method (default: the scene's, else `both`).
         #[arg(long, value_enum)]
         method: Option<MethodArg>,
         /// Marching step L (default: the scene's, else 0.05).
@@ -212,6 +213,57 @@ fn certificate_line(c: &BranchCertificate, tolerance: f64) -> String {
     }
 }
 
+/// One summary line for a branch's straying check, `warning:` first when a point strays or the
+/// marcher looped.
+fn straying_line(r: &StrayReport) -> String {
+    let checked = format!(
+        "covers {:.1}% of the certified arc, {} unchecked point(s)",
+        100.0 * r.covered_fraction,
+        r.unchecked.len()
+    );
+    if !r.has_problems() {
+        return format!("    marched points: none strays, {checked}");
+    }
+    let mut what = Vec::new();
+    if !r.straying.is_empty() {
+        let worst = r.straying.iter().map(|s| s.distance).fold(0.0, f64::max);
+        let onto: Vec<String> = r
+            .straying
+            .iter()
+            .filter_map(|s| s.onto)
+            .fold(Vec::new(), |mut v, j| {
+                if !v.contains(&j) {
+                    v.push(j);
+                }
+                v
+            })
+            .iter()
+            .map(|j| format!("onto branch {j}"))
+            .collect();
+        let first: Vec<String> = r
+            .straying
+            .iter()
+            .take(5)
+            .map(|s| s.index.to_string())
+            .collect();
+        what.push(format!(
+            "{} point(s) stray (indices {}{}, proven distance up to {worst:.2e}{}{})",
+            r.straying.len(),
+            first.join(", "),
+            if r.straying.len() > 5 { ", ..." } else { "" },
+            if onto.is_empty() { "" } else { ", " },
+            onto.join(", ")
+        ));
+    }
+    if r.looping {
+        what.push(format!(
+            "the march goes round the loop more than once ({:.4} marched vs {:.4} certified)",
+            r.marched_length, r.certified_length
+        ));
+    }
+    format!("    warning: {}; {checked}", what.join("; "))
+}
+
 fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -> String {
     use std::fmt::Write;
     let mut out = String::new();
@@ -244,6 +296,9 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
         );
         if let Some(c) = report.certificates.iter().find(|c| c.branch == b.id) {
             let _ = writeln!(out, "{}", certificate_line(c, opts.tolerance));
+        }
+        if let Some(r) = report.straying.iter().find(|r| r.branch == b.id) {
+            let _ = writeln!(out, "{}", straying_line(r));
         }
     }
     for e in &ix.events {

@@ -3,10 +3,13 @@
 //! `march` traces every branch with the floating-point marcher. `validated` and `both` march
 //! first (to find the branches) and then certify each branch from one of its points with
 //! [`certify_branch`], within step and arc-length budgets; a branch whose certification fails
-//! is reported as failed, the run goes on.
+//! is reported as failed, the run goes on. The marched polylines are then checked against the
+//! certificates ([`check_branches`]): straying points, looping, unchecked points and the covered
+//! fraction go into each branch's `"certified"` member as `"straying"` and into the stats.
 
 use std::time::Instant;
 
+use crate::certified::straying::{check_branches, StrayReport};
 use crate::certified::{certify_branch, CertifiedBranch, CertifyOptions};
 use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
@@ -86,6 +89,9 @@ pub struct RunReport {
     pub meta: ResultMeta,
     /// One entry per marched branch, in branch order, when the method certifies; else empty.
     pub certificates: Vec<BranchCertificate>,
+    /// The straying check of each marched branch against the certificates, in branch order,
+    /// when the method certifies; else empty.
+    pub straying: Vec<StrayReport>,
     /// Wall-clock seconds of the marching stage (start-point search and marching).
     pub march_seconds: f64,
     /// Wall-clock seconds of all certification (0 for `march`).
@@ -133,6 +139,7 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     let mut meta = ResultMeta::new(scene.options.name.clone(), opts.method.name());
     meta.stats = stats_json(&outcome, opts.step);
     let mut certificates = Vec::new();
+    let mut straying = Vec::new();
     let mut certify_seconds = 0.0;
     if opts.method != Method::March {
         for b in &outcome.intersection.branches {
@@ -158,11 +165,46 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
             .insert("certify_seconds".into(), json!(certify_seconds));
         meta.stats.insert("max_steps".into(), json!(opts.max_steps));
         meta.stats.insert("tolerance".into(), json!(opts.tolerance));
+        let certified: Vec<Option<&CertifiedBranch>> = certificates
+            .iter()
+            .map(|c| c.result.as_ref().ok())
+            .collect();
+        let checking = Instant::now();
+        straying = check_branches(
+            p,
+            q,
+            &outcome.intersection.branches,
+            &certified,
+            march.tolerance,
+        );
+        meta.stats.insert(
+            "straying_seconds".into(),
+            json!(checking.elapsed().as_secs_f64()),
+        );
+        for r in &straying {
+            if let Some(Value::Object(m)) = meta.certified.get_mut(&r.branch) {
+                m.insert("straying".into(), straying_json(r));
+            }
+        }
+        let count = |f: &dyn Fn(&StrayReport) -> usize| straying.iter().map(f).sum::<usize>();
+        meta.stats.insert(
+            "straying_points".into(),
+            json!(count(&|r| r.straying.len())),
+        );
+        meta.stats.insert(
+            "unchecked_points".into(),
+            json!(count(&|r| r.unchecked.len())),
+        );
+        meta.stats.insert(
+            "looping_branches".into(),
+            json!(count(&|r| usize::from(r.looping))),
+        );
     }
     Ok(RunReport {
         outcome,
         meta,
         certificates,
+        straying,
         march_seconds,
         certify_seconds,
     })
@@ -288,6 +330,37 @@ pub fn certificate_json(c: &BranchCertificate, tolerance: f64, tubes: bool) -> V
         m.insert("seconds".into(), json!(c.seconds));
     }
     v
+}
+
+/// A branch's `"straying"` object: `straying_points` (objects with the marched point's `index`,
+/// the proven parameter `distance` from the certified curve, its floating-point `estimate`, the
+/// `slack` it exceeds and, when proven, the branch it strayed `onto`), `unchecked_points`
+/// (indices), `looping`, `covered_fraction`, `marched_length` and `certified_length`.
+pub fn straying_json(r: &StrayReport) -> Value {
+    let points: Vec<Value> = r
+        .straying
+        .iter()
+        .map(|s| {
+            let mut v = json!({
+                "index": s.index,
+                "distance": s.distance,
+                "estimate": s.estimate,
+                "slack": s.slack,
+            });
+            if let (Some(j), Value::Object(m)) = (s.onto, &mut v) {
+                m.insert("onto".into(), json!(j));
+            }
+            v
+        })
+        .collect();
+    json!({
+        "straying_points": points,
+        "unchecked_points": r.unchecked,
+        "looping": r.looping,
+        "covered_fraction": r.covered_fraction,
+        "marched_length": r.marched_length,
+        "certified_length": r.certified_length,
+    })
 }
 
 /// `P([σ],[t]) ∩ Q([u],[v])` for a bounded parameter box; `None` if unbounded or empty.

@@ -174,6 +174,23 @@ fn parabola_arc_is_certified_end_to_end_and_every_box_holds_the_arc() {
     );
     assert!(s1 - s0 >= length * (1.0 - 1e-12));
     assert!(s1 - s0 <= length + 0.01);
+    // The straying check: the marched points all lie on the certified arc, which (cut where the
+    // reported curve leaves the domain) is the arc's length, and they span all of it.
+    let st = &report.straying[0];
+    println!(
+        "straying check: {} straying, {} unchecked, certified length {:.9} (closed form {length:.9}), covered {:.6}",
+        st.straying.len(),
+        st.unchecked.len(),
+        st.certified_length,
+        st.covered_fraction
+    );
+    assert!(st.straying.is_empty() && st.unchecked.is_empty() && !st.looping);
+    assert!(
+        (st.certified_length - length).abs() < 1e-9,
+        "{}",
+        st.certified_length
+    );
+    assert!(st.covered_fraction > 0.9999, "{}", st.covered_fraction);
     // JSON: documented fields, and the boxes read back bit for bit.
     let doc = result_to_json(&report.outcome.intersection, &report.meta);
     assert_eq!(doc["method"], "validated");
@@ -377,10 +394,22 @@ fn command_line_prints_the_certificate_and_draws_its_boxes() {
     assert!(stdout.contains("ends UNPROVEN (budget spent (10 steps"));
     assert!(stdout.contains("max width"));
     assert!(stdout.contains("ratio certified/marching"));
+    assert!(stdout.contains("marched points: none strays"));
     let doc: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     assert_eq!(doc["method"], "both");
     let c = &doc["branches"][0]["certified"];
     assert_eq!(c["meets_tolerance"], false);
+    // The straying check: the 20 budgeted steps cover a short arc of the loop; the marched
+    // points beyond the two unproven ends are unchecked, none strays.
+    let st = &c["straying"];
+    let n = doc["branches"][0]["points"].as_array().unwrap().len();
+    let unchecked = st["unchecked_points"].as_array().unwrap().len();
+    assert!(unchecked > 0 && unchecked < n, "{unchecked} of {n}");
+    assert_eq!(st["straying_points"].as_array().map(Vec::len), Some(0));
+    assert_eq!(st["looping"], false);
+    assert_eq!(doc["stats"]["unchecked_points"], unchecked);
+    assert_eq!(doc["stats"]["straying_points"], 0);
+    assert_eq!(doc["stats"]["looping_branches"], 0);
     let boxes = enclosures_from_json(c).unwrap();
     // Tubes: one per step; the reported point is within radius_param of the true point, which
     // the step's box holds; and it is on the circle of Q up to that radius.

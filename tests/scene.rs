@@ -100,7 +100,7 @@ fn options_and_optional_fields_have_defaults() {
     let scene = parse(&v).unwrap();
     assert_eq!(scene.options, SceneOptions::default());
     assert_eq!(scene.options.step, 0.05);
-    assert_eq!(scene.options.method, Method::March);
+    assert_eq!(scene.options.method, Method::Both);
     assert_eq!(scene.options.tolerance, 1e-9);
     assert_eq!(scene.surfaces[0].domain(), Domain::UNIT);
     assert_eq!(scene.surfaces[1].domain(), Domain::UNIT);

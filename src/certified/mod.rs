@@ -14,6 +14,7 @@ pub mod curve;
 pub mod field;
 pub mod krawczyk;
 pub mod ode;
+pub mod straying;
 pub mod tangential;
 pub mod tangential_ode;
 pub mod trace;

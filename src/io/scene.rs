@@ -54,7 +54,8 @@ impl Method {
 pub struct SceneOptions {
     /// Marching step length L (> 0, finite; default 0.05).
     pub step: f64,
-    /// Tracing method (default [`Method::March`]).
+    /// Tracing method (default [`Method::Both`]: march, certify, and check the marched points
+    /// against the certificates).
     pub method: Method,
     /// Tolerance (> 0, finite; default 1e-9).
     pub tolerance: f64,
@@ -66,7 +67,7 @@ impl Default for SceneOptions {
     fn default() -> Self {
         SceneOptions {
             step: 0.05,
-            method: Method::March,
+            method: Method::Both,
             tolerance: 1e-9,
             name: None,
         }
