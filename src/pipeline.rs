@@ -9,13 +9,16 @@
 
 use std::time::Instant;
 
+use crate::certified::contact::{certify_contact_events, CertifiedContact, ContactOptions};
+use crate::certified::contact_cover::CoverOptions;
 use crate::certified::straying::{check_branches, StrayReport};
 use crate::certified::{certify_branch, CertifiedBranch, CertifyOptions};
 use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
 use crate::intersection::Branch;
 use crate::io::result_json::{
-    certified_error_to_json, certified_events_to_json, certified_to_json, ResultMeta,
+    certified_contact_to_json, certified_error_to_json, certified_events_to_json,
+    certified_to_json, ResultMeta, CERTIFIED_CONTACT_EVENT,
 };
 use crate::io::scene::{Method, Scene};
 use crate::marching::intersect::{intersect, IntersectOutcome};
@@ -92,6 +95,9 @@ pub struct RunReport {
     /// The straying check of each marched branch against the certificates, in branch order,
     /// when the method certifies; else empty.
     pub straying: Vec<StrayReport>,
+    /// The tangential contacts certified from the marcher's contact events, when the method
+    /// certifies; else empty.
+    pub contacts: Vec<CertifiedContact>,
     /// Wall-clock seconds of the marching stage (start-point search and marching).
     pub march_seconds: f64,
     /// Wall-clock seconds of all certification (0 for `march`).
@@ -140,6 +146,7 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     meta.stats = stats_json(&outcome, opts.step);
     let mut certificates = Vec::new();
     let mut straying = Vec::new();
+    let mut contacts = Vec::new();
     let mut certify_seconds = 0.0;
     if opts.method != Method::March {
         for b in &outcome.intersection.branches {
@@ -181,6 +188,12 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
             "straying_seconds".into(),
             json!(checking.elapsed().as_secs_f64()),
         );
+        let contacting = Instant::now();
+        contacts = certify_contacts(p, q, &outcome, opts.tubes, &mut meta);
+        meta.stats.insert(
+            "contact_seconds".into(),
+            json!(contacting.elapsed().as_secs_f64()),
+        );
         for r in &straying {
             if let Some(Value::Object(m)) = meta.certified.get_mut(&r.branch) {
                 m.insert("straying".into(), straying_json(r));
@@ -205,9 +218,58 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         meta,
         certificates,
         straying,
+        contacts,
         march_seconds,
         certify_seconds,
     })
+}
+
+/// Leaf size of the contact cover in a run, as a fraction of each domain width.
+pub const PIPELINE_COVER_LEAF: f64 = 1.0 / 64.0;
+/// Enclosure budget of the contact cover in a run (when spent, the cover stays sound but coarse).
+pub const PIPELINE_COVER_EVALUATIONS: usize = 50_000;
+
+/// Certifies the tangential contacts behind the marcher's contact (`Singular`) events with
+/// [`certify_contact_events`] and appends one `"tangential_contact"` event per contact to the
+/// certified events (or one with an `"error"` if certification failed).
+fn certify_contacts(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    outcome: &IntersectOutcome,
+    tubes: bool,
+    meta: &mut ResultMeta,
+) -> Vec<CertifiedContact> {
+    let events = &outcome.intersection.events;
+    // A coarser cover than the library default: still sound (every intersection point of the
+    // searched region lies in a kept box), at a fraction of the cost.
+    let opts = ContactOptions {
+        cover: CoverOptions {
+            leaf_fraction: PIPELINE_COVER_LEAF,
+            max_evaluations: PIPELINE_COVER_EVALUATIONS,
+        },
+        ..ContactOptions::default()
+    };
+    match certify_contact_events(p, q, events, &opts) {
+        Ok(contacts) => {
+            for c in &contacts {
+                let mut v = certified_contact_to_json(c, tubes);
+                if let Value::Object(m) = &mut v {
+                    m.insert("kind".into(), json!(CERTIFIED_CONTACT_EVENT));
+                }
+                meta.certified_events.push(v);
+            }
+            meta.stats
+                .insert("certified_contacts".into(), json!(contacts.len()));
+            contacts
+        }
+        Err(e) => {
+            meta.certified_events.push(json!({
+                "kind": CERTIFIED_CONTACT_EVENT,
+                "error": e.to_string(),
+            }));
+            Vec::new()
+        }
+    }
 }
 
 /// Model-space length of the marched polyline.

@@ -178,6 +178,14 @@ pub fn result_from_json(doc: &Value) -> Result<ResultDocument> {
                 }
                 certified_events.push(e.clone());
             }
+            Some(CERTIFIED_CONTACT_EVENT) => {
+                if e.get("tangential").is_none() && e.get("error").is_none() {
+                    return Err(bad(&format!(
+                        "events[{k}]: `tangential` or `error` is missing"
+                    )));
+                }
+                certified_events.push(e.clone());
+            }
             _ => events.push(event_from_json(e, k)?),
         }
     }
@@ -224,6 +232,9 @@ pub const CERTIFIED_SINGULAR_EVENT: &str = "singular_box";
 /// `"kind"` of a certified event: a parameter box where the certified step fell below its
 /// minimum with the normals proven apart (two branches closer than the tracer resolves).
 pub const CERTIFIED_CLOSE_EVENT: &str = "close_branches";
+/// `"kind"` of a certified event: a tangential contact certified from a marcher contact event,
+/// with its `"tangential"` object (see [`certified_contact_to_json`]) or an `"error"`.
+pub const CERTIFIED_CONTACT_EVENT: &str = "tangential_contact";
 
 /// `[lo, hi]` as [`interval_to_json`], or `null` for an interval with no finite form (empty or
 /// unbounded): `null` claims nothing.
