@@ -6,6 +6,7 @@
 //! and correcting it with Newton ([`newton`]); it stops exactly on domain boundaries, closes loops
 //! exactly once and stops at singular points.
 
+pub mod boundary_direction;
 pub mod circle_step;
 pub mod dqoc_step;
 pub mod intersect;
