@@ -7,12 +7,13 @@
 
 use ssitrace::error::Error;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
-use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
+use ssitrace::geometry::{Domain, ParametricSurface, PowerSurface, RationalBezierPatch};
 use ssitrace::intersection::{BranchStatus, EndReason};
 use ssitrace::io::scene::Scene;
 use ssitrace::marching::boundary_direction::{
-    boundary_sides, classify_boundary_point, classify_boundary_point_unproven, Bound,
-    BoundaryClassification, BoundaryDirection, BoundaryOptions, BoundarySide, DecidedBy,
+    boundary_sides, classify_boundary_point, classify_boundary_point_unproven, classify_on_faces,
+    Bound, BoundaryClassification, BoundaryDirection, BoundaryOptions, BoundarySide, Contact,
+    DecidedBy,
 };
 use ssitrace::marching::intersect::intersect;
 use ssitrace::marching::start_points::SearchOptions;
@@ -82,8 +83,8 @@ fn seed_example_perturbed_problems_are_regular_with_dt_ds_zero() {
     let f = paper_f();
     println!("\nSeed 001 example, perturbed problems (regular, Grandine's test on eq. 4):");
     println!(
-        "{:>9} | {:>8} | {:>10} | {:>10} | {:>15} | {:>15} | proven",
-        "ε", "t", "dt/ds", "du/ds", "s = 0", "s = 1"
+        "{:>9} | {:>8} | {:>10} | {:>10} | {:>11} | {:>15} | {:>15} | proven",
+        "ε", "t", "dt/ds", "du/ds", "det (4)", "s = 0", "s = 1"
     );
     for eps in [0.1, 1e-2, 1e-3, 1e-6, -1e-6, -1e-3, -1e-2, -0.1] {
         let g = paper_g(eps);
@@ -118,12 +119,23 @@ fn seed_example_perturbed_problems_are_regular_with_dt_ds_zero() {
         let d = start
             .face_derivatives(BoundarySide::new(2, Bound::Min))
             .unwrap();
+        // The paper's "vanishing condition dt/ds·ε^(2/3) = 0": the determinant of eq. (4),
+        // det(f_u, f_v, −g_t), is −3(t − 0.5)² = −3 ε^(2/3) (tends to 0: critical at ε = 0).
+        let y = start.point;
+        let (df, dg) = (f.derivs(y[0], y[1]), g.derivs(y[2], y[3]));
+        let det = df.su.dot(&df.sv.cross(&(-dg.sv)));
+        let closed = -3.0 * eps.cbrt().powi(2);
+        assert!(
+            (det - closed).abs() < 1e-12,
+            "ε {eps}: det {det} vs {closed}"
+        );
         println!(
-            "{:>9.0e} | {:>8.5} | {:>10.2e} | {:>10.6} | {:>15} | {:>15} | {}",
+            "{:>9.0e} | {:>8.5} | {:>10.2e} | {:>10.6} | {:>11.4e} | {:>15} | {:>15} | {}",
             eps,
             start.point[3],
             d[3],
             d[0],
+            det,
             name(start.direction),
             name(end.direction),
             start.proven && end.proven
@@ -152,6 +164,8 @@ fn seed_example_critical_case_by_perturbation_limit() {
         assert!(c.critical, "the surfaces are tangent along t = 0.5");
         assert!(!c.proven, "a perturbation limit is never claimed as proven");
         assert_eq!(c.decided_by, DecidedBy::PerturbationLimit);
+        // Contact of order two: every second-order term of the contact vanishes.
+        assert_eq!(c.contact, Some(Contact::HigherOrder));
         assert_eq!(c.direction, expect, "s = {s}");
         // The orientation agreed by all perturbed problems is +x (N^P × N^Q for either sign of ε).
         assert!(c.orientation[0] > 0.999, "{:?}", c.orientation);
@@ -373,6 +387,7 @@ fn isolated_contact_on_an_edge_is_isolated() {
     let c = classify(&p, &q, [0.0; 4], BoundarySide::new(1, Bound::Min));
     assert!(c.critical);
     assert_eq!(c.direction, BoundaryDirection::Isolated);
+    assert_eq!(c.contact, Some(Contact::Isolated));
     assert_eq!(c.decided_by, DecidedBy::ContactQuadratic);
 }
 
@@ -394,6 +409,7 @@ fn tangential_line_of_order_one_is_a_branch_end_oriented_inward() {
         assert!(c.critical);
         assert_eq!(c.direction, BoundaryDirection::Enters);
         assert_eq!(c.decided_by, DecidedBy::PerturbationLimit);
+        assert_eq!(c.contact, Some(Contact::Curve));
         assert!(c.orientation[0] * ox > 0.999, "{:?}", c.orientation);
         let d = c.face_derivatives(side).unwrap();
         assert!(d[1].abs() < 1e-6 && (d[2] - 1.0).abs() < 1e-6, "{d:?}");
@@ -492,13 +508,12 @@ fn marched_branches_enter_first_and_leave_last() {
                     continue;
                 }
                 let y = params(idx);
-                let sides = boundary_sides(p, q, &y, 1e-9);
+                let faces = classify_on_faces(p, q, y, &opts).expect("classifies");
                 assert!(
-                    !sides.is_empty(),
+                    !faces.is_empty(),
                     "{file}: boundary end off every face: {y:?}"
                 );
-                for side in sides {
-                    let c = classify_boundary_point(p, q, y, side, &opts).expect("classifies");
+                for (side, c) in faces {
                     assert_eq!(
                         c.along(dir),
                         expect,

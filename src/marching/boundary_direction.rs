@@ -145,6 +145,20 @@ pub enum DecidedBy {
     Nothing,
 }
 
+/// The shape of a tangential contact from its second-order terms (the contact quadratic
+/// `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0` of Ye & Maekawa), estimated in `f64`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Contact {
+    /// Discriminant < 0: the surfaces touch at this point only.
+    Isolated,
+    /// Discriminant > 0: two curves cross here.
+    BranchPoint,
+    /// Discriminant ≈ 0, quadratic not zero: a curve of tangency of contact order one.
+    Curve,
+    /// The quadratic vanishes: contact of order two or more (the seed paper's example).
+    HigherOrder,
+}
+
 /// One perturbed problem of the critical case: Q translated by `epsilon · n`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PerturbedDirection {
@@ -181,6 +195,8 @@ pub struct BoundaryClassification {
     pub decided_by: DecidedBy,
     /// The perturbed problems examined (critical case only), largest `|ε|` first.
     pub perturbed: Vec<PerturbedDirection>,
+    /// The shape of the contact (critical case only; estimated in `f64`).
+    pub contact: Option<Contact>,
 }
 
 impl BoundaryClassification {
@@ -255,6 +271,27 @@ where
     classify(p, q, y, side, opts, Some(&prove))
 }
 
+/// [`classify_boundary_point`] on every face `y` lies on (within `opts.boundary_tolerance`;
+/// two at a corner); an empty list for a point inside both domains. Same errors.
+pub fn classify_on_faces<P, Q>(
+    p: &P,
+    q: &Q,
+    y: [f64; 4],
+    opts: &BoundaryOptions,
+) -> Result<Vec<(BoundarySide, BoundaryClassification)>>
+where
+    P: ParametricSurface + ScalarSurface + ?Sized,
+    Q: ParametricSurface + ScalarSurface + ?Sized,
+{
+    if let Some(i) = y.iter().position(|c| !c.is_finite()) {
+        return Err(Error::input(format!("y[{i}]"), InputProblem::NonFinite));
+    }
+    boundary_sides(p, q, &y, opts.boundary_tolerance)
+        .into_iter()
+        .map(|side| Ok((side, classify_boundary_point(p, q, y, side, opts)?)))
+        .collect()
+}
+
 /// [`classify_boundary_point`] for surfaces with only an `f64` evaluation: the same answer
 /// without the interval proof (`proven` is always false).
 pub fn classify_boundary_point_unproven<P, Q>(
@@ -280,9 +317,13 @@ where
     Q: ScalarSurface + ?Sized,
 {
     let b = certify_point(p, q, *x, k, radius)?;
-    let (ap, bp, _) = p.scaled_first_order(b[0], b[1]);
-    let (aq, bq, _) = q.scaled_first_order(b[2], b[3]);
-    // The scale factors g > 0 do not change signs: use the scaled partials directly.
+    let (ap, bp, gp) = p.scaled_first_order(b[0], b[1]);
+    let (aq, bq, gq) = q.scaled_first_order(b[2], b[3]);
+    // Positive scale factors g do not change signs: use the scaled partials directly (the box
+    // may reach slightly outside a domain, so g > 0 is checked rather than assumed).
+    if !(gp.inf() > 0.0 && gq.inf() > 0.0) {
+        return None;
+    }
     let num = numerator_of::<Interval>(&ap, &bp, &aq, &bq, k);
     if num.inf() > 0.0 {
         Some(1.0)
@@ -453,7 +494,9 @@ where
         20,
     ) {
         if (0..4).all(|i| (r.x[i] - x[i]).abs() <= 1e-3 * widths[i]) {
+            let bound = x[k];
             x = r.x;
+            x[k] = bound; // exactly on the face, whatever Newton's rounding did
         }
     }
     let (dp, dq) = (p.derivs(x[0], x[1]), q.derivs(x[2], x[3]));
@@ -468,6 +511,7 @@ where
         point: x,
         decided_by: DecidedBy::Nothing,
         perturbed: Vec::new(),
+        contact: None,
     };
     let by_sign = |s: f64| {
         if s * inward > 0.0 {

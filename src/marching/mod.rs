@@ -17,6 +17,10 @@ pub mod tangent;
 pub mod tangent_step;
 pub mod trace;
 
+pub use boundary_direction::{
+    classify_boundary_point, classify_on_faces, BoundaryClassification, BoundaryDirection,
+    BoundarySide,
+};
 pub use options::{MarchOptions, StepMethod};
 pub use trace::{trace_branch, MarchStats, TracedBranch};
 

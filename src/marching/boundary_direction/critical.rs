@@ -6,30 +6,18 @@
 
 use super::{
     arr, pair_bounds, velocity_at, BoundaryClassification, BoundaryDirection, BoundarySide,
-    DecidedBy, PerturbedDirection,
+    Contact, DecidedBy, PerturbedDirection,
 };
 use crate::geometry::{ParametricSurface, SurfaceDerivs, Vec3};
 use nalgebra::{Matrix3, Vector3};
 
-/// The shape of a tangential contact from its second-order terms (Ye & Maekawa's quadratic
-/// `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0`), or `None` when all of it vanishes (higher order).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum ContactShape {
-    Isolated,
-    BranchPoint,
-    Curve,
-}
-
-fn contact_shape(
-    dp: &SurfaceDerivs,
-    dq: &SurfaceDerivs,
-    n: &Vec3,
-    ell: f64,
-) -> Option<ContactShape> {
+/// The shape of the contact at a tangential point from its second-order terms (Ye & Maekawa's
+/// quadratic `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0`).
+fn contact_shape(dp: &SurfaceDerivs, dq: &SurfaceDerivs, n: &Vec3, ell: f64) -> Contact {
     let det = |a: &Vec3, b: &Vec3, c: &Vec3| a.dot(&b.cross(c));
     let d = det(&dq.su, &dq.sv, n);
     if d == 0.0 || !d.is_finite() {
-        return None;
+        return Contact::HigherOrder;
     }
     let a11 = det(&dp.su, &dq.sv, n) / d;
     let a12 = det(&dp.sv, &dq.sv, n) / d;
@@ -49,16 +37,16 @@ fn contact_shape(
         + (dq.suu.norm() + 2.0 * dq.suv.norm() + dq.svv.norm()) * a2;
     let bm = b11.abs().max(b12.abs()).max(b22.abs());
     if bm <= 1e-7 * scale {
-        return None;
+        return Contact::HigherOrder;
     }
     let disc = b12 * b12 - b11 * b22;
-    Some(if disc < -1e-6 * bm * bm {
-        ContactShape::Isolated
+    if disc < -1e-6 * bm * bm {
+        Contact::Isolated
     } else if disc > 1e-6 * bm * bm {
-        ContactShape::BranchPoint
+        Contact::BranchPoint
     } else {
-        ContactShape::Curve
-    })
+        Contact::Curve
+    }
 }
 
 /// `|ε|` of the perturbed problems, relative to the model size: 10⁻², …, 10⁻¹⁰.
@@ -217,6 +205,7 @@ where
         point: x,
         decided_by: DecidedBy::Nothing,
         perturbed: Vec::new(),
+        contact: None,
     };
     let np = dp.normal();
     if np.norm() == 0.0 || !np.norm().is_finite() || dq.normal().norm() == 0.0 {
@@ -230,13 +219,14 @@ where
         1.0
     };
     let shape = contact_shape(&dp, &dq, &n, ell);
+    out.contact = Some(shape);
     match shape {
-        Some(ContactShape::Isolated) => {
+        Contact::Isolated => {
             out.direction = BoundaryDirection::Isolated;
             out.decided_by = DecidedBy::ContactQuadratic;
             return out;
         }
-        Some(ContactShape::BranchPoint) => {
+        Contact::BranchPoint => {
             out.decided_by = DecidedBy::ContactQuadratic;
             return out;
         }
@@ -250,14 +240,14 @@ where
     let rel: [f64; 4] = std::array::from_fn(|i| tangent[i] / widths[i]);
     let largest = rel.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
     let across = rel[k] / largest;
-    if across.abs() < 0.05 {
+    if across.is_nan() || across.abs() < 0.05 {
         // The limit runs along the face: not decided at this accuracy.
         return out;
     }
     let inward = side.inward_sign();
     let orientation = match consistent {
         Some(_) => velocity_at(p, q, &out.perturbed[reference].point).0,
-        None if shape == Some(ContactShape::Curve) => {
+        None if shape == Contact::Curve => {
             // A tangential curve of order one: its perturbed curves come in oppositely oriented
             // pairs, so there is no orientation from the normals; orient it into the domain.
             if across * inward < 0.0 {
