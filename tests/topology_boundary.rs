@@ -417,6 +417,136 @@ fn tangential_line_of_order_one_is_a_branch_end_oriented_inward() {
 }
 
 #[test]
+fn critical_curved_tangential_curve_by_perturbation_limit() {
+    // P: z = (1 + σ)(t − 0.5 − 0.3σ²)³ on [0,1]², Q: the plane z = 0. They touch (contact of
+    // order two) along the parabola t = 0.5 + 0.3σ², whose slope dt/dσ = 0.6σ is 0 at σ = 0 and
+    // 0.6 at σ = 1. Q moved by ε along n = N^P = +z meets P where h = ε: the perturbed curves
+    // t = 0.5 + 0.3σ² + ∛(ε/(1 + σ)) have slope 0.6σ − ∛ε (1 + σ)^(−4/3)/3, so the limit is
+    // approached like ∛ε. For graphs,
+    // N^P × N^Q ∝ (−h_t, h_σ) = −3(1 + σ)w²(1, 0.6σ) + O(w³) with w = t − 0.5 − 0.3σ²: σ
+    // decreases along it for either sign of ε, so the curve leaves at σ = 0 and enters at σ = 1.
+    let terms = vec![
+        (7, 0, -0.027),
+        (6, 0, -0.027),
+        (5, 1, 0.27),
+        (5, 0, -0.135),
+        (4, 1, 0.27),
+        (4, 0, -0.135),
+        (3, 2, -0.9),
+        (3, 1, 0.9),
+        (3, 0, -0.225),
+        (2, 2, -0.9),
+        (2, 1, 0.9),
+        (2, 0, -0.225),
+        (1, 3, 1.0),
+        (1, 2, -1.5),
+        (1, 1, 0.75),
+        (1, 0, -0.125),
+        (0, 3, 1.0),
+        (0, 2, -1.5),
+        (0, 1, 0.75),
+        (0, 0, -0.125),
+    ];
+    let p = graph(Domain::UNIT, terms);
+    let q = graph(
+        Domain::new(-1.0, 2.0, -1.0, 2.0),
+        vec![(0, 0, 0.0), (1, 1, 0.0)],
+    );
+    println!("\nCurved tangential curve of contact order two: dt/dσ(ε) → dt/dσ(0)");
+    for (s, side, expect, slope) in [
+        (
+            0.0,
+            BoundarySide::new(0, Bound::Min),
+            BoundaryDirection::Leaves,
+            0.0,
+        ),
+        (
+            1.0,
+            BoundarySide::new(0, Bound::Max),
+            BoundaryDirection::Enters,
+            0.6,
+        ),
+    ] {
+        let t = 0.5 + 0.3 * s * s;
+        let c = classify(&p, &q, [s, t, s, t], side);
+        assert!(c.critical && !c.proven);
+        assert_eq!(c.contact, Some(Contact::HigherOrder));
+        assert_eq!(c.decided_by, DecidedBy::PerturbationLimit);
+        assert_eq!(c.direction, expect, "σ = {s}");
+        let d = c.face_derivatives(side).unwrap();
+        println!(
+            "  σ = {s}: {:>9} | {:>12} | {:>12}",
+            "ε", "dt/dσ(ε)", "closed form"
+        );
+        for pd in &c.perturbed {
+            let slope_eps = pd.tangent[1] / pd.tangent[0];
+            let closed = 0.6 * s - pd.epsilon.cbrt() * (1.0 + s).powf(-4.0 / 3.0) / 3.0;
+            assert!(
+                (slope_eps - closed).abs() < 1e-6,
+                "ε {}: {slope_eps} vs {closed}",
+                pd.epsilon
+            );
+            println!(
+                "  {:>16.1e} | {:>12.8} | {:>12.8}",
+                pd.epsilon, slope_eps, closed
+            );
+        }
+        println!(
+            "  limit (mean over ±ε at the smallest level) dt/dσ(0) = {:.9} (exact {slope}, error {:.1e}), {}",
+            d[1],
+            d[1] - slope,
+            name(c.direction)
+        );
+        assert!(
+            (d[1] - slope).abs() < 1e-3,
+            "dt/dσ(0) = {} vs {slope}",
+            d[1]
+        );
+    }
+}
+
+#[test]
+fn seed_example_rotated_in_space_keeps_its_answers() {
+    // The same pair after a rigid rotation of model space (control points rotated; rational
+    // Bézier patches are affinely invariant): the answers must not depend on the axes.
+    let (c1, s1) = (0.6, 0.8);
+    let (c2, s2) = (5.0 / 13.0, 12.0 / 13.0);
+    let rotate = |x: [f64; 3]| {
+        let a = [x[0], c1 * x[1] - s1 * x[2], s1 * x[1] + c1 * x[2]];
+        [c2 * a[0] - s2 * a[1], s2 * a[0] + c2 * a[1], a[2]]
+    };
+    let rotated = |patch: &RationalBezierPatch| {
+        let pts: Vec<[f64; 3]> = patch
+            .cartesian()
+            .iter()
+            .map(|c| rotate([c[0].mid(), c[1].mid(), c[2].mid()]))
+            .collect();
+        RationalBezierPatch::from_f64_points(patch.degree(), &pts, None, Domain::UNIT).unwrap()
+    };
+    let (f, g) = (rotated(&paper_f()), rotated(&paper_g(0.0)));
+    let along_s = rotate([1.0, 0.0, 0.0]);
+    for (s, side, expect) in [
+        (
+            0.0,
+            BoundarySide::new(2, Bound::Min),
+            BoundaryDirection::Enters,
+        ),
+        (
+            1.0,
+            BoundarySide::new(2, Bound::Max),
+            BoundaryDirection::Leaves,
+        ),
+    ] {
+        let c = classify(&f, &g, paper_point(0.0, s), side);
+        assert!(c.critical);
+        assert_eq!(c.direction, expect);
+        assert_eq!(c.along(along_s), expect);
+        let d = c.face_derivatives(side).unwrap();
+        assert!(d[3].abs() < 1e-6 && (d[0] - 0.7).abs() < 1e-6, "{d:?}");
+    }
+}
+
+#[test]
 fn critical_curve_along_the_face_is_undecided() {
     // g = (0.7s + 0.15, 0.7t + 0.15, t³) touches f = (u, v, 0) along its own edge t = 0.
     let f = paper_f();
