@@ -10,24 +10,35 @@
 //!
 //! The numerator of `y_k'` is, up to sign, the determinant of Grandine's 3×3 system (Oh, Hur &
 //! Kim, eq. 4: the derivative of `P − Q` along the boundary parameter, against the three other
-//! parameters' columns), so its sign is Grandine's start/end test (their eq. 1): at a `Min` face
-//! the curve **enters** where `y_k' > 0` and **leaves** where `y_k' < 0` (reversed at `Max`).
+//! parameters' columns; its solution is [`BoundaryClassification::face_derivatives`]). The
+//! paper's eq. 1 (garbled in the OCR) is a sign test on those derivatives: the point starts a
+//! branch when the curve heads into the domain along the chosen orientation. Here: at a `Min`
+//! face the curve **enters** where `y_k' > 0` and **leaves** where `y_k' < 0` (reversed at `Max`);
+//! [`BoundaryClassification::along`] restates the answer for any direction of travel.
 //!
 //! - **Regular case** (`c ≠ 0`, `y_k' ≠ 0`): the sign is proven when the Krawczyk test certifies a
-//!   box around the point with `y_k` held exactly at the bound
-//!   ([`certify_point`]) and the interval numerator over that box excludes 0.
+//!   box around the point with `y_k` held exactly at the bound ([`certify_point`]) and the
+//!   interval numerator over that box excludes 0. Otherwise the `f64` sign is returned as an
+//!   estimate.
 //! - **Tangent to the face** (`c ≠ 0`, `y_k' ≈ 0`): the sign of `y_k''` (from second derivatives)
 //!   says whether the curve touches the face from inside or from outside: neither a start nor an
 //!   end of a branch. Never proven (tangency is a codimension-one condition).
-//! - **Critical case** (`c = 0`: the surfaces are tangent there, the 3×3 system is singular): the
-//!   contact quadratic of Ye & Maekawa separates isolated contacts and branch points; otherwise
-//!   the direction is the paper's perturbation limit `dy/ds(0) = lim_{ε→0} dy/ds(ε)`, evaluated
-//!   numerically on Q translated by `ε·n` (`n` the unit normal, the paper's own perturbation) for
-//!   `|ε|` = 10⁻²…10⁻¹⁰ of the model size, both signs. The numerical limit is used rather than
-//!   the analytic one because the analytic limit needs the lowest non-vanishing order of the
-//!   contact (third order in the paper's example), i.e. derivatives the surface traits do not
-//!   provide, while the perturbed problems are regular and need only first derivatives. Never
-//!   proven.
+//! - **Critical case** (`c = 0`: the surfaces are tangent there, the 3×3 system is singular;
+//!   the `critical` submodule): the contact quadratic of Ye & Maekawa separates isolated
+//!   contacts and branch points; for a curve of tangency (or when all second-order terms vanish, contact of
+//!   order ≥ 2 as in the paper's example) the direction is the paper's perturbation limit
+//!   `dy/ds(0) = lim_{ε→0} dy/ds(ε)`, evaluated numerically on Q translated by `ε·n` (`n` the
+//!   unit normal: the paper's own perturbation) for `|ε|` = 10⁻²…10⁻¹⁰ of the model size, both
+//!   signs; the perturbed problems are regular, and their directions must agree over the three
+//!   smallest levels. The numerical limit is used rather than the analytic one because the
+//!   analytic limit needs the lowest non-vanishing order of the contact (third order in the
+//!   paper's example), i.e. derivatives the surface traits do not provide, while the perturbed
+//!   problems need only first derivatives and work for any contact order. The answer refers to
+//!   the perturbed curves' common orientation `N^P × N^Q` when they share one; a curve of
+//!   tangency of order one has none (its perturbed curves come in oppositely oriented pairs)
+//!   and is oriented into the domain; oppositely oriented pairs at a higher-order contact are
+//!   left undecided, because an isolated contact of higher order looks the same from the face.
+//!   Never proven.
 
 use super::newton::{refine, Constraint};
 use crate::certified::field::{cross, dot, ScalarSurface};
