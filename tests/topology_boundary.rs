@@ -290,6 +290,37 @@ fn oblique_plane_leaves_the_smaller_domain_of_q() {
     );
 }
 
+#[test]
+fn curve_through_a_corner_enters_through_both_faces() {
+    // P: z = σ² + t² on [0,1]², Q: z = −0.2u + 0.3v. The circle σ² + t² + 0.2σ − 0.3t = 0 passes
+    // through the corner (0, 0) with direction (−∂d/∂t, ∂d/∂σ) = (0.3, 0.2): into the domain
+    // across both faces σ = 0 and t = 0.
+    let p = graph(Domain::UNIT, vec![(2, 0, 1.0), (0, 2, 1.0)]);
+    let q = graph(
+        Domain::new(-1.0, 2.0, -1.0, 2.0),
+        vec![(1, 0, -0.2), (0, 1, 0.3)],
+    );
+    let faces = classify_on_faces(&p, &q, [0.0; 4], &BoundaryOptions::default()).unwrap();
+    let sides: Vec<BoundarySide> = faces.iter().map(|f| f.0).collect();
+    assert_eq!(
+        sides,
+        vec![
+            BoundarySide::new(0, Bound::Min),
+            BoundarySide::new(1, Bound::Min)
+        ]
+    );
+    for (side, c) in &faces {
+        assert_eq!(c.direction, BoundaryDirection::Enters, "{side:?}");
+        assert!(c.proven);
+        let ratio = c.tangent[1] / c.tangent[0];
+        assert!((ratio - 0.2 / 0.3).abs() < 1e-12, "{ratio}");
+    }
+    // A point inside both domains lies on no face.
+    let inside = [0.25, 0.0, 0.25, 0.0];
+    assert!(boundary_sides(&p, &q, &[0.3, 0.4, 0.3, 0.4], 1e-9).is_empty());
+    assert_eq!(boundary_sides(&p, &q, &inside, 1e-9).len(), 1);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Touching: P the paraboloid z = σ² + t², Q the plane z = 0.25: the circle σ² + t² = 0.25.
 
