@@ -423,6 +423,32 @@ fn isolated_contact_on_an_edge_is_isolated() {
 }
 
 #[test]
+fn tangent_plane_at_an_edge_of_the_rational_sphere_patch_is_isolated() {
+    // The sphere scene's patch (radius 1.5625 about the origin) has P(0.5, 0) = (1.25, 0, −0.9375)
+    // on its edge t = 0; Q is the tangent plane there, spanned by (0, 1, 0) and (0.6, 0, 0.8)
+    // (normal (0.8, 0, −0.6)), with Q(0, 0) the point: the sphere touches it only there.
+    let [p, _] = scene("sphere_patch_plane.json").surfaces;
+    let corners: Vec<[f64; 3]> = [[-1.0, -1.0], [-1.0, 1.0], [1.0, -1.0], [1.0, 1.0]]
+        .iter()
+        .map(|&[u, v]| [1.25 + 0.6 * v, u, -0.9375 + 0.8 * v])
+        .collect();
+    let q = RationalBezierPatch::from_f64_points(
+        [1, 1],
+        &corners,
+        None,
+        Domain::new(-1.0, 1.0, -1.0, 1.0),
+    )
+    .unwrap();
+    let y = [0.5, 0.0, 0.0, 0.0];
+    let at = p.point(0.5, 0.0);
+    assert!((at - nalgebra::Vector3::new(1.25, 0.0, -0.9375)).norm() < 1e-12);
+    let c = classify(&p, &q, y, BoundarySide::new(1, Bound::Min));
+    assert!(c.critical);
+    assert_eq!(c.contact, Some(Contact::Isolated));
+    assert_eq!(c.direction, BoundaryDirection::Isolated);
+}
+
+#[test]
 fn tangential_line_of_order_one_is_a_branch_end_oriented_inward() {
     // z = (t − 0.5)² on [0,1]² touches the plane z = 0 along t = 0.5: a branch from σ = 0 to 1.
     // The perturbed curves t = 0.5 ± √ε come in oppositely oriented pairs, so the answer is
