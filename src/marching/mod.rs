@@ -18,8 +18,8 @@ pub mod tangent_step;
 pub mod trace;
 
 pub use boundary_direction::{
-    classify_boundary_point, classify_on_faces, BoundaryClassification, BoundaryDirection,
-    BoundarySide,
+    classify_boundary_point, classify_on_faces, Bound, BoundaryClassification, BoundaryDirection,
+    BoundaryOptions, BoundarySide,
 };
 pub use options::{MarchOptions, StepMethod};
 pub use trace::{trace_branch, MarchStats, TracedBranch};

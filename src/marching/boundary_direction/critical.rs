@@ -148,10 +148,12 @@ where
 
 /// The limit line of the perturbed directions (unit, in width-scaled parameters) and, when all
 /// perturbed curves of the last three levels are oriented the same way along it, that sign.
-/// `None` unless the last three levels with points agree within 0.02 rad.
+/// `None` unless the last three levels with points agree within 0.02 rad and the last one is
+/// at most `10⁻⁶ ell` (the limit must actually be approached).
 fn perturbation_limit(
     list: &[PerturbedDirection],
     widths: &[f64; 4],
+    ell: f64,
 ) -> Option<(usize, Option<f64>)> {
     let scaled = |t: &[f64; 4]| {
         let s: [f64; 4] = std::array::from_fn(|i| t[i] / widths[i]);
@@ -160,7 +162,7 @@ fn perturbation_limit(
     };
     let mut mags: Vec<f64> = list.iter().map(|d| d.epsilon.abs()).collect();
     mags.dedup();
-    if mags.len() < 3 {
+    if mags.len() < 3 || mags[mags.len() - 1] > 1e-6 * ell {
         return None;
     }
     let last = mags[mags.len() - 3];
@@ -264,7 +266,7 @@ where
         _ => {}
     }
     out.perturbed = perturbed_points(p, q, x, k, &n, ell, widths);
-    let Some((reference, consistent)) = perturbation_limit(&out.perturbed, widths) else {
+    let Some((reference, consistent)) = perturbation_limit(&out.perturbed, widths, ell) else {
         return out;
     };
     let mut tangent = smallest_level_mean(&out.perturbed, reference, widths, &dp);
