@@ -449,6 +449,24 @@ fn tangent_plane_at_an_edge_of_the_rational_sphere_patch_is_isolated() {
 }
 
 #[test]
+fn branch_point_on_an_edge_is_reported_undecided() {
+    // z = σ² − t² on [−1,1]×[0,1] meets the plane z = 0 in the lines σ = ±t, which cross at the
+    // origin on the edge t = 0: two branches start there, no single direction exists.
+    let p = graph(
+        Domain::new(-1.0, 1.0, 0.0, 1.0),
+        vec![(2, 0, 1.0), (0, 2, -1.0)],
+    );
+    let q = graph(
+        Domain::new(-2.0, 2.0, -2.0, 2.0),
+        vec![(0, 0, 0.0), (1, 1, 0.0)],
+    );
+    let c = classify(&p, &q, [0.0; 4], BoundarySide::new(1, Bound::Min));
+    assert!(c.critical && !c.proven);
+    assert_eq!(c.contact, Some(Contact::BranchPoint));
+    assert_eq!(c.direction, BoundaryDirection::Undecided);
+}
+
+#[test]
 fn tangential_line_of_order_one_is_a_branch_end_oriented_inward() {
     // z = (t − 0.5)² on [0,1]² touches the plane z = 0 along t = 0.5: a branch from σ = 0 to 1.
     // The perturbed curves t = 0.5 ± √ε come in oppositely oriented pairs, so the answer is
