@@ -492,6 +492,42 @@ fn tangential_line_of_order_one_is_a_branch_end_oriented_inward() {
 }
 
 #[test]
+fn oblique_tangential_line_of_order_one_crosses_the_t_faces() {
+    // z = (σ − 0.5 − 0.2t)² touches z = 0 along σ = 0.5 + 0.2t, from (0.5, 0) to (0.7, 1):
+    // dσ/dt = 0.2; oriented into the domain at both ends (as the trough above).
+    let p = graph(
+        Domain::UNIT,
+        vec![
+            (2, 0, 1.0),
+            (1, 1, -0.4),
+            (0, 2, 0.04),
+            (1, 0, -1.0),
+            (0, 1, 0.2),
+            (0, 0, 0.25),
+        ],
+    );
+    let q = graph(
+        Domain::new(-1.0, 2.0, -1.0, 2.0),
+        vec![(0, 0, 0.0), (1, 1, 0.0)],
+    );
+    for (y, side, oy) in [
+        ([0.5, 0.0, 0.5, 0.0], BoundarySide::new(1, Bound::Min), 1.0),
+        ([0.7, 1.0, 0.7, 1.0], BoundarySide::new(1, Bound::Max), -1.0),
+    ] {
+        let c = classify(&p, &q, y, side);
+        assert!(c.critical);
+        assert_eq!(c.contact, Some(Contact::Curve));
+        assert_eq!(c.direction, BoundaryDirection::Enters, "{side:?}");
+        assert!(c.orientation[1] * oy > 0.9, "{:?}", c.orientation);
+        let d = c.face_derivatives(side).unwrap();
+        assert!(
+            (d[0] - 0.2).abs() < 1e-6 && (d[2] - 0.2).abs() < 1e-6,
+            "{d:?}"
+        );
+    }
+}
+
+#[test]
 fn critical_curved_tangential_curve_by_perturbation_limit() {
     // P: z = (1 + σ)(t − 0.5 − 0.3σ²)³ on [0,1]², Q: the plane z = 0. They touch (contact of
     // order two) along the parabola t = 0.5 + 0.3σ², whose slope dt/dσ = 0.6σ is 0 at σ = 0 and

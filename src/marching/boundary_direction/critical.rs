@@ -13,11 +13,16 @@ use nalgebra::{Matrix3, Vector3};
 
 /// The shape of the contact at a tangential point from its second-order terms (Ye & Maekawa's
 /// quadratic `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0`).
-fn contact_shape(dp: &SurfaceDerivs, dq: &SurfaceDerivs, n: &Vec3, ell: f64) -> Contact {
+fn contact_shape(
+    dp: &SurfaceDerivs,
+    dq: &SurfaceDerivs,
+    n: &Vec3,
+    ell: f64,
+) -> (Contact, Option<[f64; 4]>) {
     let det = |a: &Vec3, b: &Vec3, c: &Vec3| a.dot(&b.cross(c));
     let d = det(&dq.su, &dq.sv, n);
     if d == 0.0 || !d.is_finite() {
-        return Contact::HigherOrder;
+        return (Contact::HigherOrder, None);
     }
     let a11 = det(&dp.su, &dq.sv, n) / d;
     let a12 = det(&dp.sv, &dq.sv, n) / d;
@@ -37,15 +42,22 @@ fn contact_shape(dp: &SurfaceDerivs, dq: &SurfaceDerivs, n: &Vec3, ell: f64) -> 
         + (dq.suu.norm() + 2.0 * dq.suv.norm() + dq.svv.norm()) * a2;
     let bm = b11.abs().max(b12.abs()).max(b22.abs());
     if bm <= 1e-7 * scale {
-        return Contact::HigherOrder;
+        return (Contact::HigherOrder, None);
     }
     let disc = b12 * b12 - b11 * b22;
     if disc < -1e-6 * bm * bm {
-        Contact::Isolated
+        (Contact::Isolated, None)
     } else if disc > 1e-6 * bm * bm {
-        Contact::BranchPoint
+        (Contact::BranchPoint, None)
     } else {
-        Contact::Curve
+        // The double root of the quadratic: the curve's direction (σ', t'), and (u', v') = a·(σ', t').
+        let (ds, dt) = if b11.abs() >= b22.abs() {
+            (-b12, b11)
+        } else {
+            (b22, -b12)
+        };
+        let dir = [ds, dt, a11 * ds + a12 * dt, a21 * ds + a22 * dt];
+        (Contact::Curve, Some(dir))
     }
 }
 
@@ -215,6 +227,19 @@ fn smallest_level_mean(
     }
 }
 
+/// `|cos|` of the angle between the lines of `a` and `b` in width-scaled parameters (0 when
+/// either is zero).
+fn line_cosine(a: &[f64; 4], b: &[f64; 4], widths: &[f64; 4]) -> f64 {
+    let dot =
+        |x: &[f64; 4], y: &[f64; 4]| (0..4).map(|i| x[i] * y[i] / widths[i].powi(2)).sum::<f64>();
+    let n = (dot(a, a) * dot(b, b)).sqrt();
+    if n > 0.0 {
+        (dot(a, b) / n).abs()
+    } else {
+        0.0
+    }
+}
+
 /// The critical case (the surfaces tangent at `x`): contact quadratic, then perturbation limit.
 pub(super) fn classify_critical<P, Q>(
     p: &P,
@@ -251,7 +276,7 @@ where
     } else {
         1.0
     };
-    let shape = contact_shape(&dp, &dq, &n, ell);
+    let (shape, quadratic_direction) = contact_shape(&dp, &dq, &n, ell);
     out.contact = Some(shape);
     match shape {
         Contact::Isolated => {
@@ -270,6 +295,13 @@ where
         return out;
     };
     let mut tangent = smallest_level_mean(&out.perturbed, reference, widths, &dp);
+    if let Some(qd) = quadratic_direction {
+        // Order one: the contact quadratic gives the direction directly; a perturbation limit
+        // that disagrees with it (beyond 0.05 rad) is not trusted.
+        if line_cosine(&qd, &tangent, widths) < (0.05f64).cos() {
+            return out;
+        }
+    }
     let rel: [f64; 4] = std::array::from_fn(|i| tangent[i] / widths[i]);
     let largest = rel.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
     let across = rel[k] / largest;
