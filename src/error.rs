@@ -122,6 +122,26 @@ pub enum Error {
     /// Invalid options or ODE system given to the validated integrator.
     #[error("validated integrator setup: {0}")]
     BadIntegratorSetup(String),
+    /// A point given as lying on a face of the parameter box is not on it.
+    #[error("point {near:?} is not on the face where coordinate {coordinate} = {bound} (off by {distance:e})")]
+    NotOnBoundary {
+        /// The face's coordinate (0 = σ, 1 = t, 2 = u, 3 = v).
+        coordinate: usize,
+        /// The face's value of that coordinate.
+        bound: f64,
+        /// How far the point is from the face (parameter units).
+        distance: f64,
+        /// The point given.
+        near: [f64; 4],
+    },
+    /// A point given as a point of P ∩ Q is not on it.
+    #[error("point {near:?} is not on the intersection (|P − Q| = {residual:e})")]
+    NotOnIntersection {
+        /// `|P(σ,t) − Q(u,v)|` at the point.
+        residual: f64,
+        /// The point given.
+        near: [f64; 4],
+    },
 }
 
 impl Error {

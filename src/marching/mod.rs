@@ -6,6 +6,7 @@
 //! and correcting it with Newton ([`newton`]); it stops exactly on domain boundaries, closes loops
 //! exactly once and stops at singular points.
 
+pub mod boundary_direction;
 pub mod circle_step;
 pub mod dqoc_step;
 pub mod intersect;
@@ -16,6 +17,10 @@ pub mod tangent;
 pub mod tangent_step;
 pub mod trace;
 
+pub use boundary_direction::{
+    classify_boundary_point, classify_on_faces, Bound, BoundaryClassification, BoundaryDirection,
+    BoundaryOptions, BoundarySide,
+};
 pub use options::{MarchOptions, StepMethod};
 pub use trace::{trace_branch, MarchStats, TracedBranch};
 
