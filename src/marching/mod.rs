@@ -6,8 +6,10 @@
 //! and correcting it with Newton ([`newton`]); it stops exactly on domain boundaries, closes loops
 //! exactly once and stops at singular points.
 
+pub mod branch_point;
 pub mod circle_step;
 pub mod dqoc_step;
+pub mod graph;
 pub mod intersect;
 pub mod newton;
 pub mod options;
@@ -17,7 +19,7 @@ pub mod tangent_step;
 pub mod trace;
 
 pub use options::{MarchOptions, StepMethod};
-pub use trace::{trace_branch, MarchStats, TracedBranch};
+pub use trace::{trace_branch, trace_from_node, MarchStats, TracedBranch};
 
 use crate::geometry::Vec3;
 

@@ -50,6 +50,9 @@ pub struct MarchOptions {
     /// (seed 004's bookkeeping), so on some curves (Fig. 8 from its left start) a crossing march
     /// goes round until this budget is spent instead of closing.
     pub cross_singular: usize,
+    /// At a singular point met by [`intersect`](super::intersect::intersect) (graph tracing), the
+    /// arcs leave through curve points at distance `node_radius · step` from it.
+    pub node_radius: f64,
 }
 
 impl Default for MarchOptions {
@@ -67,6 +70,7 @@ impl Default for MarchOptions {
             rotation_tolerance: 0.5,
             domain_tolerance: 1e-9,
             cross_singular: 0,
+            node_radius: 0.5,
         }
     }
 }

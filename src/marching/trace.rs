@@ -592,6 +592,75 @@ fn to_curve_point(n: &Node) -> CurvePoint {
     }
 }
 
+/// Traces the arc leaving the singular point `node` through its exit point `exit` (a curve point
+/// near it, see [`analyse_node`](super::branch_point::analyse_node)): the march starts at the exit,
+/// heading away from the node, and runs until a stop rule fires (no loop closure: an arc from a
+/// node ends at a node, a boundary, or the budget). The branch starts with the node itself, then
+/// the exit. Errors: invalid options or a non-finite point ([`Error::InvalidInput`]).
+pub fn trace_from_node<S1, S2>(
+    p: &S1,
+    q: &S2,
+    node: [f64; 4],
+    exit: [f64; 4],
+    opts: &MarchOptions,
+) -> Result<TracedBranch>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    check_options(opts)?;
+    if let Some(i) = node.iter().chain(&exit).position(|c| !c.is_finite()) {
+        return Err(bad(&format!("node/exit[{i}]"), InputProblem::NonFinite));
+    }
+    let n0 = node_at(p, q, node, 0, None);
+    let away = p.point(exit[0], exit[1]) - n0.frame.xyz;
+    let st = node_at(p, q, exit, 0, Some(away));
+    let opts_arc = MarchOptions {
+        cross_singular: 0,
+        ..*opts
+    };
+    let half = march_half(p, q, &st, &opts_arc, opts.max_points.saturating_sub(2), false);
+    let mut nodes = vec![n0, st];
+    nodes.extend(half.nodes.iter().copied());
+    let mut events = half.events.clone();
+    events.insert(0, make_event(EventKind::Singular, &n0));
+    let ends = [EndReason::Singular, half.end];
+    let regular = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
+    let status = if regular(&ends[1]) {
+        BranchStatus::Open
+    } else {
+        BranchStatus::Incomplete
+    };
+    let mut histogram = Vec::new();
+    for n in &nodes {
+        if histogram.len() <= n.iterations {
+            histogram.resize(n.iterations + 1, 0);
+        }
+        histogram[n.iterations] += 1;
+    }
+    Ok(TracedBranch {
+        branch: Branch {
+            id: 0,
+            status,
+            ends,
+            points: nodes.iter().map(to_curve_point).collect(),
+        },
+        newton_iterations: nodes.iter().map(|n| n.iterations).collect(),
+        tangents: nodes
+            .iter()
+            .map(|n| [n.frame.tangent.x, n.frame.tangent.y, n.frame.tangent.z])
+            .collect(),
+        events,
+        turning: half.turning[0],
+        turning_q: half.turning[1],
+        stats: MarchStats {
+            points: nodes.len(),
+            newton_histogram: histogram,
+            retried_steps: half.retried,
+        },
+    })
+}
+
 /// Traces the branch of `P ∩ Q` through `start = (σ, t, u, v)` (a guess close to the curve).
 ///
 /// The start is refined by Newton first; if it lies on a domain boundary it stays there and the
