@@ -19,7 +19,7 @@ use super::newton::{refine, Constraint};
 use super::tangent::parameter_direction;
 use crate::certified::tangential::ContactCase;
 use crate::geometry::{ParametricSurface, SurfaceDerivs, Vec3};
-use nalgebra::{Matrix4, Vector4};
+use nalgebra::{Matrix6x4, Vector4, Vector6};
 use std::f64::consts::PI;
 
 /// A singular point of the intersection with the curve points where its arcs leave it.
@@ -65,8 +65,8 @@ pub fn contact_quadratic_f64(dp: &SurfaceDerivs, dq: &SurfaceDerivs) -> ([[f64; 
     ([[a11, a12], [a21, a22]], [b11, b12, b22])
 }
 
-/// Pins down a point with parallel normals near `x0`: Gauss–Newton (with a little damping, since
-/// the system is rank deficient at tacnodes and triple points) on the six equations
+/// Pins down a point with parallel normals near `x0`: Gauss–Newton (least squares by SVD, since
+/// the system is nearly rank deficient at tacnodes and triple points) on the six equations
 /// `P − Q = 0`, `(N^P × N^Q)/(|N^P||N^Q|) = 0` in four unknowns. Returns `None` when it does not
 /// converge to a point with `|P − Q| ≤ tol` and normal sine ≤ `sine_tol`.
 pub fn locate_singular_point<S1, S2>(
@@ -81,7 +81,7 @@ where
     S2: ParametricSurface + ?Sized,
 {
     let mut x = Vector4::from(x0);
-    for _ in 0..80 {
+    for _ in 0..200 {
         let dp = p.derivs(x[0], x[1]);
         let dq = q.derivs(x[2], x[3]);
         let (np, nq) = (dp.normal(), dq.normal());
@@ -103,20 +103,21 @@ where
             np.cross(&nq_u) / scale,
             np.cross(&nq_v) / scale,
         ];
-        // Normal equations JᵀJ Δ = −Jᵀ F with Levenberg damping.
-        let mut jtj = Matrix4::<f64>::zeros();
-        let mut jtf = Vector4::<f64>::zeros();
-        for i in 0..4 {
-            for j in 0..4 {
-                jtj[(i, j)] = cols_gap[i].dot(&cols_gap[j]) + cols_c[i].dot(&cols_c[j]);
+        // Least squares J Δ = −F by SVD (not normal equations: at a tacnode J is nearly rank
+        // deficient and squaring its condition number would stall the iteration).
+        let mut jac = Matrix6x4::<f64>::zeros();
+        let mut rhs = Vector6::<f64>::zeros();
+        for k in 0..4 {
+            for r in 0..3 {
+                jac[(r, k)] = cols_gap[k][r];
+                jac[(r + 3, k)] = cols_c[k][r];
             }
-            jtf[i] = cols_gap[i].dot(&gap) + cols_c[i].dot(&c);
         }
-        let damping = 1e-12 * jtj.trace().max(f64::MIN_POSITIVE);
-        for i in 0..4 {
-            jtj[(i, i)] += damping;
+        for r in 0..3 {
+            rhs[r] = -gap[r];
+            rhs[r + 3] = -c[r];
         }
-        let delta = jtj.lu().solve(&(-jtf))?;
+        let delta = jac.svd(true, true).solve(&rhs, 1e-15).ok()?;
         x += delta;
         if !x.iter().all(|c| c.is_finite()) {
             return None;
@@ -155,7 +156,7 @@ where
     let (_, [b11, b12, b22]) = contact_quadratic_f64(&dp, &dq);
     let disc = b12 * b12 - b11 * b22;
     let size = b11.abs().max(b12.abs()).max(b22.abs());
-    let rel = 1e-6;
+    let rel = 1e-3;
     let case = if size <= 1e-9 * (1.0 + centre.norm()) {
         ContactCase::HigherOrder
     } else if disc > rel * size * size {
@@ -186,7 +187,16 @@ where
     }
     let node = Anchor { x, centre, dp };
     let mut exits = Vec::new();
-    if case == ContactCase::BranchPoint {
+    // Use the roots only when they are well apart (more than ~6°); nearly equal roots (a tacnode
+    // seen slightly off its point) do not separate the branches.
+    let apart = quadratic_directions.len() == 4 && {
+        let (d0, d1) = (
+            Vec3::from(quadratic_directions[0]),
+            Vec3::from(quadratic_directions[2]),
+        );
+        d0.dot(&d1).abs() < 0.995
+    };
+    if case == ContactCase::BranchPoint && apart {
         for d in &quadratic_directions {
             let dir = Vec3::from(*d);
             if let Some(e) = node.exit_along(p, q, &dir, radius, tol, max_newton) {
@@ -232,7 +242,7 @@ fn push_distinct<S: ParametricSurface + ?Sized>(
     let pe = p.point(e[0], e[1]);
     if list
         .iter()
-        .all(|f| (p.point(f[0], f[1]) - pe).norm() > 1e-4 * radius)
+        .all(|f| (p.point(f[0], f[1]) - pe).norm() > 1e-3 * radius)
     {
         list.push(e);
     }
@@ -298,8 +308,8 @@ impl Anchor {
         .ok()?;
         let at = p.point(r.x[0], r.x[1]);
         let dist = (at - self.centre).norm();
-        let inside = p.domain().contains(r.x[0], r.x[1], 1e-9)
-            && q.domain().contains(r.x[2], r.x[3], 1e-9);
+        let inside =
+            p.domain().contains(r.x[0], r.x[1], 1e-9) && q.domain().contains(r.x[2], r.x[3], 1e-9);
         (inside && dist > 0.5 * radius && dist < 2.0 * radius).then_some(r.x)
     }
 
@@ -378,10 +388,9 @@ mod tests {
     #[test]
     fn saddle_node_has_four_exits_along_the_axes() {
         // z = u·v against z = 0: the branches are the axes.
-        let saddle =
-            AnalyticSurface::new(Domain::new(-1.0, 1.0, -1.0, 1.0), |u: Jet2, v: Jet2| {
-                [u, v, u * v]
-            });
+        let saddle = AnalyticSurface::new(Domain::new(-1.0, 1.0, -1.0, 1.0), |u: Jet2, v: Jet2| {
+            [u, v, u * v]
+        });
         let x = locate_singular_point(&saddle, &plane(), [0.01, -0.02, 0.01, -0.02], 1e-10, 1e-8)
             .expect("locates the saddle point");
         assert!(x.iter().all(|c| c.abs() < 1e-10), "{x:?}");
@@ -390,17 +399,19 @@ mod tests {
         assert_eq!(node.exits.len(), 4);
         for e in &node.exits {
             // On an axis, at distance 0.1.
-            assert!(e[0].abs().min(e[1].abs()) < 1e-10 && (e[0].abs().max(e[1].abs()) - 0.1).abs() < 1e-10);
+            assert!(
+                e[0].abs().min(e[1].abs()) < 1e-10
+                    && (e[0].abs().max(e[1].abs()) - 0.1).abs() < 1e-10
+            );
         }
     }
 
     #[test]
     fn triple_point_has_six_exits_from_the_circle() {
         // z = v(3u² − v²) against z = 0: three lines through the origin at 60°.
-        let monkey =
-            AnalyticSurface::new(Domain::new(-1.0, 1.0, -1.0, 1.0), |u: Jet2, v: Jet2| {
-                [u, v, v * (3.0 * u * u - v * v)]
-            });
+        let monkey = AnalyticSurface::new(Domain::new(-1.0, 1.0, -1.0, 1.0), |u: Jet2, v: Jet2| {
+            [u, v, v * (3.0 * u * u - v * v)]
+        });
         let node = analyse_node(&monkey, &plane(), [0.0; 4], true, 0.1, 1e-12, 12);
         assert_eq!(node.case, ContactCase::HigherOrder);
         assert_eq!(node.exits.len(), 6);
@@ -408,6 +419,20 @@ mod tests {
             // Angles are multiples of 60°: v(3u² − v²) = 0.
             assert!((e[1] * (3.0 * e[0] * e[0] - e[1] * e[1])).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn tacnode_is_located_and_has_four_exits() {
+        // z = (v − u²)(v − 2u²) against z = 0: two parabolas touching at the origin.
+        let tac = AnalyticSurface::new(Domain::new(-1.0, 1.0, -1.0, 1.0), |u: Jet2, v: Jet2| {
+            [u, v, (v - u * u) * (v - 2.0 * u * u)]
+        });
+        let x0 = [1e-3, 1.5e-6, 1e-3, 1.5e-6];
+        let x = locate_singular_point(&tac, &plane(), x0, 1e-10, 1e-6).expect("located");
+        assert!(x.iter().all(|c| c.abs() < 1e-7), "{x:?}");
+        let node = analyse_node(&tac, &plane(), x, true, 0.1, 1e-12, 12);
+        assert_eq!(node.case, ContactCase::TangentialCurve);
+        assert_eq!(node.exits.len(), 4);
     }
 
     #[test]

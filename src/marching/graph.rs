@@ -116,7 +116,11 @@ impl Graph<'_> {
             .find(|w| dist3(&w[1].xyz, &centre) >= r)
             .map(|w| {
                 let (da, db) = (dist3(&w[0].xyz, &centre), dist3(&w[1].xyz, &centre));
-                let s = if db > da { ((r - da) / (db - da)).clamp(0.0, 1.0) } else { 1.0 };
+                let s = if db > da {
+                    ((r - da) / (db - da)).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                };
                 std::array::from_fn(|k| w[0].xyz[k] + s * (w[1].xyz[k] - w[0].xyz[k]))
             })
             .unwrap_or(outward[outward.len() - 1].xyz);
@@ -192,12 +196,7 @@ fn norm3(a: &[f64; 3]) -> f64 {
 /// point ends exactly on its node with `EndReason::Singular`; each node is reported once as a
 /// `Singular` event and in [`GraphOutcome::nodes`] with its exits; isolated contact points and
 /// nodes whose exits could not be found are reported without arcs.
-pub fn trace_graph<S1, S2>(
-    p: &S1,
-    q: &S2,
-    starts: &[[f64; 4]],
-    opts: &MarchOptions,
-) -> GraphOutcome
+pub fn trace_graph<S1, S2>(p: &S1, q: &S2, starts: &[[f64; 4]], opts: &MarchOptions) -> GraphOutcome
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
@@ -213,8 +212,7 @@ where
     let scales = pair_widths(&p.domain(), &q.domain());
     let cover = opts.step / 3.0;
     for start in starts {
-        if g
-            .out
+        if g.out
             .branches
             .iter()
             .any(|b| covers(b, start, p, cover, &scales))

@@ -23,6 +23,7 @@
 //!   across it.
 //! - **Point limit** and **Newton failure** end the half with that reason.
 
+use super::branch_point::locate_singular_point;
 use super::circle_step::circular_step;
 use super::dqoc_step::dqoc_step;
 use super::newton::{refine, Constraint};
@@ -72,6 +73,10 @@ struct Node {
     x: [f64; 4],
     frame: CurveFrame,
     iterations: usize,
+    /// Whether the tangent is `−N^P × N^Q` (reversed to follow the direction of travel). Along a
+    /// regular arc this never changes; a change between two points means the march stepped
+    /// across a zero of `N^P × N^Q`: a singular point.
+    flipped: bool,
 }
 
 struct Half {
@@ -141,15 +146,18 @@ where
     S2: ParametricSurface + ?Sized,
 {
     let mut frame = curve_frame(p, q, x);
+    let mut flipped = false;
     if let Some(dir) = along {
         if frame.tangent.dot(&dir) < 0.0 {
             frame = frame.reversed();
+            flipped = true;
         }
     }
     Node {
         x,
         frame,
         iterations,
+        flipped,
     }
 }
 
@@ -397,7 +405,13 @@ where
         }
 
         let chord = p.point(r.x[0], r.x[1]) - cur.frame.xyz;
-        let node = node_at(p, q, r.x, r.iterations, Some(chord));
+        let mut node = node_at(p, q, r.x, r.iterations, Some(chord));
+        if node.flipped != cur.flipped && node.frame.sine >= opts.singular_sine {
+            // Stepped across a singular point: stop on it instead.
+            if let Some(at) = singular_between(p, q, &cur, &node, opts) {
+                node = at;
+            }
+        }
         add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
         half.nodes.push(node);
         if node.frame.sine < opts.singular_sine {
@@ -423,6 +437,31 @@ where
         prev = Some(cur);
         cur = node;
     }
+}
+
+/// The singular point between `a` and `b` (consecutive points whose `N^P × N^Q` orientations
+/// differ): located by Gauss–Newton from the point of least normal sine on the parameter segment.
+fn singular_between<S1, S2>(p: &S1, q: &S2, a: &Node, b: &Node, opts: &MarchOptions) -> Option<Node>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let at = |s: f64| -> [f64; 4] { std::array::from_fn(|i| a.x[i] + s * (b.x[i] - a.x[i])) };
+    let best = (1..16).map(|k| at(k as f64 / 16.0)).min_by(|x, y| {
+        curve_frame(p, q, *x)
+            .sine
+            .total_cmp(&curve_frame(p, q, *y).sine)
+    })?;
+    let scale = 1.0 + a.frame.xyz.norm();
+    let tol = (100.0 * opts.tolerance).max(1e-9 * scale);
+    let x = locate_singular_point(p, q, best, tol, opts.singular_sine)?;
+    if !inside(&x, &p.domain(), &q.domain(), opts.domain_tolerance) {
+        return None;
+    }
+    let chord = b.frame.xyz - a.frame.xyz;
+    let mut n = node_at(p, q, x, 0, Some(chord));
+    n.flipped = a.flipped;
+    Some(n)
 }
 
 /// One step of length `L` across the singular point `at` (reached from `before`): a circular
@@ -619,7 +658,14 @@ where
         cross_singular: 0,
         ..*opts
     };
-    let half = march_half(p, q, &st, &opts_arc, opts.max_points.saturating_sub(2), false);
+    let half = march_half(
+        p,
+        q,
+        &st,
+        &opts_arc,
+        opts.max_points.saturating_sub(2),
+        false,
+    );
     let mut nodes = vec![n0, st];
     nodes.extend(half.nodes.iter().copied());
     let mut events = half.events.clone();
