@@ -270,7 +270,7 @@ where
         open: k.2,
         nodes: describe_nodes(&out),
         turning: if turning.is_empty() {
-            "-".into()
+            "(arcs only)".into()
         } else {
             format!("loop lengths {}", turning.join(","))
         },

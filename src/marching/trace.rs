@@ -406,8 +406,12 @@ where
 
         let chord = p.point(r.x[0], r.x[1]) - cur.frame.xyz;
         let mut node = node_at(p, q, r.x, r.iterations, Some(chord));
-        if node.flipped != cur.flipped && node.frame.sine >= opts.singular_sine {
-            // Stepped across a singular point: stop on it instead.
+        if opts.cross_singular == 0
+            && node.flipped != cur.flipped
+            && node.frame.sine >= opts.singular_sine
+        {
+            // Stepped across a singular point: stop on it instead (only when stopping there;
+            // the opt-in crossing mode keeps its straight continuation).
             if let Some(at) = singular_between(p, q, &cur, &node, opts) {
                 node = at;
             }
