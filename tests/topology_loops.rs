@@ -568,3 +568,109 @@ fn crossing_cylinders_meet_at_a_tangent_point_with_four_arcs() {
     assert!(cov.0 > 700);
     let _ = (PI, ParametricSurface::domain(&a));
 }
+
+/// The single-trace API with crossing on (Algorithm 3's bookkeeping): through each node the
+/// march goes straight on through an unused exit, and it closes only when every node crossed
+/// has all its exits used. The S11/S12 curve (Fig. 8 of seed 000) from both of its starts closes
+/// once with turning 4π (rotation index 2, the paper's 12.554); the Devil's eight closes with
+/// turning 0 (index 0); the trifolium with index 2 (the paper's 12.39 at the end).
+#[test]
+fn single_trace_with_crossing_closes_once_with_the_rotation_index() {
+    let d = Domain::new(-1.8, 1.8, -0.3, 2.3);
+    let fs = AnalyticSurface::new(d, |u: Jet2, v: Jet2| {
+        [u, v, (2.0 * u.powi(4) + v.powi(4)) / 10.0]
+    });
+    let gs = AnalyticSurface::new(d, |r: Jet2, s: Jet2| {
+        [r, s, (3.0 * r * r * s - s * s + 2.0 * s.powi(3)) / 10.0]
+    });
+    let u0 = 1.5f64.sqrt();
+    let check = |label: &str,
+                 b: &ssitrace::marching::TracedBranch,
+                 index: f64,
+                 h: &dyn Fn(f64, f64) -> f64,
+                 graph_length: f64| {
+        let len = arc_length(&b.branch);
+        println!(
+            "{label}: {} points, ends {:?}, turning {:.3} (index {:.2}), length {len:.3} (graph {graph_length:.3})",
+            b.branch.points.len(),
+            b.branch.ends,
+            b.turning,
+            b.turning / (2.0 * PI)
+        );
+        assert_eq!(b.branch.status, BranchStatus::Closed, "{label}");
+        assert!(
+            (b.turning - 2.0 * PI * index).abs() < 0.3
+                || (b.turning + 2.0 * PI * index).abs() < 0.3,
+            "{label}"
+        );
+        for pt in &b.branch.points {
+            assert!(h(pt.p[0], pt.p[1]).abs() < 1e-8, "{label}: off the curve");
+        }
+        // Once round: the same length as the graph's arcs together (within chord effects).
+        assert!(
+            (len - graph_length).abs() < 0.02 * graph_length,
+            "{label}: length {len} vs {graph_length}"
+        );
+    };
+    let graph = trace_graph(&fs, &gs, &[[u0, 1.0, u0, 1.0]], &opts(0.05));
+    let glen: f64 = graph.branches.iter().map(arc_length).sum();
+    for start in [[u0, 1.0, u0, 1.0], [-u0, 1.0, -u0, 1.0]] {
+        let o = MarchOptions {
+            cross_singular: 8,
+            ..opts(0.05)
+        };
+        let b = ssitrace::marching::trace_branch(&fs, &gs, start, &o).unwrap();
+        check(
+            &format!("Fig. 8 from ({:+.3}, 1)", start[0]),
+            &b,
+            2.0,
+            &s11_h,
+            glen,
+        );
+    }
+    // The Devil's eight.
+    let dom = Domain::new(-2.0, 2.0, -2.0, 2.0);
+    let s1 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| {
+        [u, v, v.powi(4) - v * v + 2.0 * u * u]
+    });
+    let s2 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| [u, v, u.powi(4)]);
+    let h41 = |u: f64, v: f64| v.powi(4) - v * v + 2.0 * u * u - u.powi(4);
+    let start = [-0.34, 0.83, -0.34, 0.83];
+    let graph = trace_graph(&s1, &s2, &[start], &opts(0.1));
+    let glen: f64 = graph.branches.iter().map(arc_length).sum();
+    let o = MarchOptions {
+        cross_singular: 8,
+        ..opts(0.1)
+    };
+    let b = ssitrace::marching::trace_branch(&s1, &s2, start, &o).unwrap();
+    check("S41/S42 eight", &b, 0.0, &h41, glen);
+    // The trifolium.
+    let dom = Domain::new(-1.5, 1.5, -1.5, 1.5);
+    let s1 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| {
+        [u, v, (u * u + v * v).powi(2) + 3.0 * u * u * v - v.powi(3)]
+    });
+    let s2 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| [u, v, Jet2::constant(0.0)]);
+    let h21 = |u: f64, v: f64| (u * u + v * v).powi(2) + 3.0 * u * u * v - v.powi(3);
+    let start = [0.14, 0.88, 0.14, 0.88];
+    let graph = trace_graph(&s1, &s2, &[start], &opts(0.1));
+    let glen: f64 = graph.branches.iter().map(arc_length).sum();
+    let b = ssitrace::marching::trace_branch(&s1, &s2, start, &o).unwrap();
+    check("S21/S22 trifolium", &b, 2.0, &h21, glen);
+    // S51/S52: one of the two crossing curves, once round (half of the whole), through the
+    // four nodes where the other curve crosses it (the paper's program went round four times).
+    let s1 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| {
+        [u, v, u.powi(4) - u * u + v.powi(4) - v * v]
+    });
+    let s2 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| [u, v, Jet2::constant(-0.25)]);
+    let h51 = |u: f64, v: f64| u.powi(4) - u * u + v.powi(4) - v * v + 0.25;
+    let start = [
+        std::f64::consts::FRAC_1_SQRT_2,
+        1.0,
+        std::f64::consts::FRAC_1_SQRT_2,
+        1.0,
+    ];
+    let graph = trace_graph(&s1, &s2, &[start], &opts(0.1));
+    let glen: f64 = graph.branches.iter().map(arc_length).sum();
+    let b = ssitrace::marching::trace_branch(&s1, &s2, start, &o).unwrap();
+    check("S51/S52 one curve", &b, 1.0, &h51, 0.5 * glen);
+}

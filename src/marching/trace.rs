@@ -23,7 +23,7 @@
 //!   across it.
 //! - **Point limit** and **Newton failure** end the half with that reason.
 
-use super::branch_point::locate_singular_point;
+use super::branch_point::{analyse_node, locate_singular_point, SingularNode};
 use super::circle_step::circular_step;
 use super::dqoc_step::dqoc_step;
 use super::newton::{refine, Constraint};
@@ -134,10 +134,11 @@ fn add_turn(acc: &mut [f64; 2], t: [f64; 2]) {
     acc[1] += t[1];
 }
 
-/// Whether `turning` is within `tol` of `2πk` for an integer `k ≠ 0`.
-fn is_full_turn(turning: f64, tol: f64) -> bool {
+/// Whether `turning` is within `tol` of `2πk` for an integer `k`, `k ≠ 0` unless `zero_ok` (a
+/// curve through crossings may have rotation index 0, e.g. a figure eight).
+fn is_full_turn(turning: f64, tol: f64, zero_ok: bool) -> bool {
     let k = (turning / (2.0 * PI)).round();
-    k != 0.0 && (turning - 2.0 * PI * k).abs() < tol
+    (k != 0.0 || zero_ok) && (turning - 2.0 * PI * k).abs() < tol
 }
 
 fn node_at<S1, S2>(p: &S1, q: &S2, x: [f64; 4], iterations: usize, along: Option<Vec3>) -> Node
@@ -305,6 +306,8 @@ where
     let mut prev: Option<Node> = None;
     let mut cur = *start;
     let mut crossings = 0;
+    // Nodes crossed in this half, with the exits used (each arc once).
+    let mut visited: Vec<(SingularNode, Vec<bool>)> = Vec::new();
     loop {
         if half.nodes.len() >= budget {
             half.end = EndReason::PointLimit;
@@ -339,8 +342,8 @@ where
                 && param_distance(&start.x, &cur.x) <= 2.0 * param_speed * dist + 1e-9
                 && to_start.dot(&cur.frame.tangent) > 0.5 * dist
                 && cur.frame.tangent.dot(&start.frame.tangent) > 0.5
-                && (is_full_turn(total[0], opts.rotation_tolerance)
-                    || is_full_turn(total[1], opts.rotation_tolerance))
+                && (is_full_turn(total[0], opts.rotation_tolerance, !visited.is_empty())
+                    || is_full_turn(total[1], opts.rotation_tolerance, !visited.is_empty()))
             {
                 half.turning = total;
                 let mut closing = *start;
@@ -406,12 +409,8 @@ where
 
         let chord = p.point(r.x[0], r.x[1]) - cur.frame.xyz;
         let mut node = node_at(p, q, r.x, r.iterations, Some(chord));
-        if opts.cross_singular == 0
-            && node.flipped != cur.flipped
-            && node.frame.sine >= opts.singular_sine
-        {
-            // Stepped across a singular point: stop on it instead (only when stopping there;
-            // the opt-in crossing mode keeps its straight continuation).
+        if node.flipped != cur.flipped && node.frame.sine >= opts.singular_sine {
+            // Stepped across a singular point: stop on it instead.
             if let Some(at) = singular_between(p, q, &cur, &node, opts) {
                 node = at;
             }
@@ -420,15 +419,21 @@ where
         half.nodes.push(node);
         if node.frame.sine < opts.singular_sine {
             half.events.push(make_event(EventKind::Singular, &node));
-            match (crossings < opts.cross_singular)
-                .then(|| cross_singular_point(p, q, &cur, &node, opts))
-                .flatten()
-            {
-                Some(beyond) => {
+            let crossed = (crossings < opts.cross_singular)
+                .then(|| cross_node(p, q, start, &half.nodes, &mut visited, opts))
+                .flatten();
+            match crossed {
+                Some((at, beyond)) => {
                     crossings += 1;
-                    add_turn(&mut half.turning, turn(&node.frame, &beyond.frame));
+                    // The tangent at the reached point (normals parallel) is noise: replace the
+                    // turning to it by the turning from the last regular point to the exit.
+                    let noise = turn(&cur.frame, &node.frame);
+                    add_turn(&mut half.turning, [-noise[0], -noise[1]]);
+                    add_turn(&mut half.turning, turn(&cur.frame, &beyond.frame));
+                    half.nodes.pop();
+                    half.nodes.push(at);
                     half.nodes.push(beyond);
-                    prev = Some(node);
+                    prev = None;
                     cur = beyond;
                     continue;
                 }
@@ -468,58 +473,112 @@ where
     Some(n)
 }
 
-/// One step of length `L` across the singular point `at` (reached from `before`): a circular
-/// prediction through both (which keeps to the branch of the right curvature at a tacnode),
-/// refined by Newton on the plane through the prediction. Kept only if the point is regular,
-/// ahead, and its tangent turns less than 45° from the incoming one.
-fn cross_singular_point<S1, S2>(
+/// Crosses the singular point reached as the last of `path` (marched from `start`) straight
+/// through: the node is located and analysed (or found among `visited`), the exit the march
+/// arrived through is marked used, and the march continues through the unused exit nearest to
+/// the straight continuation (the arrival point at distance `r` mirrored across the normal line
+/// of the arriving branch, whose tangent at the node is extrapolated from the chords at `r` and
+/// `r/2`, so the right branch is kept at a tacnode). `None` (stop here) when the node has no
+/// exits, the arrival exit was already used (the arc was traced before) or no exit is left.
+/// Returns the node point and the exit point.
+fn cross_node<S1, S2>(
     p: &S1,
     q: &S2,
-    before: &Node,
-    at: &Node,
+    start: &Node,
+    path: &[Node],
+    visited: &mut Vec<(SingularNode, Vec<bool>)>,
     opts: &MarchOptions,
-) -> Option<Node>
+) -> Option<(Node, Node)>
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
-    let incoming = at.frame.xyz - before.frame.xyz;
-    let len = incoming.norm();
-    if len == 0.0 || !len.is_finite() {
-        return None;
-    }
-    let heading = incoming / len;
-    // The tangent at the singular point itself is meaningless: use the chord direction.
-    let mut at_dir = *at;
-    at_dir.frame.tangent = heading;
-    let pred = predict(Some(before), &at_dir, opts, opts.step);
-    let dir = pred.point - at.frame.xyz;
-    let dlen = dir.norm();
-    if dlen == 0.0 || !dlen.is_finite() {
-        return None;
-    }
-    let guess = predict_parameters(p, q, &at.x, &pred.point);
-    let constraint = Constraint::Plane {
-        point: pred.point,
-        normal: dir / dlen,
+    let reached = path.last()?;
+    let scale = 1.0 + reached.frame.xyz.norm();
+    let tol = (100.0 * opts.tolerance).max(1e-9 * scale);
+    let located = locate_singular_point(p, q, reached.x, tol, opts.singular_sine);
+    let x = located.unwrap_or(reached.x);
+    let centre = p.point(x[0], x[1]);
+    let r = opts.node_radius * opts.step;
+    let idx = match visited
+        .iter()
+        .position(|(n, _)| (Vec3::from(n.xyz) - centre).norm() < 0.25 * r)
+    {
+        Some(i) => i,
+        None => {
+            let n = analyse_node(
+                p,
+                q,
+                x,
+                located.is_some(),
+                r,
+                opts.tolerance,
+                opts.max_newton_iterations,
+            );
+            let k = n.exits.len();
+            visited.push((n, vec![false; k]));
+            visited.len() - 1
+        }
     };
-    let r = refine(
-        p,
-        q,
-        guess,
-        constraint,
-        opts.tolerance,
-        opts.max_newton_iterations,
-    )
-    .ok()?;
-    if !inside(&r.x, &p.domain(), &q.domain(), opts.domain_tolerance) {
+    let (node, used) = &mut visited[idx];
+    let centre = Vec3::from(node.xyz);
+    // The arriving polyline, from the node outwards.
+    let outward: Vec<Vec3> = path[..path.len() - 1]
+        .iter()
+        .rev()
+        .map(|n| n.frame.xyz)
+        .chain(std::iter::once(start.frame.xyz))
+        .collect();
+    let at_distance = |d: f64| -> Option<Vec3> {
+        let mut last = centre;
+        for pt in &outward {
+            let (da, db) = ((last - centre).norm(), (pt - centre).norm());
+            if db >= d {
+                let s = if db > da {
+                    ((d - da) / (db - da)).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                };
+                return Some(last + (pt - last) * s);
+            }
+            last = *pt;
+        }
+        None
+    };
+    let c_in = at_distance(r)?;
+    let c_half = at_distance(0.5 * r)?;
+    let nearest = |target: &Vec3, skip: Option<usize>, used: &[bool], any: bool| {
+        node.exit_xyz
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| Some(*k) != skip && (any || !used[*k]))
+            .map(|(k, e)| (k, (Vec3::from(*e) - target).norm()))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(k, _)| k)
+    };
+    let arrival = nearest(&c_in, None, used, true)?;
+    if used[arrival] {
         return None;
     }
-    let chord = p.point(r.x[0], r.x[1]) - at.frame.xyz;
-    let node = node_at(p, q, r.x, r.iterations, Some(chord));
-    let ahead = chord.dot(&heading) > 0.5 * chord.norm();
-    let smooth = node.frame.tangent.dot(&heading) > std::f64::consts::FRAC_1_SQRT_2;
-    (node.frame.sine >= opts.singular_sine && ahead && smooth).then_some(node)
+    used[arrival] = true;
+    let u_in = (centre - c_in).normalize();
+    let u_half = (centre - c_half).normalize();
+    let tangent = (u_half * 2.0 - u_in).normalize();
+    let tangent = if tangent.iter().all(|c| c.is_finite()) {
+        tangent
+    } else {
+        u_in
+    };
+    let d = c_in - centre;
+    let target = centre + d - tangent * (2.0 * d.dot(&tangent));
+    let leave = nearest(&target, Some(arrival), used, false)?;
+    used[leave] = true;
+    let exit = node.exits[leave];
+    let at = node_at(p, q, node.x, 0, None);
+    let away = p.point(exit[0], exit[1]) - centre;
+    let mut beyond = node_at(p, q, exit, 0, Some(away));
+    beyond.iterations = 0;
+    Some((at, beyond))
 }
 
 fn check_options(opts: &MarchOptions) -> Result<()> {
