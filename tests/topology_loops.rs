@@ -15,7 +15,7 @@ use ssitrace::intersection::{Branch, BranchStatus, EndReason};
 use ssitrace::marching::graph::{trace_graph, GraphOutcome};
 use ssitrace::marching::intersect::intersect;
 use ssitrace::marching::start_points::SearchOptions;
-use ssitrace::marching::MarchOptions;
+use ssitrace::marching::{trace_branch, MarchOptions};
 use std::f64::consts::PI;
 
 type V = Vector3<f64>;
@@ -162,12 +162,13 @@ struct Row {
     turning: String,
     points: usize,
     coverage: (usize, usize, usize),
+    traversals: f64,
 }
 
 fn print_row(r: &Row) {
     println!(
-        "{:<22} loops {:>2}  node arcs {:>2}  boundary arcs {:>2}  nodes {:<28} turning {:<26} points {:>5}  samples {:>5} missing {} double {}",
-        r.example, r.closed, r.node_arcs, r.open, r.nodes, r.turning, r.points, r.coverage.0, r.coverage.1, r.coverage.2
+        "{:<22} loops {:>2}  node arcs {:>2}  boundary arcs {:>2}  nodes {:<36} single trace turning {:<22} points {:>5}  samples {:>5} missing {} double {}  traversals {:.3}",
+        r.example, r.closed, r.node_arcs, r.open, r.nodes, r.turning, r.points, r.coverage.0, r.coverage.1, r.coverage.2, r.traversals
     );
 }
 
@@ -219,6 +220,10 @@ struct Seed004 {
     expect: (usize, usize, usize),
     /// Expected node kinds (case, exits), in any order.
     expect_nodes: Vec<(ContactCase, usize)>,
+    /// Rotation index of the closed curve through the first start (|turning| / 2π).
+    index: f64,
+    /// Which fraction of the arcs at nodes that curve makes up.
+    fraction: f64,
 }
 
 fn run_seed004<F, G>(case: &Seed004, f: F, g: G, h: &dyn Fn(f64, f64) -> f64) -> GraphOutcome
@@ -257,26 +262,58 @@ where
         p.p.to_vec()
     });
     let k = kinds(&out.branches);
-    let turning: Vec<String> = out
+    // The single-trace API with crossing on, from the first start: once round the closed curve.
+    let crossing = MarchOptions {
+        cross_singular: 16,
+        ..opts(case.step)
+    };
+    let single = trace_branch(&s1, &s2, starts[0], &crossing).expect("the start refines");
+    let at_nodes: f64 = out
         .branches
         .iter()
-        .filter(|b| b.status == BranchStatus::Closed)
-        .map(|b| format!("{:.1}", arc_length(b)))
-        .collect();
+        .filter(|b| b.ends.contains(&EndReason::Singular))
+        .map(arc_length)
+        .sum();
+    let traversals = arc_length(&single.branch) / (case.fraction * at_nodes);
     print_row(&Row {
         example: case.example,
         closed: k.0,
         node_arcs: k.1,
         open: k.2,
         nodes: describe_nodes(&out),
-        turning: if turning.is_empty() {
-            "(arcs only)".into()
-        } else {
-            format!("loop lengths {}", turning.join(","))
-        },
+        turning: format!(
+            "{:.3} (index {:.2})",
+            single.turning,
+            single.turning / (2.0 * PI)
+        ),
         points: out.branches.iter().map(|b| b.points.len()).sum(),
         coverage: cov,
+        traversals,
     });
+    assert_eq!(
+        single.branch.status,
+        BranchStatus::Closed,
+        "{}",
+        case.example
+    );
+    assert!(
+        (single.turning.abs() - 2.0 * PI * case.index).abs() < 0.3,
+        "{}: turning {}",
+        case.example,
+        single.turning
+    );
+    assert!(
+        (traversals - 1.0).abs() < 0.02,
+        "{}: {traversals}",
+        case.example
+    );
+    for pt in &single.branch.points {
+        assert!(
+            h(pt.p[0], pt.p[1]).abs() < 1e-8,
+            "{}: single trace off the curve",
+            case.example
+        );
+    }
     assert_eq!(
         k, case.expect,
         "{}: (loops, node arcs, open arcs)",
@@ -320,6 +357,8 @@ fn seed004_examples_as_graphs_each_arc_once() {
             (ContactCase::BranchPoint, 4),
             (ContactCase::TangentialCurve, 4),
         ],
+        index: 2.0,
+        fraction: 1.0,
     };
     let out = run_seed004(
         &s11,
@@ -350,6 +389,8 @@ fn seed004_examples_as_graphs_each_arc_once() {
         step: 0.1,
         expect: (0, 3, 0),
         expect_nodes: vec![(ContactCase::HigherOrder, 6)],
+        index: 2.0,
+        fraction: 1.0,
     };
     run_seed004(
         &s21,
@@ -365,10 +406,12 @@ fn seed004_examples_as_graphs_each_arc_once() {
     let s41 = Seed004 {
         example: "S41/S42 Devil's curve",
         domain: [-2.0, 2.0, -2.0, 2.0],
-        starts: vec![[1.38, 0.50], [-0.34, 0.83], [-1.37, 0.82]],
+        starts: vec![[-0.34, 0.83], [1.38, 0.50], [-1.37, 0.82]],
         step: 0.1,
         expect: (0, 2, 2),
         expect_nodes: vec![(ContactCase::BranchPoint, 4)],
+        index: 0.0,
+        fraction: 1.0,
     };
     run_seed004(
         &s41,
@@ -386,6 +429,8 @@ fn seed004_examples_as_graphs_each_arc_once() {
         step: 0.1,
         expect: (0, 8, 0),
         expect_nodes: vec![(ContactCase::BranchPoint, 4); 4],
+        index: 1.0,
+        fraction: 0.5,
     };
     run_seed004(
         &s51,
@@ -569,11 +614,10 @@ fn crossing_cylinders_meet_at_a_tangent_point_with_four_arcs() {
     let _ = (PI, ParametricSurface::domain(&a));
 }
 
-/// The single-trace API with crossing on (Algorithm 3's bookkeeping): through each node the
-/// march goes straight on through an unused exit, and it closes only when every node crossed
-/// has all its exits used. The S11/S12 curve (Fig. 8 of seed 000) from both of its starts closes
-/// once with turning 4π (rotation index 2, the paper's 12.554); the Devil's eight closes with
-/// turning 0 (index 0); the trifolium with index 2 (the paper's 12.39 at the end).
+/// The single-trace API with crossing on: through each node the march goes straight on through
+/// an unused exit (each arc once). Fig. 8 of seed 000 (the S11/S12 curve) from both of its starts
+/// closes once with turning 4π (rotation index 2; the paper's 12.554) and the length of all the
+/// graph's arcs together; before, from the left start the march went round until the budget.
 #[test]
 fn single_trace_with_crossing_closes_once_with_the_rotation_index() {
     let d = Domain::new(-1.8, 1.8, -0.3, 2.3);
@@ -619,7 +663,7 @@ fn single_trace_with_crossing_closes_once_with_the_rotation_index() {
             cross_singular: 8,
             ..opts(0.05)
         };
-        let b = ssitrace::marching::trace_branch(&fs, &gs, start, &o).unwrap();
+        let b = trace_branch(&fs, &gs, start, &o).unwrap();
         check(
             &format!("Fig. 8 from ({:+.3}, 1)", start[0]),
             &b,
@@ -628,49 +672,4 @@ fn single_trace_with_crossing_closes_once_with_the_rotation_index() {
             glen,
         );
     }
-    // The Devil's eight.
-    let dom = Domain::new(-2.0, 2.0, -2.0, 2.0);
-    let s1 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| {
-        [u, v, v.powi(4) - v * v + 2.0 * u * u]
-    });
-    let s2 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| [u, v, u.powi(4)]);
-    let h41 = |u: f64, v: f64| v.powi(4) - v * v + 2.0 * u * u - u.powi(4);
-    let start = [-0.34, 0.83, -0.34, 0.83];
-    let graph = trace_graph(&s1, &s2, &[start], &opts(0.1));
-    let glen: f64 = graph.branches.iter().map(arc_length).sum();
-    let o = MarchOptions {
-        cross_singular: 8,
-        ..opts(0.1)
-    };
-    let b = ssitrace::marching::trace_branch(&s1, &s2, start, &o).unwrap();
-    check("S41/S42 eight", &b, 0.0, &h41, glen);
-    // The trifolium.
-    let dom = Domain::new(-1.5, 1.5, -1.5, 1.5);
-    let s1 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| {
-        [u, v, (u * u + v * v).powi(2) + 3.0 * u * u * v - v.powi(3)]
-    });
-    let s2 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| [u, v, Jet2::constant(0.0)]);
-    let h21 = |u: f64, v: f64| (u * u + v * v).powi(2) + 3.0 * u * u * v - v.powi(3);
-    let start = [0.14, 0.88, 0.14, 0.88];
-    let graph = trace_graph(&s1, &s2, &[start], &opts(0.1));
-    let glen: f64 = graph.branches.iter().map(arc_length).sum();
-    let b = ssitrace::marching::trace_branch(&s1, &s2, start, &o).unwrap();
-    check("S21/S22 trifolium", &b, 2.0, &h21, glen);
-    // S51/S52: one of the two crossing curves, once round (half of the whole), through the
-    // four nodes where the other curve crosses it (the paper's program went round four times).
-    let s1 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| {
-        [u, v, u.powi(4) - u * u + v.powi(4) - v * v]
-    });
-    let s2 = AnalyticSurface::new(dom, |u: Jet2, v: Jet2| [u, v, Jet2::constant(-0.25)]);
-    let h51 = |u: f64, v: f64| u.powi(4) - u * u + v.powi(4) - v * v + 0.25;
-    let start = [
-        std::f64::consts::FRAC_1_SQRT_2,
-        1.0,
-        std::f64::consts::FRAC_1_SQRT_2,
-        1.0,
-    ];
-    let graph = trace_graph(&s1, &s2, &[start], &opts(0.1));
-    let glen: f64 = graph.branches.iter().map(arc_length).sum();
-    let b = ssitrace::marching::trace_branch(&s1, &s2, start, &o).unwrap();
-    check("S51/S52 one curve", &b, 1.0, &h51, 0.5 * glen);
 }

@@ -20,7 +20,11 @@
 //! - **Singular point**: `|N^P × N^Q| < singular_sine |N^P||N^Q|`. Below `watch_sine` the step is
 //!   limited (while the sine decreases) to half the distance at which the sine would vanish at its
 //!   current rate, so the marcher approaches a singular point geometrically instead of stepping
-//!   across it.
+//!   across it. A step that still crosses one (the orientation of `N^P × N^Q` relative to the
+//!   direction of travel flips, which on a regular arc never happens) is replaced by the singular
+//!   point itself, located by Gauss–Newton. With `cross_singular` the march continues straight
+//!   through the node's unused exit (each arc once), and the closing test then accepts rotation
+//!   index 0.
 //! - **Point limit** and **Newton failure** end the half with that reason.
 
 use super::branch_point::{analyse_node, locate_singular_point, SingularNode};
