@@ -30,7 +30,14 @@ pub struct GraphStats {
     /// Arrivals at a node whose nearest exit had already been used (a sign of a double trace or
     /// of exits the node analysis missed); 0 when every arc was traced once.
     pub unmatched_arrivals: usize,
+    /// Node exits left untraced because [`MAX_NODE_ARCS`] arcs had been traced from nodes
+    /// (a safety net against degenerate input such as a tangential contact curve that yields
+    /// node after node).
+    pub untraced_exits: usize,
 }
+
+/// At most this many arcs are traced from node exits in one [`trace_graph`] run.
+pub const MAX_NODE_ARCS: usize = 1024;
 
 /// Branches, events, nodes and counts of one [`trace_graph`] run.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -248,6 +255,10 @@ where
         .enumerate()
         .find_map(|(i, used)| used.iter().position(|u| !u).map(|k| (i, k)))
     {
+        if g.out.stats.node_arcs + g.out.stats.failed_starts >= MAX_NODE_ARCS {
+            g.out.stats.untraced_exits = g.out.exits_used.iter().flatten().filter(|u| !**u).count();
+            break;
+        }
         g.out.exits_used[i][k] = true;
         let (x, exit) = (g.out.nodes[i].x, g.out.nodes[i].exits[k]);
         match trace_from_node(p, q, x, exit, &opts) {
