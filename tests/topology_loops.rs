@@ -673,3 +673,44 @@ fn single_trace_with_crossing_closes_once_with_the_rotation_index() {
         );
     }
 }
+
+/// The S11/S12 curve through the whole pipeline front end: Bézier patches (exact conversions of
+/// the polynomial graphs), the start-point search, then the graph: the same four arcs and two
+/// nodes as from the paper's start, each arc once.
+#[test]
+fn s11_s12_from_the_start_point_search_gives_the_same_graph() {
+    let d = Domain::new(-2.0, 2.0, -0.5, 2.5);
+    let p = PowerSurface::graph(d, vec![(4, 0, 0.2), (0, 4, 0.1)])
+        .to_bezier()
+        .unwrap();
+    let q = PowerSurface::graph(d, vec![(2, 1, 0.3), (0, 2, -0.1), (0, 3, 0.2)])
+        .to_bezier()
+        .unwrap();
+    let out = intersect(&p, &q, &opts(0.1), &SearchOptions::default());
+    let br = &out.intersection.branches;
+    for b in br {
+        for pt in &b.points {
+            assert!(s11_h(pt.p[0], pt.p[1]).abs() < 1e-8);
+        }
+    }
+    let samples: Vec<Vec<f64>> = implicit_samples(&s11_h, [-2.0, 2.0, -0.5, 2.5], 0.01)
+        .into_iter()
+        .map(|s| s.to_vec())
+        .collect();
+    let nodes: Vec<Vec<f64>> = out.nodes.iter().map(|n| vec![n.x[0], n.x[1]]).collect();
+    let cov = coverage(br, &samples, &nodes, 0.15, 5e-3, &|p| p.p.to_vec());
+    let k = kinds(br);
+    println!(
+        "S11/S12 via intersect: {} starts ({} skipped), arcs {:?}, nodes {:?}, samples {} missing {} double {}",
+        out.stats.boundary_starts + out.stats.interior_candidates,
+        out.stats.skipped_covered,
+        k,
+        out.nodes.iter().map(|n| (n.case, n.exits.len())).collect::<Vec<_>>(),
+        cov.0,
+        cov.1,
+        cov.2
+    );
+    assert_eq!(k, (0, 4, 0));
+    assert_eq!(out.nodes.len(), 2);
+    assert_eq!((cov.1, cov.2), (0, 0));
+}
