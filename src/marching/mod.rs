@@ -8,6 +8,7 @@
 
 pub mod branch_point;
 pub mod circle_step;
+mod crossing;
 pub mod dqoc_step;
 pub mod graph;
 pub mod intersect;
