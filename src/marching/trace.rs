@@ -573,7 +573,7 @@ fn to_curve_point(n: &Node) -> CurvePoint {
 }
 
 /// Traces the arc leaving the singular point `node` through its exit point `exit` (a curve point
-/// near it, see [`analyse_node`]): the march starts at the exit,
+/// near it, see [`analyse_node`](super::branch_point::analyse_node)): the march starts at the exit,
 /// heading away from the node, and runs until a stop rule fires (no loop closure: an arc from a
 /// node ends at a node, a boundary, or the budget). The branch starts with the node itself, then
 /// the exit. Errors: invalid options or a non-finite point ([`Error::InvalidInput`]).
