@@ -1,14 +1,16 @@
 //! All branches of the intersection of two patches: start-point search, then one trace per branch.
 //!
 //! Boundary start points are traced first (they begin and end every open branch), then interior
-//! candidates (closed loops, and arcs cut off by singular points). A start point that lies on a
-//! branch already traced is skipped, so no branch is traced twice.
+//! candidates (closed loops, and arcs cut off by singular points), then the arcs leaving the
+//! singular points met ([`trace_graph`]). A start point that lies on a branch already traced is
+//! skipped and an arc reached from its other end is not traced again, so no arc is traced twice.
 
-use super::start_points::{find_start_points, SearchOptions, SearchReport, StartPoint};
-use super::{trace_branch, MarchOptions};
-use crate::geometry::surface::pair_widths;
+use super::branch_point::SingularNode;
+use super::graph::{has_arcs, trace_graph};
+use super::start_points::{find_start_points, SearchOptions, SearchReport};
+use super::MarchOptions;
 use crate::geometry::{ParametricSurface, RationalBezierPatch};
-use crate::intersection::{Branch, EndReason, Event, EventKind, Intersection};
+use crate::intersection::{Branch, Intersection};
 use std::time::Instant;
 
 /// Counts and timings of one [`intersect`] run.
@@ -44,13 +46,16 @@ pub struct IntersectOutcome {
     pub intersection: Intersection,
     /// Counts and timings.
     pub stats: IntersectStats,
+    /// The singular points met (branch points, contact points) with their exits.
+    pub nodes: Vec<SingularNode>,
 }
 
 /// Finds and traces every branch of `P ∩ Q` that the start-point search reaches.
 ///
 /// Each branch is traced once: a start point closer to an already traced branch than a third of
-/// the step (in model space, and within 2 % of the domains in parameters) is skipped. Events of
-/// all branches are merged, duplicates (the same point reached from two sides) removed.
+/// the step (in model space, and within 2 % of the domains in parameters) is skipped; singular
+/// points are nodes of a graph whose arcs are each traced once (see [`trace_graph`]). Events are
+/// merged, duplicates (the same point reached from two sides) removed.
 pub fn intersect(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -68,80 +73,36 @@ pub fn intersect(
         search_seconds: (t1 - t0).as_secs_f64(),
         ..Default::default()
     };
-    let scales = pair_widths(&p.domain(), &q.domain());
-    let radius = march.step / 3.0;
-    let mut branches: Vec<Branch> = Vec::new();
-    let mut events: Vec<Event> = Vec::new();
-    let starts: Vec<StartPoint> = report
+    let starts: Vec<[f64; 4]> = report
         .boundary
         .iter()
         .chain(&report.interior)
-        .copied()
+        .map(|s| s.params)
         .collect();
-    for start in starts {
-        if branches
-            .iter()
-            .any(|b| covers(b, &start.params, p, radius, &scales))
-        {
-            stats.skipped_covered += 1;
-            continue;
-        }
-        // A start next to a contact point already reported (along a tangential contact every
-        // leaf of the search yields one) adds nothing.
-        let here = p.point(start.params[0], start.params[1]);
-        let here = [here.x, here.y, here.z];
-        if events
-            .iter()
-            .any(|e| e.kind == EventKind::Singular && dist3(&e.xyz, &here) <= radius)
-        {
-            stats.skipped_covered += 1;
-            continue;
-        }
-        match trace_branch(p, q, start.params, march) {
-            Ok(traced) => {
-                for e in traced.events {
-                    let dup = events.iter().any(|f| {
-                        f.kind == e.kind && dist3(&f.xyz, &e.xyz) <= 1e-6 * (1.0 + norm3(&e.xyz))
-                    });
-                    if !dup {
-                        events.push(e);
-                    }
-                }
-                // A start where the normals are parallel (a tangential contact) gives a branch of
-                // one point: it is reported by its event only.
-                let single = traced.branch.points.len() == 1
-                    && traced.branch.ends == [EndReason::Singular, EndReason::Singular];
-                if single {
-                    stats.contact_points += 1;
-                    continue;
-                }
-                let mut branch = traced.branch;
-                branch.id = branches.len();
-                stats.points += branch.points.len();
-                branches.push(branch);
-            }
-            Err(_) => stats.failed_starts += 1,
-        }
-    }
+    let graph = trace_graph(p, q, &starts, march);
+    stats.skipped_covered = graph.stats.skipped_covered;
+    stats.failed_starts = graph.stats.failed_starts;
+    stats.contact_points = graph.nodes.iter().filter(|n| !has_arcs(n)).count();
+    stats.points = graph.branches.iter().map(|b| b.points.len()).sum();
     stats.march_seconds = t1.elapsed().as_secs_f64();
     IntersectOutcome {
-        intersection: Intersection { branches, events },
+        intersection: Intersection {
+            branches: graph.branches,
+            events: graph.events,
+        },
         stats,
+        nodes: graph.nodes,
     }
 }
 
-fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+pub(crate) fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-fn norm3(a: &[f64; 3]) -> f64 {
-    dist3(a, &[0.0; 3])
 }
 
 /// Whether the curve point with parameters `x` lies on `branch`: within `radius` of one of its
 /// chords in model space, with parameters inside that chord's parameter range widened by 2 % of
 /// the domain sizes (so a point of another sheet over the same model point is not covered).
-fn covers<P: ParametricSurface>(
+pub(crate) fn covers<P: ParametricSurface + ?Sized>(
     branch: &Branch,
     x: &[f64; 4],
     p: &P,

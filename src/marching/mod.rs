@@ -7,8 +7,11 @@
 //! exactly once and stops at singular points.
 
 pub mod boundary_direction;
+pub mod branch_point;
 pub mod circle_step;
+mod crossing;
 pub mod dqoc_step;
+pub mod graph;
 pub mod intersect;
 pub mod newton;
 pub mod options;
@@ -22,7 +25,7 @@ pub use boundary_direction::{
     BoundaryOptions, BoundarySide,
 };
 pub use options::{MarchOptions, StepMethod};
-pub use trace::{trace_branch, MarchStats, TracedBranch};
+pub use trace::{trace_branch, trace_from_node, MarchStats, TracedBranch};
 
 use crate::geometry::Vec3;
 

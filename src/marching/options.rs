@@ -42,14 +42,20 @@ pub struct MarchOptions {
     pub rotation_tolerance: f64,
     /// Parameter tolerance for "on the domain boundary" / "inside the domain".
     pub domain_tolerance: f64,
-    /// At a singular point (branch point, tangential point) report it, then try to continue
-    /// along the same branch: a circular step of length `L` across it, refined by Newton, kept
-    /// only if it lands on a regular point ahead with a tangent within 45° of the incoming one.
-    /// At most this many crossings per half branch; 0 (the default) stops at the first
-    /// singular point. Opt-in: the closing test does not yet count loops at branch points
-    /// (seed 004's bookkeeping), so on some curves (Fig. 8 from its left start) a crossing march
-    /// goes round until this budget is spent instead of closing.
+    /// At a singular point (branch point, tacnode, triple point) report it, then continue straight
+    /// through it: the point is located, its exits found (see
+    /// [`analyse_node`](super::branch_point::analyse_node)), the exit of arrival marked used and the
+    /// march continued through the unused exit nearest to the straight continuation; a node
+    /// reached again through a used exit ends the march there, so no arc is traced twice and the
+    /// budget is never spent going round. A loop through crossings may close with rotation index
+    /// 0 (a figure eight). At most this many crossings per half branch; 0 (the default, kept so
+    /// that single traces stop at singular points as before) stops at the first one.
+    /// [`intersect`](super::intersect::intersect) traces through singular points regardless,
+    /// as a graph of arcs.
     pub cross_singular: usize,
+    /// At a singular point met by [`intersect`](super::intersect::intersect) (graph tracing), the
+    /// arcs leave through curve points at distance `node_radius · step` from it.
+    pub node_radius: f64,
 }
 
 impl Default for MarchOptions {
@@ -67,6 +73,7 @@ impl Default for MarchOptions {
             rotation_tolerance: 0.5,
             domain_tolerance: 1e-9,
             cross_singular: 0,
+            node_radius: 0.5,
         }
     }
 }

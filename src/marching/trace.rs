@@ -20,10 +20,16 @@
 //! - **Singular point**: `|N^P × N^Q| < singular_sine |N^P||N^Q|`. Below `watch_sine` the step is
 //!   limited (while the sine decreases) to half the distance at which the sine would vanish at its
 //!   current rate, so the marcher approaches a singular point geometrically instead of stepping
-//!   across it.
+//!   across it. A step that still crosses one (the orientation of `N^P × N^Q` relative to the
+//!   direction of travel flips, which on a regular arc never happens) is replaced by the singular
+//!   point itself, located by Gauss–Newton. With `cross_singular` the march continues straight
+//!   through the node's unused exit (each arc once), and the closing test then accepts rotation
+//!   index 0.
 //! - **Point limit** and **Newton failure** end the half with that reason.
 
+use super::branch_point::SingularNode;
 use super::circle_step::circular_step;
+use super::crossing::{cross_node, singular_between};
 use super::dqoc_step::dqoc_step;
 use super::newton::{refine, Constraint};
 use super::options::{MarchOptions, StepMethod};
@@ -68,10 +74,14 @@ pub struct TracedBranch {
 }
 
 #[derive(Debug, Clone, Copy)]
-struct Node {
-    x: [f64; 4],
-    frame: CurveFrame,
-    iterations: usize,
+pub(super) struct Node {
+    pub(super) x: [f64; 4],
+    pub(super) frame: CurveFrame,
+    pub(super) iterations: usize,
+    /// Whether the tangent is `−N^P × N^Q` (reversed to follow the direction of travel). Along a
+    /// regular arc this never changes; a change between two points means the march stepped
+    /// across a zero of `N^P × N^Q`: a singular point.
+    pub(super) flipped: bool,
 }
 
 struct Half {
@@ -129,27 +139,37 @@ fn add_turn(acc: &mut [f64; 2], t: [f64; 2]) {
     acc[1] += t[1];
 }
 
-/// Whether `turning` is within `tol` of `2πk` for an integer `k ≠ 0`.
-fn is_full_turn(turning: f64, tol: f64) -> bool {
+/// Whether `turning` is within `tol` of `2πk` for an integer `k`, `k ≠ 0` unless `zero_ok` (a
+/// curve through crossings may have rotation index 0, e.g. a figure eight).
+fn is_full_turn(turning: f64, tol: f64, zero_ok: bool) -> bool {
     let k = (turning / (2.0 * PI)).round();
-    k != 0.0 && (turning - 2.0 * PI * k).abs() < tol
+    (k != 0.0 || zero_ok) && (turning - 2.0 * PI * k).abs() < tol
 }
 
-fn node_at<S1, S2>(p: &S1, q: &S2, x: [f64; 4], iterations: usize, along: Option<Vec3>) -> Node
+pub(super) fn node_at<S1, S2>(
+    p: &S1,
+    q: &S2,
+    x: [f64; 4],
+    iterations: usize,
+    along: Option<Vec3>,
+) -> Node
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
     let mut frame = curve_frame(p, q, x);
+    let mut flipped = false;
     if let Some(dir) = along {
         if frame.tangent.dot(&dir) < 0.0 {
             frame = frame.reversed();
+            flipped = true;
         }
     }
     Node {
         x,
         frame,
         iterations,
+        flipped,
     }
 }
 
@@ -228,7 +248,7 @@ fn first_exit(a: &[f64; 4], b: &[f64; 4], dp: &Domain, dq: &Domain) -> Option<(u
     best
 }
 
-fn inside(x: &[f64; 4], dp: &Domain, dq: &Domain, tol: f64) -> bool {
+pub(super) fn inside(x: &[f64; 4], dp: &Domain, dq: &Domain, tol: f64) -> bool {
     dp.contains(x[0], x[1], tol) && dq.contains(x[2], x[3], tol)
 }
 
@@ -297,6 +317,8 @@ where
     let mut prev: Option<Node> = None;
     let mut cur = *start;
     let mut crossings = 0;
+    // Nodes crossed in this half, with the exits used (each arc once).
+    let mut visited: Vec<(SingularNode, Vec<bool>)> = Vec::new();
     loop {
         if half.nodes.len() >= budget {
             half.end = EndReason::PointLimit;
@@ -331,8 +353,8 @@ where
                 && param_distance(&start.x, &cur.x) <= 2.0 * param_speed * dist + 1e-9
                 && to_start.dot(&cur.frame.tangent) > 0.5 * dist
                 && cur.frame.tangent.dot(&start.frame.tangent) > 0.5
-                && (is_full_turn(total[0], opts.rotation_tolerance)
-                    || is_full_turn(total[1], opts.rotation_tolerance))
+                && (is_full_turn(total[0], opts.rotation_tolerance, !visited.is_empty())
+                    || is_full_turn(total[1], opts.rotation_tolerance, !visited.is_empty()))
             {
                 half.turning = total;
                 let mut closing = *start;
@@ -397,20 +419,32 @@ where
         }
 
         let chord = p.point(r.x[0], r.x[1]) - cur.frame.xyz;
-        let node = node_at(p, q, r.x, r.iterations, Some(chord));
+        let mut node = node_at(p, q, r.x, r.iterations, Some(chord));
+        if node.flipped != cur.flipped && node.frame.sine >= opts.singular_sine {
+            // Stepped across a singular point: stop on it instead.
+            if let Some(at) = singular_between(p, q, &cur, &node, opts) {
+                node = at;
+            }
+        }
         add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
         half.nodes.push(node);
         if node.frame.sine < opts.singular_sine {
             half.events.push(make_event(EventKind::Singular, &node));
-            match (crossings < opts.cross_singular)
-                .then(|| cross_singular_point(p, q, &cur, &node, opts))
-                .flatten()
-            {
-                Some(beyond) => {
+            let crossed = (crossings < opts.cross_singular)
+                .then(|| cross_node(p, q, start, &half.nodes, &mut visited, opts))
+                .flatten();
+            match crossed {
+                Some((at, beyond)) => {
                     crossings += 1;
-                    add_turn(&mut half.turning, turn(&node.frame, &beyond.frame));
+                    // The tangent at the reached point (normals parallel) is noise: replace the
+                    // turning to it by the turning from the last regular point to the exit.
+                    let noise = turn(&cur.frame, &node.frame);
+                    add_turn(&mut half.turning, [-noise[0], -noise[1]]);
+                    add_turn(&mut half.turning, turn(&cur.frame, &beyond.frame));
+                    half.nodes.pop();
+                    half.nodes.push(at);
                     half.nodes.push(beyond);
-                    prev = Some(node);
+                    prev = None;
                     cur = beyond;
                     continue;
                 }
@@ -423,60 +457,6 @@ where
         prev = Some(cur);
         cur = node;
     }
-}
-
-/// One step of length `L` across the singular point `at` (reached from `before`): a circular
-/// prediction through both (which keeps to the branch of the right curvature at a tacnode),
-/// refined by Newton on the plane through the prediction. Kept only if the point is regular,
-/// ahead, and its tangent turns less than 45° from the incoming one.
-fn cross_singular_point<S1, S2>(
-    p: &S1,
-    q: &S2,
-    before: &Node,
-    at: &Node,
-    opts: &MarchOptions,
-) -> Option<Node>
-where
-    S1: ParametricSurface + ?Sized,
-    S2: ParametricSurface + ?Sized,
-{
-    let incoming = at.frame.xyz - before.frame.xyz;
-    let len = incoming.norm();
-    if len == 0.0 || !len.is_finite() {
-        return None;
-    }
-    let heading = incoming / len;
-    // The tangent at the singular point itself is meaningless: use the chord direction.
-    let mut at_dir = *at;
-    at_dir.frame.tangent = heading;
-    let pred = predict(Some(before), &at_dir, opts, opts.step);
-    let dir = pred.point - at.frame.xyz;
-    let dlen = dir.norm();
-    if dlen == 0.0 || !dlen.is_finite() {
-        return None;
-    }
-    let guess = predict_parameters(p, q, &at.x, &pred.point);
-    let constraint = Constraint::Plane {
-        point: pred.point,
-        normal: dir / dlen,
-    };
-    let r = refine(
-        p,
-        q,
-        guess,
-        constraint,
-        opts.tolerance,
-        opts.max_newton_iterations,
-    )
-    .ok()?;
-    if !inside(&r.x, &p.domain(), &q.domain(), opts.domain_tolerance) {
-        return None;
-    }
-    let chord = p.point(r.x[0], r.x[1]) - at.frame.xyz;
-    let node = node_at(p, q, r.x, r.iterations, Some(chord));
-    let ahead = chord.dot(&heading) > 0.5 * chord.norm();
-    let smooth = node.frame.tangent.dot(&heading) > std::f64::consts::FRAC_1_SQRT_2;
-    (node.frame.sine >= opts.singular_sine && ahead && smooth).then_some(node)
 }
 
 fn check_options(opts: &MarchOptions) -> Result<()> {
@@ -590,6 +570,82 @@ fn to_curve_point(n: &Node) -> CurvePoint {
         q: [n.x[2], n.x[3]],
         xyz: [n.frame.xyz.x, n.frame.xyz.y, n.frame.xyz.z],
     }
+}
+
+/// Traces the arc leaving the singular point `node` through its exit point `exit` (a curve point
+/// near it, see [`analyse_node`](super::branch_point::analyse_node)): the march starts at the exit,
+/// heading away from the node, and runs until a stop rule fires (no loop closure: an arc from a
+/// node ends at a node, a boundary, or the budget). The branch starts with the node itself, then
+/// the exit. Errors: invalid options or a non-finite point ([`Error::InvalidInput`]).
+pub fn trace_from_node<S1, S2>(
+    p: &S1,
+    q: &S2,
+    node: [f64; 4],
+    exit: [f64; 4],
+    opts: &MarchOptions,
+) -> Result<TracedBranch>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    check_options(opts)?;
+    if let Some(i) = node.iter().chain(&exit).position(|c| !c.is_finite()) {
+        return Err(bad(&format!("node/exit[{i}]"), InputProblem::NonFinite));
+    }
+    let n0 = node_at(p, q, node, 0, None);
+    let away = p.point(exit[0], exit[1]) - n0.frame.xyz;
+    let st = node_at(p, q, exit, 0, Some(away));
+    let opts_arc = MarchOptions {
+        cross_singular: 0,
+        ..*opts
+    };
+    let half = march_half(
+        p,
+        q,
+        &st,
+        &opts_arc,
+        opts.max_points.saturating_sub(2),
+        false,
+    );
+    let mut nodes = vec![n0, st];
+    nodes.extend(half.nodes.iter().copied());
+    let mut events = half.events.clone();
+    events.insert(0, make_event(EventKind::Singular, &n0));
+    let ends = [EndReason::Singular, half.end];
+    let regular = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
+    let status = if regular(&ends[1]) {
+        BranchStatus::Open
+    } else {
+        BranchStatus::Incomplete
+    };
+    let mut histogram = Vec::new();
+    for n in &nodes {
+        if histogram.len() <= n.iterations {
+            histogram.resize(n.iterations + 1, 0);
+        }
+        histogram[n.iterations] += 1;
+    }
+    Ok(TracedBranch {
+        branch: Branch {
+            id: 0,
+            status,
+            ends,
+            points: nodes.iter().map(to_curve_point).collect(),
+        },
+        newton_iterations: nodes.iter().map(|n| n.iterations).collect(),
+        tangents: nodes
+            .iter()
+            .map(|n| [n.frame.tangent.x, n.frame.tangent.y, n.frame.tangent.z])
+            .collect(),
+        events,
+        turning: half.turning[0],
+        turning_q: half.turning[1],
+        stats: MarchStats {
+            points: nodes.len(),
+            newton_histogram: histogram,
+            retried_steps: half.retried,
+        },
+    })
 }
 
 /// Traces the branch of `P ∩ Q` through `start = (σ, t, u, v)` (a guess close to the curve).
