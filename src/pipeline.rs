@@ -16,11 +16,15 @@ use crate::certified::{certify_branch, CertifiedBranch, CertifyOptions};
 use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
 use crate::intersection::Branch;
+use crate::intersection::EventKind;
 use crate::io::result_json::{
     certified_contact_to_json, certified_error_to_json, certified_events_to_json,
     certified_to_json, ResultMeta, CERTIFIED_CONTACT_EVENT,
 };
 use crate::io::scene::{Method, Scene};
+use crate::io::topology_json::{boundary_ends_to_json, node_to_json};
+use crate::marching::boundary_direction::BoundaryOptions;
+use crate::marching::branch_ends::check_branch_ends;
 use crate::marching::intersect::{intersect, IntersectOutcome};
 use crate::marching::start_points::SearchOptions;
 use crate::marching::MarchOptions;
@@ -144,6 +148,7 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     let march_seconds = started.elapsed().as_secs_f64();
     let mut meta = ResultMeta::new(scene.options.name.clone(), opts.method.name());
     meta.stats = stats_json(&outcome, opts.step);
+    annotate_topology(p, q, &outcome, &mut meta);
     let mut certificates = Vec::new();
     let mut straying = Vec::new();
     let mut contacts = Vec::new();
@@ -222,6 +227,51 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         march_seconds,
         certify_seconds,
     })
+}
+
+/// Writes the topology notes of a marched outcome into `meta`: each branch's boundary ends
+/// checked by Grandine's test (`"boundary_ends"`, with the count of inconsistent ends in the
+/// stats as `"inconsistent_boundary_ends"`), and each singular event's graph node (`"node"`).
+fn annotate_topology(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    outcome: &IntersectOutcome,
+    meta: &mut ResultMeta,
+) {
+    let mut inconsistent = 0;
+    for b in &outcome.intersection.branches {
+        let checks = check_branch_ends(p, q, b, &BoundaryOptions::default());
+        if checks.is_empty() {
+            continue;
+        }
+        inconsistent += checks
+            .iter()
+            .flatten()
+            .flatten()
+            .filter(|c| !c.consistent)
+            .count();
+        meta.branch_notes
+            .entry(b.id)
+            .or_default()
+            .insert("boundary_ends".into(), boundary_ends_to_json(&checks));
+    }
+    meta.stats
+        .insert("inconsistent_boundary_ends".into(), json!(inconsistent));
+    for (k, e) in outcome.intersection.events.iter().enumerate() {
+        if e.kind != EventKind::Singular {
+            continue;
+        }
+        let node = outcome.nodes.iter().find(|n| {
+            let d2: f64 = (0..3).map(|i| (n.xyz[i] - e.xyz[i]).powi(2)).sum();
+            d2 <= 1e-12 * (1.0 + e.xyz.iter().map(|x| x * x).sum::<f64>())
+        });
+        if let Some(n) = node {
+            meta.event_notes
+                .entry(k)
+                .or_default()
+                .insert("node".into(), node_to_json(n));
+        }
+    }
 }
 
 /// Leaf size of the contact cover in a run, as a fraction of each domain width.

@@ -3,3 +3,4 @@
 pub mod result_json;
 pub mod scene;
 pub mod svg;
+pub mod topology_json;

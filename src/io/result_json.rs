@@ -50,6 +50,29 @@ pub struct ResultMeta {
     /// [`certified_events_to_json`]), written after the marcher's events in `"events"` and read
     /// back verbatim.
     pub certified_events: Vec<Value>,
+    /// Further members of branch objects (e.g. `"boundary_ends"`), keyed by branch id; written
+    /// into the branch object and read back from any member the format does not define.
+    pub branch_notes: BTreeMap<usize, Map<String, Value>>,
+    /// Further members of the marcher's event objects (e.g. `"boundary"`, `"node"`), keyed by
+    /// the event's index in [`Intersection::events`]; written and read back like `branch_notes`.
+    pub event_notes: BTreeMap<usize, Map<String, Value>>,
+}
+
+/// Members of a branch object that the format defines (anything else is a note).
+const BRANCH_MEMBERS: [&str; 5] = ["id", "status", "ends", "points", "certified"];
+/// Members of a marcher event object that the format defines (anything else is a note).
+const EVENT_MEMBERS: [&str; 4] = ["kind", "p", "q", "xyz"];
+
+/// The members of `v` (an object) whose names are not in `known`.
+fn notes_of(v: &Value, known: &[&str]) -> Map<String, Value> {
+    v.as_object()
+        .map(|m| {
+            m.iter()
+                .filter(|(k, _)| !known.contains(&k.as_str()))
+                .map(|(k, x)| (k.clone(), x.clone()))
+                .collect()
+        })
+        .unwrap_or_default()
 }
 
 impl ResultMeta {
@@ -95,13 +118,27 @@ pub fn result_to_json(result: &Intersection, meta: &ResultMeta) -> Value {
             if let Some(cert) = meta.certified.get(&b.id) {
                 obj.insert("certified".into(), cert.clone());
             }
+            if let Some(notes) = meta.branch_notes.get(&b.id) {
+                for (k, v) in notes {
+                    obj.entry(k.clone()).or_insert_with(|| v.clone());
+                }
+            }
             Value::Object(obj)
         })
         .collect();
     let events: Vec<Value> = result
         .events
         .iter()
-        .map(event_to_json)
+        .enumerate()
+        .map(|(k, e)| {
+            let mut v = event_to_json(e);
+            if let (Value::Object(obj), Some(notes)) = (&mut v, meta.event_notes.get(&k)) {
+                for (name, x) in notes {
+                    obj.entry(name.clone()).or_insert_with(|| x.clone());
+                }
+            }
+            v
+        })
         .chain(meta.certified_events.iter().cloned())
         .collect();
     json!({
@@ -160,11 +197,17 @@ pub fn result_from_json(doc: &Value) -> Result<ResultDocument> {
         Some(_) => return Err(bad("`stats` is not an object")),
     };
     let mut certified = BTreeMap::new();
+    let mut branch_notes = BTreeMap::new();
+    let mut event_notes = BTreeMap::new();
     let mut branches = Vec::new();
     for (k, b) in array(obj.get("branches"), "branches")?.iter().enumerate() {
         let branch = branch_from_json(b, k)?;
         if let Some(cert) = b.get("certified") {
             certified.insert(branch.id, cert.clone());
+        }
+        let notes = notes_of(b, &BRANCH_MEMBERS);
+        if !notes.is_empty() {
+            branch_notes.insert(branch.id, notes);
         }
         branches.push(branch);
     }
@@ -186,7 +229,13 @@ pub fn result_from_json(doc: &Value) -> Result<ResultDocument> {
                 }
                 certified_events.push(e.clone());
             }
-            _ => events.push(event_from_json(e, k)?),
+            _ => {
+                let notes = notes_of(e, &EVENT_MEMBERS);
+                if !notes.is_empty() {
+                    event_notes.insert(events.len(), notes);
+                }
+                events.push(event_from_json(e, k)?);
+            }
         }
     }
     Ok(ResultDocument {
@@ -197,6 +246,8 @@ pub fn result_from_json(doc: &Value) -> Result<ResultDocument> {
             stats,
             certified,
             certified_events,
+            branch_notes,
+            event_notes,
         },
     })
 }

@@ -150,13 +150,9 @@ impl Graph<'_> {
 
     /// Adds a traced branch: its singular ends are attached to nodes (the node point becomes the
     /// end point), its boundary events kept.
-    fn add<S1, S2>(&mut self, p: &S1, q: &S2, traced: TracedBranch, from_node: Option<usize>)
-    where
-        S1: ParametricSurface + ?Sized,
-        S2: ParametricSurface + ?Sized,
-    {
-        let mut branch = traced.branch;
-        for e in traced.events {
+    /// Keeps the boundary events of a trace that are not already known.
+    fn add_events(&mut self, events: Vec<Event>) {
+        for e in events {
             if e.kind == EventKind::BoundaryEnd {
                 let dup = self.out.events.iter().any(|f| {
                     f.kind == e.kind && dist3(&f.xyz, &e.xyz) <= 1e-6 * (1.0 + norm3(&e.xyz))
@@ -166,6 +162,15 @@ impl Graph<'_> {
                 }
             }
         }
+    }
+
+    fn add<S1, S2>(&mut self, p: &S1, q: &S2, traced: TracedBranch, from_node: Option<usize>)
+    where
+        S1: ParametricSurface + ?Sized,
+        S2: ParametricSurface + ?Sized,
+    {
+        let mut branch = traced.branch;
+        self.add_events(traced.events);
         if branch.ends[0] == EndReason::Singular && from_node.is_none() {
             let node_pt = self.attach(p, q, &branch.points);
             if branch.points[0] != node_pt {
@@ -236,6 +241,13 @@ where
             Ok(traced) => {
                 let single = traced.branch.points.len() == 1
                     && traced.branch.ends == [EndReason::Singular, EndReason::Singular];
+                if traced.branch.points.len() == 1 {
+                    // A curve touching a face from outside: its event only, no branch.
+                    if matches!(traced.branch.ends[0], EndReason::Boundary { .. }) {
+                        g.add_events(traced.events);
+                        continue;
+                    }
+                }
                 if single {
                     // The start is itself a singular point: make it a node, its arcs come later.
                     let cp = traced.branch.points[0];

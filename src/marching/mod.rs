@@ -7,6 +7,7 @@
 //! exactly once and stops at singular points.
 
 pub mod boundary_direction;
+pub mod branch_ends;
 pub mod branch_point;
 pub mod circle_step;
 mod crossing;

@@ -27,6 +27,9 @@
 //!   index 0.
 //! - **Point limit** and **Newton failure** end the half with that reason.
 
+use super::boundary_direction::{
+    boundary_sides, classify_boundary_point_unproven, BoundaryDirection, BoundaryOptions,
+};
 use super::branch_point::SingularNode;
 use super::circle_step::circular_step;
 use super::crossing::{cross_node, singular_between};
@@ -550,6 +553,30 @@ where
     })
 }
 
+/// Whether the curve through the boundary node `n` only touches the faces `n` lies on
+/// (Grandine's test to second order, see [`classify_boundary_point_unproven`]): `Some(true)`
+/// when it is tangent to every such face and stays inside the domains, `Some(false)` when it
+/// touches a face from outside (or the surfaces touch at this point only), `None` otherwise.
+fn touching<S1, S2>(p: &S1, q: &S2, n: &Node) -> Option<bool>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let opts = BoundaryOptions::default();
+    let sides = boundary_sides(p, q, &n.x, 1e-7);
+    let mut inside = !sides.is_empty();
+    for side in sides {
+        match classify_boundary_point_unproven(p, q, n.x, side, &opts).map(|c| c.direction) {
+            Ok(BoundaryDirection::Touches { inside: false } | BoundaryDirection::Isolated) => {
+                return Some(false)
+            }
+            Ok(BoundaryDirection::Touches { inside: true }) => {}
+            _ => inside = false,
+        }
+    }
+    inside.then_some(true)
+}
+
 fn boundary_surface_of<S1, S2>(p: &S1, q: &S2, n: &Node) -> Option<usize>
 where
     S1: ParametricSurface + ?Sized,
@@ -680,9 +707,18 @@ where
         (None, None, EndReason::Singular)
     } else {
         let on_edge = boundary_surface_of(p, q, &s);
+        // Where the curve only touches a face, the start is no end: from inside it lies within
+        // a branch (a closed loop may pass through it), traced as an interior start with
+        // closing allowed; from outside it is all the domain holds of the curve (one point).
+        let touch = on_edge.and_then(|_| touching(p, q, &s));
+        let on_edge = on_edge.filter(|_| touch != Some(true));
         let (fwd_ok, back_ok) = (enters(p, q, &s, 1.0), enters(p, q, &s, -1.0));
         let budget = opts.max_points - 1;
         match on_edge {
+            Some(surface) if touch == Some(false) => {
+                events.push(make_event(EventKind::BoundaryEnd, &s));
+                (None, None, EndReason::Boundary { surface })
+            }
             Some(surface) if fwd_ok != back_ok => {
                 // One way only; orient the start so that forward is inward.
                 let st = if fwd_ok {

@@ -1,0 +1,73 @@
+//! JSON notes on the topology of a result: the boundary-direction check of each branch end
+//! (`"boundary_ends"` on a branch) and the singular nodes of the graph tracer (`"node"` on a
+//! singular event). They are written into the result document through
+//! [`ResultMeta::branch_notes`](super::result_json::ResultMeta::branch_notes) and
+//! [`ResultMeta::event_notes`](super::result_json::ResultMeta::event_notes).
+
+use crate::error::Result;
+use crate::marching::boundary_direction::{Bound, BoundaryDirection, DecidedBy};
+use crate::marching::branch_ends::BranchEndCheck;
+use crate::marching::branch_point::SingularNode;
+use serde_json::{json, Value};
+
+/// The name of a boundary direction in the result JSON.
+pub fn direction_name(d: BoundaryDirection) -> &'static str {
+    match d {
+        BoundaryDirection::Enters => "enters",
+        BoundaryDirection::Leaves => "leaves",
+        BoundaryDirection::Touches { inside: true } => "touches_inside",
+        BoundaryDirection::Touches { inside: false } => "touches_outside",
+        BoundaryDirection::Isolated => "isolated",
+        BoundaryDirection::Undecided => "undecided",
+    }
+}
+
+fn decided_by_name(d: DecidedBy) -> &'static str {
+    match d {
+        DecidedBy::FirstOrder => "first_order",
+        DecidedBy::SecondOrder => "second_order",
+        DecidedBy::ContactQuadratic => "contact_quadratic",
+        DecidedBy::PerturbationLimit => "perturbation_limit",
+        DecidedBy::Nothing => "nothing",
+    }
+}
+
+/// A branch's `"boundary_ends"` array: per boundary end and face, `{"end", "coordinate",
+/// "bound", "seen", "consistent", "proven", "critical", "decided_by"}` (`seen`: what the curve
+/// does there for a traveller along the branch), or `{"error"}` for an end that could not be
+/// classified.
+pub fn boundary_ends_to_json(checks: &[Result<Vec<BranchEndCheck>>]) -> Value {
+    let mut out = Vec::new();
+    for c in checks {
+        match c {
+            Ok(faces) => out.extend(faces.iter().map(|f| {
+                json!({
+                    "end": f.end,
+                    "coordinate": f.side.coordinate,
+                    "bound": if f.side.bound == Bound::Min { "min" } else { "max" },
+                    "seen": direction_name(f.seen),
+                    "consistent": f.consistent,
+                    "proven": f.classification.proven,
+                    "critical": f.classification.critical,
+                    "decided_by": decided_by_name(f.classification.decided_by),
+                })
+            })),
+            Err(e) => out.push(json!({ "error": e.to_string() })),
+        }
+    }
+    Value::Array(out)
+}
+
+/// A singular event's `"node"` object: the contact case, `Δ`, whether the point was located
+/// (parallel normals converged), the number of arcs leaving it and their exit points.
+pub fn node_to_json(n: &SingularNode) -> Value {
+    json!({
+        "case": serde_json::to_value(n.case).unwrap_or(Value::Null),
+        "discriminant": n.discriminant,
+        "located": n.located,
+        "arcs": n.exits.len(),
+        "exits": n.exits,
+        "exit_xyz": n.exit_xyz,
+        "radius": n.radius,
+    })
+}
