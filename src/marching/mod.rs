@@ -9,6 +9,7 @@
 pub mod circle_step;
 pub mod dqoc_step;
 pub mod intersect;
+pub mod loop_exclusion;
 pub mod newton;
 pub mod options;
 pub mod start_points;
