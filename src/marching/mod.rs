@@ -7,11 +7,13 @@
 //! exactly once and stops at singular points.
 
 pub mod circle_step;
+pub mod curve_surface;
 pub mod dqoc_step;
 pub mod intersect;
 pub mod loop_exclusion;
 pub mod newton;
 pub mod options;
+pub mod piece;
 pub mod start_points;
 pub mod tangent;
 pub mod tangent_step;
