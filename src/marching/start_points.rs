@@ -103,8 +103,8 @@ pub struct SearchReport {
     pub interior: Vec<StartPoint>,
     /// Leaf boxes of the curve/surface searches examined.
     pub leaves: usize,
-    /// Curve/surface leaf boxes that were neither excluded nor proven to hold one point, down to
-    /// 1/16 of the leaf size (each also makes an undecided region).
+    /// Curve/surface leaf boxes of the boundary search that were neither excluded nor proven to
+    /// hold one point, down to 1/1024 of the leaf size (each also makes an undecided region).
     pub undecided: usize,
     /// The leaf budget ran out: some regions were not examined (they are undecided regions).
     pub truncated: bool,
@@ -196,8 +196,9 @@ impl Ctx {
 }
 
 /// A leaf where the Krawczyk test decides nothing is subdivided further, down to this fraction
-/// of the leaf size, before it is reported as undecided.
-const REFINE_FAILED_LEAF: f64 = 1.0 / 16.0;
+/// of the leaf size, before it is reported as undecided (only undecided leaves are refined, so
+/// a deep limit costs nothing where everything is settled).
+const REFINE_FAILED_LEAF: f64 = 1.0 / 1024.0;
 
 fn diameter(b: &[Interval; 3]) -> f64 {
     b.iter().map(|x| x.wid()).fold(0.0, f64::max)
@@ -320,9 +321,11 @@ fn face_search(
     pq: &Piece,
     report: &mut SearchReport,
 ) -> bool {
-    let size = diameter(&pp.bounds()).max(diameter(&pq.bounds()));
+    // Leaves no larger than the smaller piece: the faces are that small anyway, and a large
+    // partner piece (a plane against a small curved piece) is cut down to them.
+    let size = diameter(&pp.bounds()).min(diameter(&pq.bounds()));
     let leaf = ctx.leaf.min(size);
-    let min_leaf = leaf * REFINE_FAILED_LEAF * REFINE_FAILED_LEAF;
+    let min_leaf = leaf * REFINE_FAILED_LEAF;
     let mut settled = true;
     for (a, b, piece_a, piece_b, swapped) in [(p, q, pp, pq, false), (q, p, pq, pp, true)] {
         for (fixed_index, upper) in [(0, false), (0, true), (1, false), (1, true)] {
