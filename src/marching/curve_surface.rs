@@ -59,7 +59,8 @@ pub fn settle_box(
     if !cinv.iter().all(|c| c.is_finite()) {
         return BoxVerdict::Unknown;
     }
-    let c: [[Interval; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|k| point(cinv[(r, k)])));
+    let c: [[Interval; 3]; 3] =
+        std::array::from_fn(|r| std::array::from_fn(|k| point(cinv[(r, k)])));
     // F at the midpoint of the free coordinates, the fixed one at its exact value.
     let mut xm = x;
     for &k in &free {
@@ -131,7 +132,10 @@ mod tests {
             other => panic!("{other:?}"),
         }
         let away = [point(0.3), iv(0.1, 0.2), iv(0.28, 0.33), iv(0.1, 0.2)];
-        assert_eq!(settle_box(&bowl, &plane, away, 0, jac(away[1])), BoxVerdict::None);
+        assert_eq!(
+            settle_box(&bowl, &plane, away, 0, jac(away[1])),
+            BoxVerdict::None
+        );
         // Both zeros in one box: never "one".
         let both = [point(0.3), iv(-0.5, 0.5), iv(0.2, 0.4), iv(-0.5, 0.5)];
         assert!(!matches!(

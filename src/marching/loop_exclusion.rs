@@ -86,11 +86,11 @@ pub fn loop_test(
     let np = cross_f(&dp_c.su, &dp_c.sv);
     let nq = cross_f(&dq_c.su, &dq_c.sv);
     let frame = frame(&np, &nq);
-    let normal = |piece: &Piece, d: &crate::geometry::Domain, origin: &[f64; 3]| {
-        match piece.partials(d, Some(&frame), origin, 0.0) {
-            Some([Some(a), Some(b)]) => Some(cross_i(&a, &b)),
-            _ => None,
-        }
+    let normal = |piece: &Piece, d: &crate::geometry::Domain, origin: &[f64; 3]| match piece
+        .partials(d, Some(&frame), origin, 0.0)
+    {
+        Some([Some(a), Some(b)]) => Some(cross_i(&a, &b)),
+        _ => None,
     };
     let enp = normal(pp, &dp, &dp_c.p);
     let enq = normal(pq, &dq, &dq_c.p);
@@ -202,8 +202,13 @@ mod tests {
     fn plane_against_tilted_plane_is_loop_free() {
         let plane = graph(vec![(0, 0, 0.0), (1, 1, 0.0)]);
         let tilted = graph(vec![(1, 0, 0.5), (0, 1, 0.2), (0, 0, 0.1)]);
-        let proof = prove_loop_free(&tilted, &Piece::whole(&tilted), &plane, &Piece::whole(&plane))
-            .expect("monotone pair proven loop-free");
+        let proof = prove_loop_free(
+            &tilted,
+            &Piece::whole(&tilted),
+            &plane,
+            &Piece::whole(&plane),
+        )
+        .expect("monotone pair proven loop-free");
         // The line 0.5x + 0.2y + 0.1 = 0 has direction ±(0.2, −0.5, 0): d is not orthogonal.
         let along = 0.2 * proof.direction[0] - 0.5 * proof.direction[1];
         assert!(along.abs() > 0.1, "{proof:?}");

@@ -211,7 +211,12 @@ fn bounds2(x: &[Interval; 2]) -> [[f64; 2]; 2] {
 
 /// The interior search: level by level, every pair of pieces is proven disjoint, proven
 /// loop-free (then its inner faces are searched), or split; what is left is undecided.
-fn pair_search(ctx: &Ctx, p: &RationalBezierPatch, q: &RationalBezierPatch, report: &mut SearchReport) {
+fn pair_search(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    report: &mut SearchReport,
+) {
     let mut frontier = vec![(Piece::whole(p), Piece::whole(q))];
     while !frontier.is_empty() {
         let mut next = Vec::new();
@@ -329,7 +334,11 @@ fn face_search(
     let mut settled = true;
     for (a, b, piece_a, piece_b, swapped) in [(p, q, pp, pq, false), (q, p, pq, pp, true)] {
         for (fixed_index, upper) in [(0, false), (0, true), (1, false), (1, true)] {
-            let range = if fixed_index == 0 { piece_a.s } else { piece_a.r };
+            let range = if fixed_index == 0 {
+                piece_a.s
+            } else {
+                piece_a.r
+            };
             let value = range[usize::from(upper)];
             if value == 0.0 || value == 1.0 {
                 continue;
