@@ -18,7 +18,6 @@
 //! then `F(x̃)` is enclosed over it, and for the exact face value inside it — the one for which the
 //! caller's `J(X)` holds — the usual conclusions follow (parametric Krawczyk).
 
-use crate::geometry::RationalBezierPatch;
 use crate::scalar::point;
 use inari::Interval;
 use nalgebra::Matrix3;
@@ -35,14 +34,15 @@ pub enum BoxVerdict {
     Unknown,
 }
 
-/// One Krawczyk step on `A(σ, t) − B(u, v) = 0` over the box `x = (σ, t, u, v)` (parameters of
-/// `a` then `b`), coordinate `fixed` (0 or 1: a parameter of `a`) held in its interval `x[fixed]`.
-/// `jac` encloses, over `x`, the free partial of `A` and `B_u`, `B_v` (in that order).
-/// Rigorous (see the module documentation).
+/// One Krawczyk step on `F = A(σ, t) − B(u, v) = 0` over the box `x = (σ, t, u, v)`
+/// (parameters of `a` then `b`), coordinate `fixed` (0 or 1: a parameter of `a`) held in its
+/// interval `x[fixed]`. `xm` encloses a point of `x` (its fixed coordinate equal to `x[fixed]`),
+/// `f` encloses `F` there, and `jac` encloses over `x` the free partial of `A` and `B_u`, `B_v`
+/// (in that order). Rigorous (see the module documentation).
 pub fn settle_box(
-    a: &RationalBezierPatch,
-    b: &RationalBezierPatch,
     x: [Interval; 4],
+    xm: [Interval; 4],
+    f: [Interval; 3],
     fixed: usize,
     jac: [[Interval; 3]; 3],
 ) -> BoxVerdict {
@@ -50,7 +50,6 @@ pub fn settle_box(
         return BoxVerdict::Unknown;
     }
     let free: [usize; 3] = if fixed == 0 { [1, 2, 3] } else { [0, 2, 3] };
-    let mid: [f64; 4] = std::array::from_fn(|k| x[k].mid());
     let cols = [jac[0], jac[1].map(|c| -c), jac[2].map(|c| -c)];
     let mid_j = Matrix3::from_fn(|r, c| cols[c][r].mid());
     let Some(cinv) = mid_j.try_inverse() else {
@@ -61,14 +60,6 @@ pub fn settle_box(
     }
     let c: [[Interval; 3]; 3] =
         std::array::from_fn(|r| std::array::from_fn(|k| point(cinv[(r, k)])));
-    // F at the midpoint of the free coordinates, the fixed one at its exact value.
-    let mut xm = x;
-    for &k in &free {
-        xm[k] = point(mid[k]);
-    }
-    let fa = a.eval::<Interval>(xm[0], xm[1]);
-    let fb = b.eval::<Interval>(xm[2], xm[3]);
-    let f: [Interval; 3] = std::array::from_fn(|r| fa[r] - fb[r]);
     let mut out = x;
     let mut inside = true;
     for r in 0..3 {
@@ -98,7 +89,7 @@ pub fn settle_box(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{Domain, PowerSurface};
+    use crate::geometry::{Domain, PowerSurface, RationalBezierPatch};
     use crate::scalar::interval;
 
     fn iv(a: f64, b: f64) -> Interval {
@@ -124,8 +115,17 @@ mod tests {
                 [point(0.0), point(1.0), point(0.0)],
             ]
         };
+        let settle = |x: [Interval; 4]| {
+            let xm = x.map(|c| point(c.mid()));
+            let (fa, fb) = (
+                bowl.eval::<Interval>(xm[0], xm[1]),
+                plane.eval::<Interval>(xm[2], xm[3]),
+            );
+            let f = std::array::from_fn(|r| fa[r] - fb[r]);
+            settle_box(x, xm, f, 0, jac(x[1]))
+        };
         let x = [point(0.3), iv(0.35, 0.45), iv(0.28, 0.33), iv(0.36, 0.43)];
-        match settle_box(&bowl, &plane, x, 0, jac(x[1])) {
+        match settle(x) {
             BoxVerdict::One(e) => {
                 assert!(e[1].contains(0.4) && e[2].contains(0.3) && e[3].contains(0.4));
             }
@@ -138,9 +138,6 @@ mod tests {
         );
         // Both zeros in one box: never "one".
         let both = [point(0.3), iv(-0.5, 0.5), iv(0.2, 0.4), iv(-0.5, 0.5)];
-        assert!(!matches!(
-            settle_box(&bowl, &plane, both, 0, jac(both[1])),
-            BoxVerdict::One(_)
-        ));
+        assert!(!matches!(settle(both), BoxVerdict::One(_)));
     }
 }

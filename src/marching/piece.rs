@@ -163,6 +163,45 @@ impl Piece {
         }
     }
 
+    /// The point of the patch at the centre of the piece's box, enclosed (de Casteljau at 1/2
+    /// on the net, in interval arithmetic), with the centre's declared parameters (rounded
+    /// outward).
+    pub fn centre(&self, d: &Domain) -> ([Interval; 2], [Interval; 3]) {
+        let [m, n] = self.degree;
+        let half = point(0.5);
+        let collapse = |pts: &mut Vec<[Interval; 4]>| {
+            while pts.len() > 1 {
+                for k in 0..pts.len() - 1 {
+                    let next = pts[k + 1];
+                    for (w, x) in pts[k].iter_mut().zip(next) {
+                        *w = (*w + x) * half;
+                    }
+                }
+                pts.pop();
+            }
+        };
+        let mut row = Vec::with_capacity(n + 1);
+        let mut column = Vec::with_capacity(m + 1);
+        for j in 0..=n {
+            column.clear();
+            column.extend((0..=m).map(|i| self.net[i * (n + 1) + j]));
+            collapse(&mut column);
+            row.push(column[0]);
+        }
+        collapse(&mut row);
+        let h = row[0];
+        let p = if self.polynomial {
+            [h[0], h[1], h[2]]
+        } else {
+            [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+        };
+        let at = |dom: [f64; 2], x: [f64; 2]| {
+            let c = 0.5 * (x[0] + x[1]);
+            point(dom[0]) + point(c) * (point(dom[1]) - point(dom[0]))
+        };
+        ([at(d.u, self.s), at(d.v, self.r)], p)
+    }
+
     /// The declared parameter box `[u, v]`, rounded outward, after widening the normalised box
     /// by `grow` times its width on each side (not clipped to the domain).
     pub fn declared(&self, d: &Domain, grow: f64) -> [Interval; 2] {
@@ -185,21 +224,58 @@ impl Piece {
         grow: f64,
     ) -> Option<[Option<[Interval; 3]>; 2]> {
         let [m, n] = self.degree;
-        let o = origin.map(point);
         let rows = frame.map(|f| f.map(|row| row.map(point)));
+        let rotate = |x: [Interval; 3]| match &rows {
+            Some(r) => std::array::from_fn(|k| r[k][0] * x[0] + r[k][1] * x[1] + r[k][2] * x[2]),
+            None => x,
+        };
+        // Σ|B| growth factors for degrees (a, b) under the widening.
+        let factor = |a: usize, b: usize| {
+            let g = point(1.0) + point(2.0) * point(grow);
+            g.powi(a as i32) * g.powi(b as i32)
+        };
+        let widen3 = |h: [Interval; 3], f: Interval| h.map(|x| widen(x, f));
+        // `deg / width` with width = (range₁ − range₀)·(dom₁ − dom₀) > 0.
+        let scale = |deg: usize, range: [f64; 2], dom: [f64; 2]| {
+            let width = (point(range[1]) - point(range[0])) * (point(dom[1]) - point(dom[0]));
+            (width.inf() > 0.0).then(|| point(deg as f64) / width)
+        };
+        if self.polynomial {
+            // S_s = m·Σ B ΔX: only the differences of the net matter (no translation needed).
+            let net = &self.net;
+            let diff = |a: usize, b: usize| -> [Interval; 3] {
+                rotate(std::array::from_fn(|c| net[b][c] - net[a][c]))
+            };
+            let (mut hs, mut hr) = (Hull3::default(), Hull3::default());
+            for i in 0..=m {
+                for j in 0..=n {
+                    let k = i * (n + 1) + j;
+                    if i < m {
+                        hs.add(&diff(k, k + n + 1));
+                    }
+                    if j < n {
+                        hr.add(&diff(k, k + 1));
+                    }
+                }
+            }
+            let su = match (m > 0, hs.0, scale(m, self.s, d.u)) {
+                (true, Some(h), Some(k)) => Some(widen3(h, factor(m - 1, n)).map(|x| x * k)),
+                _ => None,
+            };
+            let sv = match (n > 0, hr.0, scale(n, self.r, d.v)) {
+                (true, Some(h), Some(k)) => Some(widen3(h, factor(m, n - 1)).map(|x| x * k)),
+                _ => None,
+            };
+            return Some([su, sv]);
+        }
+        let o = origin.map(point);
         let y: Vec<([Interval; 3], Interval)> = self
             .net
             .iter()
             .map(|h| {
                 let w = if self.polynomial { point(1.0) } else { h[3] };
                 let x: [Interval; 3] = std::array::from_fn(|c| h[c] - o[c] * w);
-                let x = match &rows {
-                    Some(r) => {
-                        std::array::from_fn(|k| r[k][0] * x[0] + r[k][1] * x[1] + r[k][2] * x[2])
-                    }
-                    None => x,
-                };
-                (x, w)
+                (rotate(x), w)
             })
             .collect();
         let at = |i: usize, j: usize| y[i * (n + 1) + j];
@@ -223,12 +299,6 @@ impl Piece {
                 }
             }
         }
-        // Σ|B| growth factors for degrees (a, b) under the widening.
-        let factor = |a: usize, b: usize| {
-            let g = point(1.0) + point(2.0) * point(grow);
-            g.powi(a as i32) * g.powi(b as i32)
-        };
-        let widen3 = |h: [Interval; 3], f: Interval| h.map(|x| widen(x, f));
         let hx = widen3(hx.0?, factor(m, n));
         let hw = widen(hw.0?, factor(m, n));
         if !self.polynomial && !(hw.inf() > 0.0) {
@@ -241,19 +311,12 @@ impl Piece {
                        range: [f64; 2],
                        dom: [f64; 2]| {
             let dx = widen3(dx?, f);
-            // S_s / width, width = (range₁ − range₀)·(dom₁ − dom₀) > 0, times the degree.
-            let width = (point(range[1]) - point(range[0])) * (point(dom[1]) - point(dom[0]));
-            if !(width.inf() > 0.0) {
-                return None;
-            }
-            let scale = point(deg as f64) / width;
-            Some(if self.polynomial {
-                dx.map(|x| x * scale)
-            } else {
-                let dw = widen(dw?, f);
-                let w2 = hw.sqr();
-                std::array::from_fn(|c| (dx[c] * hw - hx[c] * dw) / w2 * scale)
-            })
+            let scale = scale(deg, range, dom)?;
+            let dw = widen(dw?, f);
+            let w2 = hw.sqr();
+            Some(std::array::from_fn(|c| {
+                (dx[c] * hw - hx[c] * dw) / w2 * scale
+            }))
         };
         let su = if m > 0 {
             partial(hxs.0, hws.0, m, factor(m - 1, n), self.s, d.u)

@@ -490,9 +490,14 @@ fn settle_leaf(
     let [xa, ya] = edge.declared(&da, LEAF_GROWTH);
     let [xb, yb] = other.declared(&db, LEAF_GROWTH);
     let y = [xa, ya, xb, yb];
-    let centre = |k: usize| y[k].mid();
-    let oa = a.point_f64(centre(0), centre(1));
-    let ob = b.point_f64(centre(2), centre(3));
+    // The centre of the box: exact piece centres, evaluated on the nets.
+    let ([ca0, ca1], pa) = edge.centre(&da);
+    let ([cb0, cb1], pb) = other.centre(&db);
+    let mut xm = [ca0, ca1, cb0, cb1];
+    xm[index] = y[index];
+    let f: [Interval; 3] = std::array::from_fn(|c| pa[c] - pb[c]);
+    let oa = pa.map(|x| x.mid());
+    let ob = pb.map(|x| x.mid());
     let (Some(ja), Some(jb)) = (
         edge.partials(&da, None, &oa, LEAF_GROWTH),
         other.partials(&db, None, &ob, LEAF_GROWTH),
@@ -502,7 +507,7 @@ fn settle_leaf(
     let (Some(a_free), Some(bu), Some(bv)) = (ja[1 - index], jb[0], jb[1]) else {
         return Leaf::Unknown;
     };
-    match settle_box(a, b, y, index, [a_free, bu, bv]) {
+    match settle_box(y, xm, f, index, [a_free, bu, bv]) {
         BoxVerdict::One(enclosure) => {
             let centre = enclosure.map(|x| x.mid());
             let constraint = Constraint::Fixed {
