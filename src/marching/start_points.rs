@@ -288,8 +288,9 @@ fn pair_search(
     }
 }
 
-/// Records an undecided pair, and offers a Newton projection from its centre as a start point
-/// (it finds tangential contacts and singular points, which no exclusion test can settle).
+/// Records an undecided pair, and offers Newton projections from its centre and from the
+/// corners of its P box as start points (they find tangential contacts and singular points,
+/// which no exclusion test can settle, along the whole undecided region).
 fn undecided_pair(
     ctx: &Ctx,
     p: &RationalBezierPatch,
@@ -304,13 +305,22 @@ fn undecided_pair(
         p: bounds2(&bp),
         q: bounds2(&bq),
     });
-    let guess = [bp[0].mid(), bp[1].mid(), bq[0].mid(), bq[1].mid()];
-    if let Some(x) = project_onto_intersection(p, q, guess, ctx.tol) {
-        if dp.contains(x[0], x[1], 1e-12) && dq.contains(x[2], x[3], 1e-12) {
-            report.interior.push(StartPoint {
-                params: x,
-                kind: StartKind::Interior,
-            });
+    let (qu, qv) = (bq[0].mid(), bq[1].mid());
+    let guesses = [
+        [bp[0].mid(), bp[1].mid()],
+        [bp[0].inf(), bp[1].inf()],
+        [bp[0].inf(), bp[1].sup()],
+        [bp[0].sup(), bp[1].inf()],
+        [bp[0].sup(), bp[1].sup()],
+    ];
+    for [pu, pv] in guesses {
+        if let Some(x) = project_onto_intersection(p, q, [pu, pv, qu, qv], ctx.tol) {
+            if dp.contains(x[0], x[1], 1e-12) && dq.contains(x[2], x[3], 1e-12) {
+                report.interior.push(StartPoint {
+                    params: x,
+                    kind: StartKind::Interior,
+                });
+            }
         }
     }
 }
@@ -450,6 +460,21 @@ fn edge_search(
                 Leaf::Unknown if leaf > min_leaf => leaf *= 0.5,
                 Leaf::Unknown => {
                     undecided.push(region(&pa, &pb));
+                    // Still offer a Newton point (not proven unique): at a tangential contact
+                    // or a singular point it is where the marcher reports the event.
+                    if let Some(x) = leaf_newton(a, b, &pa, &pb, ctx.tol) {
+                        if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) {
+                            let params = if problem.swapped {
+                                [x[2], x[3], x[0], x[1]]
+                            } else {
+                                x
+                            };
+                            out.push(StartPoint {
+                                params,
+                                kind: problem.kind,
+                            });
+                        }
+                    }
                     continue;
                 }
             }
@@ -529,6 +554,25 @@ fn settle_leaf(
         BoxVerdict::None => Leaf::Empty,
         BoxVerdict::Unknown => Leaf::Unknown,
     }
+}
+
+/// Newton on `A(edge) − B(u, v) = 0` from the centre of a leaf, the edge parameter held fixed.
+fn leaf_newton(
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    edge: &Piece,
+    other: &Piece,
+    tol: f64,
+) -> Option<[f64; 4]> {
+    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let [xa, ya] = edge.declared(&a.domain(), 0.0);
+    let [xb, yb] = other.declared(&b.domain(), 0.0);
+    let x = [xa.mid(), ya.mid(), xb.mid(), yb.mid()];
+    let constraint = Constraint::Fixed {
+        index,
+        value: x[index],
+    };
+    refine(a, b, x, constraint, tol, 40).ok().map(|r| r.x)
 }
 
 /// Gauss–Newton (minimum-norm steps) from `x` onto `P(σ,t) = Q(u,v)`; `None` if it does not
