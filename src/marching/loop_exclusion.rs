@@ -139,7 +139,7 @@ fn frame(np: &[f64; 3], nq: &[f64; 3]) -> [[f64; 3]; 3] {
     let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let t = cross_f(np, nq);
     let (lt, lp) = (norm(&t), norm(np));
-    if !(lt > 1e-300 && lp > 1e-300) || !lt.is_finite() || !lp.is_finite() {
+    if !(lt > 1e-300 && lp > 1e-300 && lt.is_finite() && lp.is_finite()) {
         return identity;
     }
     let e3 = t.map(|x| x / lt);

@@ -301,7 +301,7 @@ impl Piece {
         }
         let hx = widen3(hx.0?, factor(m, n));
         let hw = widen(hw.0?, factor(m, n));
-        if !self.polynomial && !(hw.inf() > 0.0) {
+        if !self.polynomial && (hw.inf() <= 0.0 || hw.inf().is_nan()) {
             return None;
         }
         let partial = |dx: Option<[Interval; 3]>,
