@@ -124,7 +124,6 @@ impl Piece {
             }
         };
         let (mut lo, mut hi) = (self.net.clone(), self.net.clone());
-        let half = point(0.5);
         let mut work = vec![[point(0.0); 4]; count];
         for l in 0..lines {
             for (k, w) in work.iter_mut().enumerate() {
@@ -136,7 +135,7 @@ impl Piece {
                 for k in 0..count - level {
                     let next = work[k + 1];
                     for (w, x) in work[k].iter_mut().zip(next) {
-                        *w = (*w + x) * half;
+                        *w = halve(*w + x);
                     }
                 }
                 lo[idx(level, l)] = work[0];
@@ -168,13 +167,12 @@ impl Piece {
     /// outward).
     pub fn centre(&self, d: &Domain) -> ([Interval; 2], [Interval; 3]) {
         let [m, n] = self.degree;
-        let half = point(0.5);
         let collapse = |pts: &mut Vec<[Interval; 4]>| {
             while pts.len() > 1 {
                 for k in 0..pts.len() - 1 {
                     let next = pts[k + 1];
                     for (w, x) in pts[k].iter_mut().zip(next) {
-                        *w = (*w + x) * half;
+                        *w = halve(*w + x);
                     }
                 }
                 pts.pop();
@@ -330,6 +328,19 @@ impl Piece {
         };
         Some([su, sv])
     }
+}
+
+/// `x / 2`: halving both bounds is exact in binary floating point unless a result is subnormal,
+/// where the (outward-rounded) interval product is used instead.
+fn halve(x: Interval) -> Interval {
+    let (lo, hi) = (0.5 * x.inf(), 0.5 * x.sup());
+    let exact = |y: f64| y == 0.0 || y.abs() >= f64::MIN_POSITIVE;
+    if exact(lo) && exact(hi) {
+        if let Ok(h) = Interval::try_from((lo, hi)) {
+            return h;
+        }
+    }
+    x * point(0.5)
 }
 
 /// `x` widened about its midpoint: `mid ± rad·f` (outward); `x` itself when `f` is exactly 1.

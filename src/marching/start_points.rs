@@ -28,6 +28,7 @@ use crate::geometry::enclosure::boxes_disjoint;
 use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use inari::Interval;
 use nalgebra::{Matrix3x4, Vector3};
+use std::collections::HashMap;
 
 /// Tuning of the start-point search.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -204,6 +205,10 @@ fn diameter(b: &[Interval; 3]) -> f64 {
     b.iter().map(|x| x.wid()).fold(0.0, f64::max)
 }
 
+/// Identifies a face search: which surface, the face (direction, value, free range) and the
+/// partner piece (its ranges), all exact.
+type FaceKey = [u64; 9];
+
 /// `[[lo, hi]; 2]` of two intervals.
 fn bounds2(x: &[Interval; 2]) -> [[f64; 2]; 2] {
     [[x[0].inf(), x[0].sup()], [x[1].inf(), x[1].sup()]]
@@ -218,6 +223,7 @@ fn pair_search(
     report: &mut SearchReport,
 ) {
     let mut frontier = vec![(Piece::whole(p), Piece::whole(q))];
+    let mut searched = HashMap::new();
     while !frontier.is_empty() {
         let mut next = Vec::new();
         let mut rest = frontier.into_iter();
@@ -235,7 +241,7 @@ fn pair_search(
             let test = loop_test(p, &a, q, &b);
             if test.proof.is_some() {
                 report.loop_free_pairs += 1;
-                if !face_search(ctx, p, q, &a, &b, report) {
+                if !face_search(ctx, p, q, &a, &b, &mut searched, report) {
                     undecided_pair(ctx, p, q, &a, &b, report);
                 }
                 continue;
@@ -334,6 +340,7 @@ fn face_search(
     q: &RationalBezierPatch,
     pp: &Piece,
     pq: &Piece,
+    searched: &mut HashMap<FaceKey, bool>,
     report: &mut SearchReport,
 ) -> bool {
     // Leaves no larger than the smaller piece: the faces are that small anyway, and a large
@@ -351,6 +358,28 @@ fn face_search(
             };
             let value = range[usize::from(upper)];
             if value == 0.0 || value == 1.0 {
+                continue;
+            }
+            // A face shared with a neighbouring pair against the same partner piece is
+            // searched once; its outcome is reused.
+            let free = if fixed_index == 0 {
+                piece_a.r
+            } else {
+                piece_a.s
+            };
+            let key = [
+                u64::from(swapped),
+                fixed_index as u64,
+                value.to_bits(),
+                free[0].to_bits(),
+                free[1].to_bits(),
+                piece_b.s[0].to_bits(),
+                piece_b.s[1].to_bits(),
+                piece_b.r[0].to_bits(),
+                piece_b.r[1].to_bits(),
+            ];
+            if let Some(&done) = searched.get(&key) {
+                settled &= done;
                 continue;
             }
             let problem = EdgeProblem {
@@ -371,9 +400,9 @@ fn face_search(
                 &mut found,
             );
             report.interior.extend(found);
-            if !undecided.is_empty() || report.truncated {
-                settled = false;
-            }
+            let done = undecided.is_empty() && !report.truncated;
+            searched.insert(key, done);
+            settled &= done;
         }
     }
     settled
