@@ -298,3 +298,32 @@ fn exclusion_test_clears_a_monotone_pair() {
     assert!(report.complete && report.loop_free_pairs >= 1);
     assert_eq!(report.boundary.len(), 2);
 }
+
+#[test]
+fn touching_point_is_reported_as_undecided_not_dropped() {
+    // The bump touches the plane z = 1 at its apex only: no exclusion test can settle a
+    // tangency, so the search must say it is not complete and name a box holding the apex.
+    let report = find_start_points(&bump(), &plane(1.0), &SearchOptions::default());
+    println!(
+        "touching: complete {}, pairs {}, undecided regions {}, starts {}",
+        report.complete,
+        report.pairs,
+        report.undecided_regions.len(),
+        report.interior.len()
+    );
+    assert!(!report.complete);
+    let holds_apex =
+        |b: &[[f64; 2]; 2]| b[0][0] <= 0.0 && 0.0 <= b[0][1] && b[1][0] <= 0.0 && 0.0 <= b[1][1];
+    assert!(report
+        .undecided_regions
+        .iter()
+        .any(|r| holds_apex(&r.p) && holds_apex(&r.q)));
+    // Every undecided region is small and near the apex (the rest was settled).
+    for r in &report.undecided_regions {
+        let far = r.p[0][0]
+            .abs()
+            .min(r.p[0][1].abs())
+            .max(r.p[1][0].abs().min(r.p[1][1].abs()));
+        assert!(far < 1e-3, "undecided region away from the apex: {r:?}");
+    }
+}

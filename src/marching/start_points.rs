@@ -343,10 +343,11 @@ fn face_search(
     searched: &mut HashMap<FaceKey, bool>,
     report: &mut SearchReport,
 ) -> bool {
-    // Leaves no larger than the smaller piece: the faces are that small anyway, and a large
-    // partner piece (a plane against a small curved piece) is cut down to them.
+    // Leaves a quarter of the smaller piece: the faces are that small anyway, a large partner
+    // piece (a plane against a small curved piece) is cut down to them, and Krawczyk settles
+    // most such leaves at the first try (measured: fewer leaves than at the piece size).
     let size = diameter(&pp.bounds()).min(diameter(&pq.bounds()));
-    let leaf = ctx.leaf.min(size);
+    let leaf = ctx.leaf.min(size * 0.25);
     let min_leaf = leaf * REFINE_FAILED_LEAF;
     let mut settled = true;
     for (a, b, piece_a, piece_b, swapped) in [(p, q, pp, pq, false), (q, p, pq, pp, true)] {
