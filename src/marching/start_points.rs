@@ -4,17 +4,22 @@
 //! Two searches, both subdivision with rigorous exclusion:
 //! - **boundary points**: each of the four boundary curves of each patch against the other patch
 //!   (a curve/surface problem: 3 equations in 3 unknowns), which gives both ends of every open
-//!   branch. A leaf box of this search is settled by the parametric Krawczyk test
-//!   ([`krawczyk`]): either its image is disjoint from the box (no curve point) or it proves a
-//!   unique curve point, which Newton then polishes;
+//!   branch. A leaf box of this search is settled by one parametric Krawczyk step
+//!   ([`settle_box`], Jacobian enclosed from the pieces' Bernstein nets over the leaf widened by
+//!   1/32): either its image is disjoint from the box (no curve point) or it proves a unique
+//!   curve point, which Newton then polishes; a leaf still open at 1/1024 of the leaf size is
+//!   an undecided region (a Newton point from it is still offered);
 //! - **interior pairs**: pairs of sub-patches, subdivided level by level until each pair is
 //!   (a) *disjoint* (interval bounding boxes do not meet), or (b) *loop-free*
-//!   ([`prove_loop_free`]: every intersection component inside the pair reaches the pair's
+//!   ([`prove_loop_free`](super::loop_exclusion::prove_loop_free): every intersection
+//!   component inside the pair reaches the pair's
 //!   boundary), in which case the faces of both sub-patches that lie inside the domains are
 //!   searched like the patch boundaries above, which yields a point on every component crossing
 //!   the pair; or (c) too small, or too many pairs at one level (tangential contact), in which
-//!   case the pair is an [`UndecidedRegion`], reported with its parameter boxes (and a Newton
-//!   projection from its centre is still offered as a start point).
+//!   case the pair is an [`UndecidedRegion`], reported with its parameter boxes (and Newton
+//!   projections from its centre and corners are still offered as start points).
+//!
+//! A face shared by two loop-free pairs with the same partner piece is searched once.
 //!
 //! Every closed loop inside the domains either lies in an undecided region or crosses a face of a
 //! loop-free pair; every open branch reaches a patch boundary. So when no region is undecided and
