@@ -7,6 +7,7 @@
 
 use super::branch_point::SingularNode;
 use super::graph::{has_arcs, trace_graph};
+use super::start_points::UndecidedRegion;
 use super::start_points::{find_start_points, SearchOptions, SearchReport};
 use super::MarchOptions;
 use crate::geometry::{ParametricSurface, RationalBezierPatch};
@@ -33,6 +34,14 @@ pub struct IntersectStats {
     pub contact_points: usize,
     /// Points over all branches.
     pub points: usize,
+    /// Sub-patch pairs the search proved to hold no intersection.
+    pub disjoint_pairs: usize,
+    /// Sub-patch pairs the search proved loop-free (their faces were then searched).
+    pub loop_free_pairs: usize,
+    /// Regions the search could not settle (parameter boxes on P and Q, rounded outward).
+    pub undecided_regions: Vec<UndecidedRegion>,
+    /// The search settled every region: every branch inside the domains got a start point.
+    pub search_complete: bool,
     /// Seconds spent in the start-point search.
     pub search_seconds: f64,
     /// Seconds spent marching.
@@ -70,6 +79,10 @@ pub fn intersect(
         interior_candidates: report.interior.len(),
         undecided_leaves: report.undecided,
         search_truncated: report.truncated,
+        disjoint_pairs: report.disjoint_pairs,
+        loop_free_pairs: report.loop_free_pairs,
+        undecided_regions: report.undecided_regions.clone(),
+        search_complete: report.complete,
         search_seconds: (t1 - t0).as_secs_f64(),
         ..Default::default()
     };

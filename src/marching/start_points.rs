@@ -1,34 +1,59 @@
-//! Start points for every branch of the intersection of two patches.
+//! Start points for every branch of the intersection of two patches, with a proof of
+//! completeness or an explicit list of the regions left undecided.
 //!
-//! Two searches, both subdivision with rigorous bounding-box exclusion followed by Newton:
+//! Two searches, both subdivision with rigorous exclusion:
 //! - **boundary points**: each of the four boundary curves of each patch against the other patch
 //!   (a curve/surface problem: 3 equations in 3 unknowns), which gives both ends of every open
-//!   branch;
-//! - **interior candidates**: pairs of sub-patches whose enclosures overlap, refined down to a
-//!   leaf size, then projected onto the intersection by Gauss–Newton. Closed loops lying wholly
-//!   inside both domains are found here.
+//!   branch. A leaf box of this search is settled by one parametric Krawczyk step
+//!   ([`settle_box`], Jacobian enclosed from the pieces' Bernstein nets over the leaf widened by
+//!   1/32): either its image is disjoint from the box (no curve point) or it proves a unique
+//!   curve point, which Newton then polishes; a leaf still open at 1/1024 of the leaf size is
+//!   an undecided region (a Newton point from it is still offered);
+//! - **interior pairs**: pairs of sub-patches, subdivided level by level until each pair is
+//!   (a) *disjoint* (interval bounding boxes do not meet), or (b) *loop-free*
+//!   ([`prove_loop_free`](super::loop_exclusion::prove_loop_free): every intersection
+//!   component inside the pair reaches the pair's
+//!   boundary), in which case the faces of both sub-patches that lie inside the domains are
+//!   searched like the patch boundaries above, which yields a point on every component crossing
+//!   the pair; or (c) too small, or too many pairs at one level (tangential contact), in which
+//!   case the pair is an [`UndecidedRegion`], reported with its parameter boxes (and Newton
+//!   projections from its centre and corners are still offered as start points).
 //!
-//! A box pair is discarded only when its interval enclosures are disjoint, which proves it holds
-//! no intersection. Leaves where Newton fails are counted as *undecided* and reported, never
-//! silently dropped.
+//! A face shared by two loop-free pairs with the same partner piece is searched once.
+//!
+//! Every closed loop inside the domains either lies in an undecided region or crosses a face of a
+//! loop-free pair; every open branch reaches a patch boundary. So when no region is undecided and
+//! no budget ran out ([`SearchReport::complete`]), every branch has a start point.
 
+use super::curve_surface::{settle_box, BoxVerdict};
+use super::loop_exclusion::loop_test;
 use super::newton::{refine, Constraint};
+use super::piece::Piece;
 use crate::geometry::enclosure::boxes_disjoint;
-use crate::geometry::subdivision::SubPatch;
 use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use inari::Interval;
 use nalgebra::{Matrix3x4, Vector3};
+use std::collections::HashMap;
 
 /// Tuning of the start-point search.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SearchOptions {
-    /// Leaf size as a fraction of the larger model extent of the two patches.
+    /// Leaf size of the curve/surface (boundary and face) searches, as a fraction of the larger
+    /// model extent of the two patches.
     pub leaf_fraction: f64,
-    /// Upper bound on leaves examined per search (protects against tangential surfaces, where
-    /// exclusion never succeeds); hitting it is reported in [`SearchReport::truncated`].
+    /// Upper bound on leaf boxes plus sub-patch pairs examined per search (protects against
+    /// tangential surfaces, where exclusion never succeeds); hitting it is reported in
+    /// [`SearchReport::truncated`] and the unexamined pairs become undecided regions.
     pub max_leaves: usize,
     /// Newton converges when the model-space residual is below this (relative to model size).
     pub residual_tol: f64,
+    /// Sub-patch pairs are subdivided until both pieces are smaller than this fraction of the
+    /// model extent; a pair still neither disjoint nor loop-free then is undecided.
+    pub min_pair_fraction: f64,
+    /// Most unsettled pairs carried from one subdivision level to the next; beyond it (a
+    /// tangential contact along a curve makes the count double every level) all of them are
+    /// reported as undecided regions.
+    pub max_frontier: usize,
 }
 
 impl Default for SearchOptions {
@@ -37,6 +62,8 @@ impl Default for SearchOptions {
             leaf_fraction: 1.0 / 64.0,
             max_leaves: 200_000,
             residual_tol: 1e-12,
+            min_pair_fraction: 1e-9,
+            max_frontier: 1024,
         }
     }
 }
@@ -49,7 +76,7 @@ pub enum StartKind {
         /// 0 for P, 1 for Q.
         surface: usize,
     },
-    /// Inside both domains (a candidate for a closed loop or a missed branch).
+    /// Inside both domains (on a face of a loop-free pair, or from an undecided region).
     Interior,
 }
 
@@ -62,23 +89,48 @@ pub struct StartPoint {
     pub kind: StartKind,
 }
 
+/// A pair of parameter boxes where the search could not decide whether (further) intersection
+/// components exist. The boxes are rounded outward: they contain the region examined.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UndecidedRegion {
+    /// `[[σ0, σ1], [t0, t1]]` on P.
+    pub p: [[f64; 2]; 2],
+    /// `[[u0, u1], [v0, v1]]` on Q.
+    pub q: [[f64; 2]; 2],
+}
+
 /// Result of the start-point search.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SearchReport {
     /// Points on a boundary of either patch, deduplicated.
     pub boundary: Vec<StartPoint>,
-    /// Interior points, one or more per surviving leaf pair (not deduplicated against branches).
+    /// Interior points: where branches cross faces of loop-free pairs (deduplicated), and Newton
+    /// projections from the centres of undecided regions.
     pub interior: Vec<StartPoint>,
-    /// Leaf boxes examined.
+    /// Leaf boxes of the curve/surface searches examined.
     pub leaves: usize,
-    /// Leaf boxes whose enclosures overlapped even after refinement to 1/16 of the leaf size
-    /// but where Newton found no point (undecided).
+    /// Curve/surface leaf boxes of the boundary search that were neither excluded nor proven to
+    /// hold one point, down to 1/1024 of the leaf size (each also makes an undecided region).
     pub undecided: usize,
-    /// The leaf budget ran out: some regions were not examined.
+    /// The leaf budget ran out: some regions were not examined (they are undecided regions).
     pub truncated: bool,
+    /// Sub-patch pairs examined by the interior search.
+    pub pairs: usize,
+    /// Pairs proven to hold no intersection (disjoint interval bounding boxes).
+    pub disjoint_pairs: usize,
+    /// Pairs proven loop-free (every component inside reaches the pair's boundary) whose faces
+    /// were then searched.
+    pub loop_free_pairs: usize,
+    /// Regions not settled: neither proven free of further branches nor searched completely.
+    pub undecided_regions: Vec<UndecidedRegion>,
+    /// True only when every pair was settled (disjoint, or loop-free with all its faces
+    /// searched to proven leaves), every boundary leaf was settled and no budget ran out: then
+    /// every branch inside the domains has a start point in `boundary` or `interior`.
+    pub complete: bool,
 }
 
-/// Finds boundary start points and interior candidates for the intersection of `p` and `q`.
+/// Finds start points on every branch of the intersection of `p` and `q` (see the module
+/// documentation for what is proven and what is reported as undecided).
 pub fn find_start_points(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -90,73 +142,327 @@ pub fn find_start_points(
         .max(f64::MIN_POSITIVE);
     let ctx = Ctx {
         leaf: size * opts.leaf_fraction,
+        min_pair: size * opts.min_pair_fraction,
         tol: opts.residual_tol * size.max(1.0),
-        max_leaves: opts.max_leaves,
+        budget: opts.max_leaves,
+        max_frontier: opts.max_frontier,
     };
     let mut report = SearchReport::default();
     for (a, b, swapped) in [(p, q, false), (q, p, true)] {
         for (fixed_index, upper) in [(0, false), (0, true), (1, false), (1, true)] {
-            let edge = SubPatch::boundary(a, fixed_index, upper);
-            search_pairs(
-                &ctx,
+            let edge = Piece::whole(a).face(fixed_index, upper);
+            let problem = EdgeProblem {
                 a,
                 b,
+                swapped,
+                kind: StartKind::Boundary {
+                    surface: usize::from(swapped),
+                },
+            };
+            let mut found = Vec::new();
+            let undecided = edge_search(
+                &ctx,
+                &problem,
                 edge,
-                SubPatch::whole(b),
-                Some(swapped),
+                Piece::whole(b),
+                ctx.leaf,
+                ctx.leaf * REFINE_FAILED_LEAF,
                 &mut report,
+                &mut found,
             );
+            report.boundary.extend(found);
+            report.undecided += undecided.len();
+            report.undecided_regions.extend(undecided);
         }
     }
     dedup(&mut report.boundary, dp, dq);
-    search_pairs(
-        &ctx,
-        p,
-        q,
-        SubPatch::whole(p),
-        SubPatch::whole(q),
-        None,
-        &mut report,
-    );
+    pair_search(&ctx, p, q, &mut report);
+    dedup(&mut report.interior, dp, dq);
+    report.complete = !report.truncated && report.undecided_regions.is_empty();
     report
 }
 
 struct Ctx {
     leaf: f64,
+    min_pair: f64,
     tol: f64,
-    max_leaves: usize,
+    budget: usize,
+    max_frontier: usize,
 }
 
-/// A leaf where Newton finds nothing is subdivided further, down to this fraction of the leaf
-/// size, before it is reported as undecided (most such leaves are then excluded outright).
-const REFINE_FAILED_LEAF: f64 = 1.0 / 16.0;
+impl Ctx {
+    /// Counts one unit of work; false once the budget is spent.
+    fn spend(&self, report: &mut SearchReport) -> bool {
+        if report.leaves + report.pairs >= self.budget {
+            report.truncated = true;
+            return false;
+        }
+        true
+    }
+}
+
+/// A leaf where the Krawczyk test decides nothing is subdivided further, down to this fraction
+/// of the leaf size, before it is reported as undecided (only undecided leaves are refined, so
+/// a deep limit costs nothing where everything is settled).
+const REFINE_FAILED_LEAF: f64 = 1.0 / 1024.0;
 
 fn diameter(b: &[Interval; 3]) -> f64 {
     b.iter().map(|x| x.wid()).fold(0.0, f64::max)
 }
 
-fn mid(r: [f64; 2]) -> f64 {
-    0.5 * (r[0] + r[1])
+/// Identifies a face search: which surface, the face (direction, value, free range) and the
+/// partner piece (its ranges), all exact.
+type FaceKey = [u64; 9];
+
+/// `[[lo, hi]; 2]` of two intervals.
+fn bounds2(x: &[Interval; 2]) -> [[f64; 2]; 2] {
+    [[x[0].inf(), x[0].sup()], [x[1].inf(), x[1].sup()]]
 }
 
-/// Pair subdivision of a piece `a0` of surface `a` against a piece `b0` of surface `b`, pruned
-/// where the bounding boxes are disjoint; Newton at every leaf pair.
-///
-/// `edge = Some(swapped)`: `a0` is a boundary curve of `a` (degree 0 in its fixed direction),
-/// and `a` is Q when `swapped`; results are boundary points. `edge = None`: `a = P`, `b = Q`,
-/// interior candidates.
-fn search_pairs(
+/// The interior search: level by level, every pair of pieces is proven disjoint, proven
+/// loop-free (then its inner faces are searched), or split; what is left is undecided.
+fn pair_search(
     ctx: &Ctx,
-    a: &RationalBezierPatch,
-    b: &RationalBezierPatch,
-    a0: SubPatch,
-    b0: SubPatch,
-    edge: Option<bool>,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
     report: &mut SearchReport,
 ) {
-    let budget = report.leaves + ctx.max_leaves;
+    let mut frontier = vec![(Piece::whole(p), Piece::whole(q))];
+    let mut searched = HashMap::new();
+    while !frontier.is_empty() {
+        let mut next = Vec::new();
+        let mut rest = frontier.into_iter();
+        for (a, b) in rest.by_ref() {
+            if !ctx.spend(report) {
+                undecided_pair(ctx, p, q, &a, &b, report);
+                break;
+            }
+            report.pairs += 1;
+            let (ea, eb) = (a.bounds(), b.bounds());
+            if boxes_disjoint(&ea, &eb) {
+                report.disjoint_pairs += 1;
+                continue;
+            }
+            let test = loop_test(p, &a, q, &b);
+            if test.proof.is_some() {
+                report.loop_free_pairs += 1;
+                if !face_search(ctx, p, q, &a, &b, &mut searched, report) {
+                    undecided_pair(ctx, p, q, &a, &b, report);
+                }
+                continue;
+            }
+            let (wa, wb) = (diameter(&ea), diameter(&eb));
+            if wa <= ctx.min_pair && wb <= ctx.min_pair {
+                undecided_pair(ctx, p, q, &a, &b, report);
+                continue;
+            }
+            // Split the piece whose size times normal spread is larger (the one that keeps the
+            // test from succeeding): a flat piece is never split for the loop test's sake.
+            let [sa, sb] = test.spread;
+            let (ka, kb) = (wa * sa.min(1e300), wb * sb.min(1e300));
+            let split_a = if ka == kb || !(ka.is_finite() && kb.is_finite()) {
+                wa >= wb
+            } else {
+                ka > kb
+            };
+            let split_a = if wa <= ctx.min_pair {
+                false
+            } else if wb <= ctx.min_pair {
+                true
+            } else {
+                split_a
+            };
+            if split_a {
+                for half in a.split(a.split_direction()) {
+                    next.push((half, b.clone()));
+                }
+            } else {
+                for half in b.split(b.split_direction()) {
+                    next.push((a.clone(), half));
+                }
+            }
+        }
+        // Budget spent: everything not examined is undecided.
+        for (a, b) in rest.chain(if report.truncated {
+            std::mem::take(&mut next)
+        } else {
+            Vec::new()
+        }) {
+            undecided_pair(ctx, p, q, &a, &b, report);
+        }
+        if next.len() > ctx.max_frontier {
+            for (a, b) in next.drain(..) {
+                undecided_pair(ctx, p, q, &a, &b, report);
+            }
+        }
+        frontier = next;
+    }
+}
+
+/// Records an undecided pair, and offers Newton projections from its centre and from the
+/// corners of its P box as start points (they find tangential contacts and singular points,
+/// which no exclusion test can settle, along the whole undecided region).
+fn undecided_pair(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    a: &Piece,
+    b: &Piece,
+    report: &mut SearchReport,
+) {
+    let (dp, dq) = (p.domain(), q.domain());
+    let (bp, bq) = (a.declared(&dp, 0.0), b.declared(&dq, 0.0));
+    report.undecided_regions.push(UndecidedRegion {
+        p: bounds2(&bp),
+        q: bounds2(&bq),
+    });
+    let (qu, qv) = (bq[0].mid(), bq[1].mid());
+    let guesses = [
+        [bp[0].mid(), bp[1].mid()],
+        [bp[0].inf(), bp[1].inf()],
+        [bp[0].inf(), bp[1].sup()],
+        [bp[0].sup(), bp[1].inf()],
+        [bp[0].sup(), bp[1].sup()],
+    ];
+    for [pu, pv] in guesses {
+        if let Some(x) = project_onto_intersection(p, q, [pu, pv, qu, qv], ctx.tol) {
+            if dp.contains(x[0], x[1], 1e-12) && dq.contains(x[2], x[3], 1e-12) {
+                report.interior.push(StartPoint {
+                    params: x,
+                    kind: StartKind::Interior,
+                });
+            }
+        }
+    }
+}
+
+/// Searches the faces of a loop-free pair that lie inside the domains (faces on a domain
+/// boundary are covered by the boundary search): each face of the P piece against the Q piece
+/// and each face of the Q piece against the P piece. True when every leaf was settled.
+fn face_search(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    pp: &Piece,
+    pq: &Piece,
+    searched: &mut HashMap<FaceKey, bool>,
+    report: &mut SearchReport,
+) -> bool {
+    // Leaves a quarter of the smaller piece: the faces are that small anyway, a large partner
+    // piece (a plane against a small curved piece) is cut down to them, and Krawczyk settles
+    // most such leaves at the first try (measured: fewer leaves than at the piece size).
+    let size = diameter(&pp.bounds()).min(diameter(&pq.bounds()));
+    let leaf = ctx.leaf.min(size * 0.25);
+    let min_leaf = leaf * REFINE_FAILED_LEAF;
+    let mut settled = true;
+    for (a, b, piece_a, piece_b, swapped) in [(p, q, pp, pq, false), (q, p, pq, pp, true)] {
+        for (fixed_index, upper) in [(0, false), (0, true), (1, false), (1, true)] {
+            let range = if fixed_index == 0 {
+                piece_a.s
+            } else {
+                piece_a.r
+            };
+            let value = range[usize::from(upper)];
+            if value == 0.0 || value == 1.0 {
+                continue;
+            }
+            // A face shared with a neighbouring pair against the same partner piece is
+            // searched once; its outcome is reused.
+            let free = if fixed_index == 0 {
+                piece_a.r
+            } else {
+                piece_a.s
+            };
+            let key = [
+                u64::from(swapped),
+                fixed_index as u64,
+                value.to_bits(),
+                free[0].to_bits(),
+                free[1].to_bits(),
+                piece_b.s[0].to_bits(),
+                piece_b.s[1].to_bits(),
+                piece_b.r[0].to_bits(),
+                piece_b.r[1].to_bits(),
+            ];
+            if let Some(&done) = searched.get(&key) {
+                settled &= done;
+                continue;
+            }
+            let problem = EdgeProblem {
+                a,
+                b,
+                swapped,
+                kind: StartKind::Interior,
+            };
+            let mut found = Vec::new();
+            let undecided = edge_search(
+                ctx,
+                &problem,
+                piece_a.face(fixed_index, upper),
+                piece_b.clone(),
+                leaf,
+                min_leaf,
+                report,
+                &mut found,
+            );
+            report.interior.extend(found);
+            let done = undecided.is_empty() && !report.truncated;
+            searched.insert(key, done);
+            settled &= done;
+        }
+    }
+    settled
+}
+
+/// A curve/surface problem: a boundary curve (or face) of `a` against a piece of `b`.
+struct EdgeProblem<'a> {
+    a: &'a RationalBezierPatch,
+    b: &'a RationalBezierPatch,
+    /// `a` is Q (the found parameters are swapped back to `(P, Q)` order).
+    swapped: bool,
+    kind: StartKind,
+}
+
+/// Outcome of one leaf of a curve/surface search.
+enum Leaf {
+    /// Proven: exactly one curve point in (an inflation of) the leaf, here.
+    Root([f64; 4]),
+    /// Proven: no curve point in the leaf (or the one point lies outside the domains).
+    Empty,
+    /// Not decided.
+    Unknown,
+}
+
+/// Pair subdivision of the edge piece `a0` of `problem.a` against the piece `b0` of `problem.b`,
+/// pruned where bounding boxes are disjoint; every leaf is settled by Krawczyk ([`settle_leaf`]).
+/// Found points go to `out` in `(P, Q)` order; returns the leaves left undecided (or not
+/// examined when the budget ran out).
+#[allow(clippy::too_many_arguments)]
+fn edge_search(
+    ctx: &Ctx,
+    problem: &EdgeProblem,
+    a0: Piece,
+    b0: Piece,
+    leaf0: f64,
+    min_leaf: f64,
+    report: &mut SearchReport,
+    out: &mut Vec<StartPoint>,
+) -> Vec<UndecidedRegion> {
+    let (a, b) = (problem.a, problem.b);
     let (da, db) = (a.domain(), b.domain());
-    let mut stack = vec![(a0, b0, ctx.leaf)];
+    let mut undecided = Vec::new();
+    let region = |pa: &Piece, pb: &Piece| {
+        let (ra, rb) = (
+            bounds2(&pa.declared(&da, 0.0)),
+            bounds2(&pb.declared(&db, 0.0)),
+        );
+        if problem.swapped {
+            UndecidedRegion { p: rb, q: ra }
+        } else {
+            UndecidedRegion { p: ra, q: rb }
+        }
+    };
+    let mut stack = vec![(a0, b0, leaf0)];
     while let Some((pa, pb, mut leaf)) = stack.pop() {
         let (ea, eb) = (pa.bounds(), pb.bounds());
         if boxes_disjoint(&ea, &eb) {
@@ -164,39 +470,46 @@ fn search_pairs(
         }
         let (wa, wb) = (diameter(&ea), diameter(&eb));
         if wa <= leaf && wb <= leaf {
-            report.leaves += 1;
-            if report.leaves > budget {
-                report.truncated = true;
-                return;
+            if !ctx.spend(report) {
+                undecided.push(region(&pa, &pb));
+                undecided.extend(stack.drain(..).map(|(x, y, _)| region(&x, &y)));
+                return undecided;
             }
-            let guess = [mid(pa.u), mid(pa.v), mid(pb.u), mid(pb.v)];
-            let found = match edge {
-                Some(_) => edge_newton(a, b, &pa, guess, ctx.tol),
-                None => project_onto_intersection(a, b, guess, ctx.tol),
-            };
-            match found {
-                Some(x) if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) => {
-                    let (kind, params) = match edge {
-                        Some(swapped) => (
-                            StartKind::Boundary {
-                                surface: usize::from(swapped),
-                            },
-                            if swapped { [x[2], x[3], x[0], x[1]] } else { x },
-                        ),
-                        None => (StartKind::Interior, x),
-                    };
-                    let list = if edge.is_some() {
-                        &mut report.boundary
-                    } else {
-                        &mut report.interior
-                    };
-                    list.push(StartPoint { params, kind });
+            report.leaves += 1;
+            match settle_leaf(a, b, &pa, &pb, ctx.tol) {
+                Leaf::Root(x) => {
+                    if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) {
+                        let params = if problem.swapped {
+                            [x[2], x[3], x[0], x[1]]
+                        } else {
+                            x
+                        };
+                        out.push(StartPoint {
+                            params,
+                            kind: problem.kind,
+                        });
+                    }
                     continue;
                 }
-                Some(_) => continue,
-                None if leaf > ctx.leaf * REFINE_FAILED_LEAF => leaf *= 0.5,
-                None => {
-                    report.undecided += 1;
+                Leaf::Empty => continue,
+                Leaf::Unknown if leaf > min_leaf => leaf *= 0.5,
+                Leaf::Unknown => {
+                    undecided.push(region(&pa, &pb));
+                    // Still offer a Newton point (not proven unique): at a tangential contact
+                    // or a singular point it is where the marcher reports the event.
+                    if let Some(x) = leaf_newton(a, b, &pa, &pb, ctx.tol) {
+                        if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) {
+                            let params = if problem.swapped {
+                                [x[2], x[3], x[0], x[1]]
+                            } else {
+                                x
+                            };
+                            out.push(StartPoint {
+                                params,
+                                kind: problem.kind,
+                            });
+                        }
+                    }
                     continue;
                 }
             }
@@ -204,44 +517,92 @@ fn search_pairs(
         // Split the piece with the larger box, across its longer parameter direction (a
         // boundary curve only along its free direction).
         if wa >= wb {
-            let dir = split_direction(&pa);
-            for half in pa.split(dir) {
+            for half in pa.split(pa.split_direction()) {
                 stack.push((half, pb.clone(), leaf));
             }
         } else {
-            let dir = split_direction(&pb);
-            for half in pb.split(dir) {
+            for half in pb.split(pb.split_direction()) {
                 stack.push((pa.clone(), half, leaf));
             }
         }
     }
+    undecided
 }
 
-/// The direction to split a piece: the one of larger relative parameter extent (never one of
-/// degree 0).
-fn split_direction(piece: &SubPatch) -> usize {
-    let [m, n] = piece.degree();
-    if m == 0 {
-        return 1;
-    }
-    if n == 0 {
-        return 0;
-    }
-    let (du, dv) = (piece.u[1] - piece.u[0], piece.v[1] - piece.v[0]);
-    usize::from(dv * (n as f64) > du * (m as f64))
-}
+/// Widening of a leaf box, as a fraction of its width on each side, for the Krawczyk test: a
+/// curve point on the leaf's boundary (e.g. on a subdivision line) is then interior to the
+/// tested box.
+const LEAF_GROWTH: f64 = 1.0 / 32.0;
 
-/// Newton on `A(edge) − B(u, v) = 0`: the marcher's [`refine`] with the boundary parameter of
-/// `A` held fixed. `x = (a0, a1, b0, b1)` in the parameters of `A` then `B`.
-fn edge_newton(
+/// Settles one leaf of a curve/surface search with one Krawczyk step ([`settle_box`]) on
+/// `A(edge) − B(u, v) = 0`: the edge's fixed parameter held in its (outward-rounded) value, the
+/// three free parameters over the leaf box widened by [`LEAF_GROWTH`], the Jacobian enclosed from
+/// the pieces' nets over that widened box. A proven point is polished by Newton.
+fn settle_leaf(
     a: &RationalBezierPatch,
     b: &RationalBezierPatch,
-    edge: &SubPatch,
-    x: [f64; 4],
+    edge: &Piece,
+    other: &Piece,
+    tol: f64,
+) -> Leaf {
+    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let (da, db) = (a.domain(), b.domain());
+    let [xa, ya] = edge.declared(&da, LEAF_GROWTH);
+    let [xb, yb] = other.declared(&db, LEAF_GROWTH);
+    let y = [xa, ya, xb, yb];
+    // The centre of the box: exact piece centres, evaluated on the nets.
+    let ([ca0, ca1], pa) = edge.centre(&da);
+    let ([cb0, cb1], pb) = other.centre(&db);
+    let mut xm = [ca0, ca1, cb0, cb1];
+    xm[index] = y[index];
+    let f: [Interval; 3] = std::array::from_fn(|c| pa[c] - pb[c]);
+    let oa = pa.map(|x| x.mid());
+    let ob = pb.map(|x| x.mid());
+    let (Some(ja), Some(jb)) = (
+        edge.partials(&da, None, &oa, LEAF_GROWTH),
+        other.partials(&db, None, &ob, LEAF_GROWTH),
+    ) else {
+        return Leaf::Unknown;
+    };
+    let (Some(a_free), Some(bu), Some(bv)) = (ja[1 - index], jb[0], jb[1]) else {
+        return Leaf::Unknown;
+    };
+    match settle_box(y, xm, f, index, [a_free, bu, bv]) {
+        BoxVerdict::One(enclosure) => {
+            let centre = enclosure.map(|x| x.mid());
+            let constraint = Constraint::Fixed {
+                index,
+                value: centre[index],
+            };
+            let polished = refine(a, b, centre, constraint, tol, 40)
+                .ok()
+                .map(|r| r.x)
+                .filter(|x| {
+                    (0..4).all(|k| {
+                        let e = enclosure[k];
+                        let pad = 1e-9 * (1.0 + e.mag());
+                        x[k] >= e.inf() - pad && x[k] <= e.sup() + pad
+                    })
+                });
+            Leaf::Root(polished.unwrap_or(centre))
+        }
+        BoxVerdict::None => Leaf::Empty,
+        BoxVerdict::Unknown => Leaf::Unknown,
+    }
+}
+
+/// Newton on `A(edge) − B(u, v) = 0` from the centre of a leaf, the edge parameter held fixed.
+fn leaf_newton(
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    edge: &Piece,
+    other: &Piece,
     tol: f64,
 ) -> Option<[f64; 4]> {
-    // The fixed parameter of the edge: 0 (u) when the piece has degree 0 in u, else 1 (v).
     let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let [xa, ya] = edge.declared(&a.domain(), 0.0);
+    let [xb, yb] = other.declared(&b.domain(), 0.0);
+    let x = [xa.mid(), ya.mid(), xb.mid(), yb.mid()];
     let constraint = Constraint::Fixed {
         index,
         value: x[index],
