@@ -17,7 +17,7 @@
 
 use super::curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 use super::field::{norm_sqr, transversal_field, ScalarSurface};
-use super::krawczyk::{best_fixed_coordinate, krawczyk, KrawczykResult};
+use super::krawczyk::{best_fixed_coordinate, contract_box, krawczyk, KrawczykResult};
 use super::ode::TransversalOde;
 use crate::error::{Error, Result};
 use crate::geometry::surface::{pair_bounds as bounds, pair_widths};
@@ -119,6 +119,7 @@ pub fn certify_branch(
         opts,
     )?;
     let (mut boxes, mut tubes, mut widths) = (Vec::new(), Vec::new(), Vec::new());
+    let mut tolerance = forward.tolerance;
     let first_end;
     if forward.end == CertifiedEnd::ClosedLoop {
         first_end = CertifiedEnd::ClosedLoop;
@@ -128,6 +129,7 @@ pub fn certify_branch(
         boxes.extend(backward.boxes.into_iter().rev());
         tubes.extend(backward.tubes.into_iter().rev());
         widths.extend(backward.widths.into_iter().rev());
+        tolerance = tolerance.max(backward.tolerance);
     }
     let joined = boxes.len();
     boxes.extend(forward.boxes);
@@ -147,7 +149,6 @@ pub fn certify_branch(
             });
         }
     }
-    let tolerance = tubes.iter().map(|t| t.radius_xyz).fold(0.0, f64::max);
     Ok(CertifiedBranch {
         start: y0,
         fixed,
@@ -191,6 +192,8 @@ struct Half {
     boxes: Vec<EnclosureBox>,
     tubes: Vec<TubePiece>,
     widths: Vec<f64>,
+    /// The largest tube radius plus joining piece over the half.
+    tolerance: f64,
     end: CertifiedEnd,
 }
 
@@ -229,11 +232,16 @@ fn trace_half(
         boxes: Vec::new(),
         tubes: Vec::new(),
         widths: Vec::new(),
+        tolerance: 0.0,
         end: CertifiedEnd::ClosedLoop,
     };
     let mut crossing = Crossing::default();
     let scales = pair_widths(&dp, &dq);
     let mut current = *y0;
+    // The arc-length error of the current start (0 at the branch's start point) and a box holding
+    // the curve within twice that arc length of it (and the piece joining it to the last step).
+    let mut s_err = 0.0f64;
+    let mut cover = *y0;
     loop {
         if half.boxes.len() >= opts.max_steps || state.t >= opts.max_length {
             half.end = CertifiedEnd::Unproven {
@@ -255,38 +263,82 @@ fn trace_half(
             }
             Err(e) => return Err(e),
         };
-        let apriori = to4(&rec.apriori);
-        let xyz = model_box(p, q, &apriori).ok_or_else(|| Error::Certification {
-            reason: "the model-space boxes of P and Q over the a-priori box are disjoint".into(),
-            near: mids(&apriori),
-        })?;
-        let s = if dir > 0.0 {
-            [rec.t0, rec.t1]
-        } else {
-            [-rec.t1, -rec.t0]
-        };
-        half.boxes.push(EnclosureBox {
-            s,
-            p: [apriori[0], apriori[1]],
-            q: [apriori[2], apriori[3]],
-            xyz,
-        });
-        half.tubes.push(tube_piece(p, &rec, dir)?);
         let end = to4(&rec.end);
-        current = end;
-        // The fastest-moving parameter: held fixed by the contraction, and the along-curve
+        // The fastest-moving parameter: held fixed by the re-anchoring, and the along-curve
         // direction when measuring the transversal width.
         let v = transversal_field(p, q, &mids(&end), dir).velocity;
         let along = v
             .iter()
             .all(|x| x.is_finite())
             .then(|| best_fixed_coordinate(&v, &scales));
-        if let (true, Some(k)) = (opts.contract, along) {
-            if let Some(enclosure) = contract(p, q, &end, k) {
+        let anchor = match (opts.contract, along) {
+            (true, Some(k)) => reanchor(p, q, &end, k, &v, s_err, dir),
+            _ => None,
+        };
+        let (next_err, next_cover, bridge) = match &anchor {
+            Some(a) => (a.s_err, a.cover, a.bridge),
+            None => (s_err, end, 0.0),
+        };
+        // The link: the a-priori box, and the curve pieces within the arc-length errors of both
+        // starts (which also join the flow's end to the re-anchored start).
+        let apriori = to4(&rec.apriori);
+        let link: [Interval; 4] =
+            std::array::from_fn(|i| apriori[i].convex_hull(cover[i]).convex_hull(next_cover[i]));
+        let xyz = model_box(p, q, &link).ok_or_else(|| Error::Certification {
+            reason: "the model-space boxes of P and Q over the a-priori box are disjoint".into(),
+            near: mids(&link),
+        })?;
+        // The arc-length range: the link holds the curve from (true) arc length t0 − s_err to
+        // t1 + next_err (the covers hold the curve within 2·err of either start); publish the part
+        // [t0 − s_err, t1 − next_err], so consecutive ranges touch. A last step that could not be
+        // re-anchored holds it up to t1 − s_err (next_err = s_err then).
+        let s = if dir > 0.0 {
+            let s0 = rec.t0 - s_err;
+            [s0, (rec.t1 - next_err).max(s0)]
+        } else {
+            let s1 = -rec.t0 + s_err;
+            [(-rec.t1 + next_err).min(s1), s1]
+        };
+        half.boxes.push(EnclosureBox {
+            s,
+            p: [link[0], link[1]],
+            q: [link[2], link[3]],
+            xyz,
+        });
+        let tube = tube_piece(p, &rec, dir, s_err)?;
+        // Every true point of this step, and of the piece joining its end to the next start, is
+        // within radius_xyz + bridge of the reported curve (the field has unit speed).
+        half.tolerance = half
+            .tolerance
+            .max((point(tube.radius_xyz) + point(bridge)).sup());
+        half.tubes.push(tube);
+        let previous_cover = cover;
+        match anchor {
+            Some(a) => {
                 let ratio = state.step_ratio;
-                state = integ.start(&enclosure, rec.t1)?;
+                state = integ.start(&a.start, rec.t1)?;
                 state.step_ratio = ratio;
-                current = enclosure;
+                current = a.start;
+                s_err = a.s_err;
+                cover = a.cover;
+            }
+            None if s_err == 0.0 => {
+                // Not re-anchored: the integrator's set goes on, the arc length stays exact.
+                current = end;
+                cover = end;
+            }
+            None => {
+                let h = rec.h.max(opts.h_min);
+                half.end = match (outside(&end, &dp, &dq), singular_near(p, q, &end, h)) {
+                    (Some(surface), _) => CertifiedEnd::Boundary { surface },
+                    (None, Some(near)) => CertifiedEnd::Singular { near },
+                    (None, None) => CertifiedEnd::Unproven {
+                        reason: "the end box of a step could not be re-anchored on the curve"
+                            .into(),
+                        near: end,
+                    },
+                };
+                return Ok(half);
             }
         }
         half.widths.push(transversal_width(&current, along));
@@ -295,7 +347,7 @@ fn trace_half(
             return Ok(half);
         }
         if let Some(c) = closure {
-            if closes(&rec, &apriori, c, &mut crossing)? {
+            if closes(&rec, &link, &previous_cover, c, &mut crossing)? {
                 half.end = CertifiedEnd::ClosedLoop;
                 return Ok(half);
             }
@@ -303,31 +355,97 @@ fn trace_half(
     }
 }
 
-/// Pulls a box holding the curve back onto `P = Q`: Krawczyk with coordinate `k` held in its
-/// interval, on the box inflated in the other coordinates (a thin box whose free widths already
-/// equal the along-curve spread cannot pass the strict-interior test itself). All curve points of
-/// the inflated box lie in the Krawczyk image, so the image intersected with the original box
-/// still holds the curve point the original held.
-fn contract(
+/// A re-anchored start: the curve point where the along-curve coordinate takes a chosen value.
+struct Anchor {
+    /// Thin box around that point (coordinate `k` a point).
+    start: [Interval; 4],
+    /// Holds every curve point within `2·s_err` arc length of the anchor, and the flow's end.
+    cover: [Interval; 4],
+    /// Proven bound on the anchor's arc-length error (the previous error plus `bridge`).
+    s_err: f64,
+    /// Proven bound on the arc length between the flow's end point and the anchor.
+    bridge: f64,
+}
+
+/// Re-anchors the step's end box `end` (which holds the flow's end point `e`) on the curve point
+/// `a` with `x_k = c`, `c` the midpoint of `end`'s coordinate `k`.
+///
+/// Krawczyk with `x_k` held in an interval `X ∋ c` around `end[k]`, on `end` inflated in the
+/// other coordinates, proves that the curve in that box is the graph of a function of `x_k ∈ X`
+/// and encloses it (`cover`). Then, rigorously over `cover`: the arc length from `e` to `a` is
+/// at most `|c − e_k| / min|x_k'|` (the field has unit model-space speed), and every curve point
+/// within arc length `L` of `a` stays in `cover` when `L·max|x_k'|` is below the distance from
+/// `c` to the ends of `X`. `X` is chosen so that this holds for `L = 2·s_err` (checked, not
+/// assumed). `velocity` (an estimate of the field at `end`) sizes `X` and the inflation.
+fn reanchor(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
-    y: &[Interval; 4],
+    end: &[Interval; 4],
     k: usize,
-) -> Option<[Interval; 4]> {
-    let mut grown = *y;
-    for (i, g) in grown.iter_mut().enumerate() {
-        if i != k {
-            let r = g.wid().max(1e-15 * g.mag().max(1.0));
-            *g = interval(g.inf() - r, g.sup() + r)?;
-        }
+    velocity: &[f64; 4],
+    s_err: f64,
+    dir: f64,
+) -> Option<Anchor> {
+    let c = end[k].mid();
+    let (ci, lo, hi) = (point(c), point(end[k].inf()), point(end[k].sup()));
+    // Largest distance from c to a point of end[k].
+    let d = (ci - lo).sup().max((hi - ci).sup());
+    let v_est = velocity[k].abs();
+    if !(v_est > 0.0 && d.is_finite()) {
+        return None;
     }
-    match krawczyk(p, q, grown, k, 4) {
-        KrawczykResult::Proven { enclosure, .. } => {
-            let out: [Interval; 4] = std::array::from_fn(|i| enclosure[i].intersection(y[i]));
-            (!out.iter().any(|x| x.is_empty())).then_some(out)
+    let mut half_width = d.max(4.0 * (s_err + 2.0 * d / v_est) * v_est) * 1.25
+        + 4.0 * f64::EPSILON * c.abs().max(1e-300);
+    // Smallest inflation of the other coordinates, relative to max(1, |x_i|): the Krawczyk image
+    // of a box this thin is dominated by the rounding errors of the patch evaluations.
+    let mut floor = 1e-13;
+    for _attempt in 0..4 {
+        let x = interval(c - half_width, c + half_width)?;
+        if !end[k].subset(x) {
+            half_width *= 2.0;
+            continue;
         }
-        KrawczykResult::NotProven(_) => None,
+        let mut grown = *end;
+        for (i, g) in grown.iter_mut().enumerate() {
+            if i == k {
+                *g = x;
+            } else {
+                // Room for the curve's motion over X in this coordinate (twice the estimate).
+                let motion = 2.0 * half_width * (velocity[i] / velocity[k]).abs();
+                let r = g.wid().max(floor * g.mag().max(1.0)).max(motion);
+                *g = interval(g.inf() - r, g.sup() + r)?;
+            }
+        }
+        let KrawczykResult::Proven {
+            enclosure: cover, ..
+        } = krawczyk(p, q, grown, k, 4)
+        else {
+            floor *= 16.0;
+            continue;
+        };
+        let vk = transversal_field(p, q, &cover, dir).velocity[k];
+        if vk.is_empty() || vk.contains(0.0) {
+            return None;
+        }
+        let (m, big_m) = (point(vk.mig()), point(vk.mag()));
+        let bridge = (point(d) / m).sup();
+        let err = (point(s_err) + point(bridge)).sup();
+        let room = (ci - point(x.inf())).inf().min((point(x.sup()) - ci).inf());
+        if (point(2.0) * point(err) * big_m).sup() >= room {
+            half_width *= 2.0;
+            continue;
+        }
+        let mut thin = cover;
+        thin[k] = ci;
+        let start = contract_box(p, q, thin, k, 3)?;
+        return Some(Anchor {
+            start,
+            cover,
+            s_err: err,
+            bridge,
+        });
     }
+    None
 }
 
 /// The largest step: `opts.h_max`, at most 1/8 of the smaller model-space diameter of the two
@@ -385,23 +503,8 @@ fn classify_failure(
     dp: &Domain,
     dq: &Domain,
 ) -> CertifiedEnd {
-    // Near a singular point the Taylor coefficients blow up (their radius of convergence is the
-    // distance to it), so the step collapses at a distance of many steps. Look for `0 ∈ m2` in
-    // boxes of radius 10ʲ·h·(1 + speed), j = 0..3, around the current box.
-    let speed = transversal_field(p, q, &mids(y), 1.0)
-        .velocity
-        .iter()
-        .fold(
-            1.0f64,
-            |m, v| if v.is_finite() { m.max(v.abs()) } else { m },
-        );
-    for factor in [1.0, 10.0, 100.0, 1000.0] {
-        let r = factor * h * (1.0 + speed);
-        let near = y.map(|x| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE));
-        let m2 = transversal_field(p, q, &near, 1.0).cross_norm_sqr;
-        if m2.contains(0.0) || m2.is_empty() {
-            return CertifiedEnd::Singular { near };
-        }
+    if let Some(near) = singular_near(p, q, y, h) {
+        return CertifiedEnd::Singular { near };
     }
     // A box reaching over a boundary does not prove that the curve leaves there (it may only
     // touch it): say so instead of claiming a boundary end.
@@ -422,26 +525,50 @@ fn classify_failure(
     }
 }
 
-/// One step's tube: midpoint polynomial and proven radii.
-fn tube_piece(p: &RationalBezierPatch, rec: &StepRecord, dir: f64) -> Result<TubePiece> {
-    let k = rec.coeffs.len();
-    let tau = interval(0.0, rec.h).unwrap_or(Interval::ENTIRE);
-    let coeffs: Vec<[f64; 4]> = rec
-        .coeffs
+/// A box around `y` on which `|N^P × N^Q|` may vanish (a singular or tangential point may lie in
+/// it), if one is found.
+///
+/// Near a singular point the Taylor coefficients blow up (their radius of convergence is the
+/// distance to it), so the step collapses at a distance of many steps. Looks for `0 ∈ m2` in
+/// boxes of radius 10ʲ·h·(1 + speed), j = 0..3, around `y`.
+fn singular_near(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y: &[Interval; 4],
+    h: f64,
+) -> Option<[Interval; 4]> {
+    let speed = transversal_field(p, q, &mids(y), 1.0)
+        .velocity
         .iter()
-        .map(|c| [c[0].mid(), c[1].mid(), c[2].mid(), c[3].mid()])
-        .collect();
-    // true(τ) − reported(τ) ∈ Σ_{j<k} (c_j − mid c_j) τʲ + R τᵏ, τ ∈ [0, h].
-    let radius_param = (0..4)
-        .map(|i| {
-            (0..k)
-                .rev()
-                .fold(rec.remainder_coeff[i], |acc, j| {
-                    acc * tau + (rec.coeffs[j][i] - point(coeffs[j][i]))
-                })
-                .mag()
-        })
+        .fold(
+            1.0f64,
+            |m, v| if v.is_finite() { m.max(v.abs()) } else { m },
+        );
+    for factor in [1.0, 10.0, 100.0, 1000.0] {
+        let r = factor * h * (1.0 + speed);
+        let near = y.map(|x| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE));
+        let m2 = transversal_field(p, q, &near, 1.0).cross_norm_sqr;
+        if m2.contains(0.0) || m2.is_empty() {
+            return Some(near);
+        }
+    }
+    None
+}
+
+/// One step's tube: the polynomial through the centre of the step's initial set and its proven
+/// radii (the smaller of the direct and mean-value deviation bounds).
+fn tube_piece(
+    p: &RationalBezierPatch,
+    rec: &StepRecord,
+    dir: f64,
+    s0_error: f64,
+) -> Result<TubePiece> {
+    let poly = rec.centre_polynomial();
+    let radius_param = rec
+        .deviation_bound(&poly)?
+        .into_iter()
         .fold(0.0f64, f64::max);
+    let coeffs: Vec<[f64; 4]> = poly.iter().map(|c| [c[0], c[1], c[2], c[3]]).collect();
     // Model space: |P(y) − P(y')| ≤ (sup‖P_σ‖ + sup‖P_t‖)·r over the a-priori box grown by r.
     let grow = |x: Interval| {
         interval(x.inf() - radius_param, x.sup() + radius_param).unwrap_or(Interval::ENTIRE)
@@ -462,6 +589,7 @@ fn tube_piece(p: &RationalBezierPatch, rec: &StepRecord, dir: f64) -> Result<Tub
         coeffs,
         radius_param,
         radius_xyz,
+        s0_error,
     })
 }
 
@@ -481,6 +609,7 @@ struct Crossing {
 fn closes(
     rec: &StepRecord,
     apriori: &[Interval; 4],
+    bridge: &[Interval; 4],
     c: Closure,
     state: &mut Crossing,
 ) -> Result<bool> {
@@ -499,6 +628,12 @@ fn closes(
         return Ok(false);
     }
     let hull = &mut state.hull;
+    // The curve piece from the last step's end to this step's start.
+    if let Some(h) = hull.as_mut() {
+        for i in 0..4 {
+            h[i] = h[i].convex_hull(bridge[i]);
+        }
+    }
     let before = |x: Interval| {
         if speed > 0.0 {
             x.sup() < value
