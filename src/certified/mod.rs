@@ -13,7 +13,7 @@ pub mod tangential;
 pub mod trace;
 
 pub use curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
-pub use trace::{certify_branch, CertifyOptions};
+pub use trace::{certify_branch, certify_branch_profiled, CertifyOptions, TraceProfile};
 
 #[cfg(test)]
 pub(crate) mod fixtures;

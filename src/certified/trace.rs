@@ -23,8 +23,9 @@ use crate::error::{Error, Result};
 use crate::geometry::surface::{pair_bounds as bounds, pair_widths};
 use crate::geometry::{Domain, RationalBezierPatch};
 use crate::scalar::{interval, point};
-use crate::validated::{Integrator, IntegratorOptions, StepFailure, StepRecord};
+use crate::validated::{Integrator, IntegratorOptions, IntegratorWork, StepFailure, StepRecord};
 use inari::Interval;
+use std::time::Instant;
 
 /// Parameters of [`certify_branch`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -77,6 +78,36 @@ fn transversal_width(v: &[Interval; 4], along: Option<usize>) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Where the time of [`certify_branch_profiled`] went (wall-clock seconds per part, and the
+/// validated integrator's work summed over both halves).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TraceProfile {
+    /// Validated steps (Taylor expansions, phase I and phase II).
+    pub step_seconds: f64,
+    /// Re-anchoring (Krawczyk on the end boxes, arc-length bounds).
+    pub anchor_seconds: f64,
+    /// Model-space boxes and tube radii.
+    pub enclosure_seconds: f64,
+    /// The loop-closing test.
+    pub closing_seconds: f64,
+    /// Counts and recurrence costs of the integrator.
+    pub integrator: IntegratorWork,
+}
+
+impl TraceProfile {
+    fn add_work(&mut self, w: IntegratorWork) {
+        let a = &mut self.integrator;
+        a.steps += w.steps;
+        a.phase1_attempts += w.phase1_attempts;
+        a.phase1_failures += w.phase1_failures;
+        a.remainder_shrinks += w.remainder_shrinks;
+        a.remainder_cuts += w.remainder_cuts;
+        a.box_units += w.box_units;
+        a.phase1_units += w.phase1_units;
+        a.phase2_units += w.phase2_units;
+    }
+}
+
 /// Certifies the branch through `start ≈ (σ, t, u, v)` (a point on the curve from the marcher).
 ///
 /// Errors: the start cannot be proven (singular, or not near the curve) or an internal check of
@@ -88,6 +119,17 @@ pub fn certify_branch(
     start: [f64; 4],
     opts: &CertifyOptions,
 ) -> Result<CertifiedBranch> {
+    certify_branch_profiled(p, q, start, opts).map(|(b, _)| b)
+}
+
+/// [`certify_branch`], also reporting where the time went.
+pub fn certify_branch_profiled(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    start: [f64; 4],
+    opts: &CertifyOptions,
+) -> Result<(CertifiedBranch, TraceProfile)> {
+    let mut profile = TraceProfile::default();
     let (dp, dq) = (p.domain(), q.domain());
     let scales = pair_widths(&dp, &dq);
     let fail = |reason: &str| Error::Certification {
@@ -117,6 +159,7 @@ pub fn certify_branch(
         1.0,
         Some((fixed, start[fixed], &uniq, v0.velocity[fixed])),
         opts,
+        &mut profile,
     )?;
     let (mut boxes, mut tubes, mut widths) = (Vec::new(), Vec::new(), Vec::new());
     let mut tolerance = forward.tolerance;
@@ -124,7 +167,7 @@ pub fn certify_branch(
     if forward.end == CertifiedEnd::ClosedLoop {
         first_end = CertifiedEnd::ClosedLoop;
     } else {
-        let backward = trace_half(p, q, &y0, -1.0, None, opts)?;
+        let backward = trace_half(p, q, &y0, -1.0, None, opts, &mut profile)?;
         first_end = backward.end;
         boxes.extend(backward.boxes.into_iter().rev());
         tubes.extend(backward.tubes.into_iter().rev());
@@ -149,7 +192,7 @@ pub fn certify_branch(
             });
         }
     }
-    Ok(CertifiedBranch {
+    let branch = CertifiedBranch {
         start: y0,
         fixed,
         start_uniqueness: uniq,
@@ -158,7 +201,8 @@ pub fn certify_branch(
         tolerance,
         ends: [first_end, forward.end],
         widths,
-    })
+    };
+    Ok((branch, profile))
 }
 
 /// The proven start box and the box of its uniqueness proof: the largest of a few radii for which
@@ -209,14 +253,30 @@ fn trace_half(
     dir: f64,
     closure: Option<Closure>,
     opts: &CertifyOptions,
+    profile: &mut TraceProfile,
 ) -> Result<Half> {
-    let (dp, dq) = (p.domain(), q.domain());
+    let mut integ = make_integrator(p, q, dir, opts)?;
+    // Every step restarts from a thin re-anchored box: the direct Taylor form is enough (its
+    // wrapping does not accumulate) and saves the Jacobians. Without re-anchoring the set must
+    // not wrap: keep the mean-value form with Lohner's set.
+    integ.set_mean_value(!opts.contract);
+    let half = trace_half_with(&mut integ, p, q, y0, dir, closure, opts, profile);
+    profile.add_work(integ.work());
+    half
+}
+
+fn make_integrator(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    dir: f64,
+    opts: &CertifyOptions,
+) -> Result<Integrator> {
     let ode = TransversalOde {
         p,
         q,
         orientation: dir,
     };
-    let mut integ = Integrator::new(
+    Integrator::new(
         &ode,
         IntegratorOptions {
             order: opts.order,
@@ -226,7 +286,22 @@ fn trace_half(
             qr: true,
             max_steps: usize::MAX,
         },
-    )?;
+    )
+}
+
+/// The loop of [`trace_half`] on a given integrator.
+#[allow(clippy::too_many_arguments)]
+fn trace_half_with(
+    integ: &mut Integrator,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y0: &[Interval; 4],
+    dir: f64,
+    closure: Option<Closure>,
+    opts: &CertifyOptions,
+    profile: &mut TraceProfile,
+) -> Result<Half> {
+    let (dp, dq) = (p.domain(), q.domain());
     let mut state = integ.start(y0, 0.0)?;
     let mut half = Half {
         boxes: Vec::new(),
@@ -255,7 +330,10 @@ fn trace_half(
             return Ok(half);
         }
         let limit = state.t + integ.options().h_max;
-        let rec = match integ.step(&mut state, limit) {
+        let clock = Instant::now();
+        let stepped = integ.step(&mut state, limit);
+        profile.step_seconds += clock.elapsed().as_secs_f64();
+        let rec = match stepped {
             Ok(r) => r,
             Err(Error::StepFailed { step, reason, .. }) => {
                 half.end = classify_failure(p, q, &current, step.max(opts.h_min), reason, &dp, &dq);
@@ -271,10 +349,13 @@ fn trace_half(
             .iter()
             .all(|x| x.is_finite())
             .then(|| best_fixed_coordinate(&v, &scales));
+        let clock = Instant::now();
         let anchor = match (opts.contract, along) {
             (true, Some(k)) => reanchor(p, q, &end, k, &v, s_err, dir),
             _ => None,
         };
+        profile.anchor_seconds += clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
         let (next_err, next_cover, bridge) = match &anchor {
             Some(a) => (a.s_err, a.cover, a.bridge),
             None => (s_err, end, 0.0),
@@ -312,6 +393,7 @@ fn trace_half(
             .tolerance
             .max((point(tube.radius_xyz) + point(bridge)).sup());
         half.tubes.push(tube);
+        profile.enclosure_seconds += clock.elapsed().as_secs_f64();
         let previous_cover = cover;
         match anchor {
             Some(a) => {
@@ -347,7 +429,10 @@ fn trace_half(
             return Ok(half);
         }
         if let Some(c) = closure {
-            if closes(&rec, &link, &previous_cover, c, &mut crossing)? {
+            let clock = Instant::now();
+            let closed = closes(&rec, &link, &previous_cover, c, &mut crossing)?;
+            profile.closing_seconds += clock.elapsed().as_secs_f64();
+            if closed {
                 half.end = CertifiedEnd::ClosedLoop;
                 return Ok(half);
             }

@@ -88,9 +88,11 @@ pub mod series;
 pub mod system;
 pub mod tape;
 
-pub use ad::{DomainError, Expansion, TaylorAd};
+pub use ad::{AdWork, DomainError, Expansion, TaylorAd};
 pub use enclosure::EnclosureMethod;
-pub use integrator::{Integrator, IntegratorOptions, IntegratorState, StepFailure, Trajectory};
+pub use integrator::{
+    Integrator, IntegratorOptions, IntegratorState, IntegratorWork, StepFailure, Trajectory,
+};
 pub use record::StepRecord;
 pub use series::Series;
 pub use system::OdeSystem;

@@ -36,7 +36,8 @@ pub struct StepRecord {
     /// Mean-value data: Taylor coefficients at the centre `x̂` of the initial set for `i < p`, and
     /// over the initial box for `p ≤ i < k` (`p` = the number of Jacobians).
     pub(crate) center_coeffs: Vec<Vec<Interval>>,
-    /// Mean-value data: `Jᵢ` (`i < p`, `1 ≤ p ≤ k`) row-major over the initial box.
+    /// Mean-value data: `Jᵢ` (`i < p`, `1 ≤ p ≤ k`) row-major over the initial box; empty for a
+    /// step without the mean-value form (then `center_coeffs` are the ranges over the box).
     pub(crate) jacobians: Vec<Vec<Interval>>,
     /// Mean-value data: the initial set is `x̂ + A·[r]`; this is `A` (interval copy of exact values).
     pub(crate) basis: Vec<Interval>,
@@ -145,6 +146,10 @@ impl StepRecord {
     fn spread(&self, t: Interval) -> Vec<Interval> {
         let n = self.start.len();
         let p = self.jacobians.len();
+        if p == 0 {
+            // No mean-value data: the centre coefficients are the ranges over the initial box.
+            return vec![point(0.0); n];
+        }
         let mut s = self.jacobians[p - 1].clone();
         for jac in self.jacobians[..p - 1].iter().rev() {
             for (sv, jv) in s.iter_mut().zip(jac) {
