@@ -89,7 +89,9 @@ fn profile_and_order_sweep_on_the_small_scenes() {
                 steps += b.steps();
                 tol = tol.max(b.tolerance);
                 assert!(
-                    b.ends.iter().all(|e| !matches!(e, CertifiedEnd::Unproven { .. })),
+                    b.ends
+                        .iter()
+                        .all(|e| !matches!(e, CertifiedEnd::Unproven { .. })),
                     "{name} order {order}: {:?}",
                     b.ends
                 );
@@ -110,12 +112,37 @@ fn profile_and_order_sweep_on_the_small_scenes() {
                 a.phase1_attempts += w.phase1_attempts;
                 a.phase1_failures += w.phase1_failures;
                 a.remainder_shrinks += w.remainder_shrinks;
-        a.remainder_cuts += w.remainder_cuts;
+                a.remainder_cuts += w.remainder_cuts;
                 a.box_units += w.box_units;
                 a.phase1_units += w.phase1_units;
                 a.phase2_units += w.phase2_units;
             }
             println!("{}", line(name, order, steps, cpu, tol, &prof));
         }
+    }
+}
+
+#[test]
+fn dbg_fig7() {
+    let (scene, starts) = starts("scenes/wu_andrade_fig7.json");
+    let [p, q] = &scene.surfaces;
+    for order in [12, 14, 16, 18, 20] {
+        let opts = CertifyOptions {
+            max_length: 0.3,
+            order,
+            ..CertifyOptions::default()
+        };
+        let mut best = f64::INFINITY;
+        let mut out = String::new();
+        for _ in 0..3 {
+            let t0 = cpu_seconds();
+            let (b, pr) = certify_branch_profiled(p, q, starts[0], &opts).unwrap();
+            let cpu = cpu_seconds() - t0;
+            if cpu < best {
+                best = cpu;
+                out = line("fig7 arc", order, b.steps(), cpu, b.tolerance, &pr);
+            }
+        }
+        println!("{out}");
     }
 }

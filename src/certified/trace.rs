@@ -260,6 +260,7 @@ fn trace_half(
     // wrapping does not accumulate) and saves the Jacobians. Without re-anchoring the set must
     // not wrap: keep the mean-value form with Lohner's set.
     integ.set_mean_value(!opts.contract);
+    integ.set_adaptive_guess(opts.contract);
     let half = trace_half_with(&mut integ, p, q, y0, dir, closure, opts, profile);
     profile.add_work(integ.work());
     half
@@ -397,9 +398,10 @@ fn trace_half_with(
         let previous_cover = cover;
         match anchor {
             Some(a) => {
-                let ratio = state.step_ratio;
+                let (ratio, guess) = (state.step_ratio, state.guess_factor);
                 state = integ.start(&a.start, rec.t1)?;
                 state.step_ratio = ratio;
+                state.guess_factor = guess;
                 current = a.start;
                 s_err = a.s_err;
                 cover = a.cover;
@@ -649,18 +651,18 @@ fn tube_piece(
     s0_error: f64,
 ) -> Result<TubePiece> {
     let poly = rec.centre_polynomial();
-    let radius_param = rec
-        .deviation_bound(&poly)?
-        .into_iter()
-        .fold(0.0f64, f64::max);
+    let radii = rec.deviation_bound(&poly)?;
+    let radius_param = radii.iter().cloned().fold(0.0f64, f64::max);
     let coeffs: Vec<[f64; 4]> = poly.iter().map(|c| [c[0], c[1], c[2], c[3]]).collect();
-    // Model space: |P(y) − P(y')| ≤ (sup‖P_σ‖ + sup‖P_t‖)·r over the a-priori box grown by r.
-    let grow = |x: Interval| {
-        interval(x.inf() - radius_param, x.sup() + radius_param).unwrap_or(Interval::ENTIRE)
-    };
-    let [_, ps, pt] = p.first_order(grow(rec.apriori[0]), grow(rec.apriori[1]));
-    let lipschitz = norm_sqr(&ps).sqrt() + norm_sqr(&pt).sqrt();
-    let radius_xyz = (lipschitz * point(radius_param)).sup();
+    // Model space: |P(σ, t) − P(σ', t')| ≤ sup‖P_σ‖·|σ − σ'| + sup‖P_t‖·|t − t'| over the a-priori
+    // box grown by the radii (it holds both points and the path between them).
+    let grow = |x: Interval, r: f64| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE);
+    let [_, ps, pt] = p.first_order(
+        grow(rec.apriori[0], radii[0]),
+        grow(rec.apriori[1], radii[1]),
+    );
+    let radius_xyz =
+        (norm_sqr(&ps).sqrt() * point(radii[0]) + norm_sqr(&pt).sqrt() * point(radii[1])).sup();
     if !(radius_param.is_finite() && radius_xyz.is_finite()) {
         return Err(Error::Certification {
             reason: "unbounded tube radius".into(),
