@@ -11,18 +11,35 @@ use ssitrace::pipeline::{run_scene, RunOptions};
 use ssitrace::scalar::point;
 use std::path::Path;
 
-/// CPU time of this thread in seconds (`/proc/thread-self/schedstat`), or wall time elsewhere.
+/// CPU time of this thread in seconds (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)` on Linux, wall
+/// time elsewhere). Under load from other processes wall time is meaningless; thread CPU time
+/// still is (up to cache effects).
 fn cpu_seconds() -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map(|ns| ns * 1e-9)
-        .unwrap_or_else(|| {
-            std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map(|d| d.as_secs_f64())
-                .unwrap_or(0.0)
-        })
+    #[cfg(target_os = "linux")]
+    {
+        #[repr(C)]
+        struct Timespec {
+            tv_sec: i64,
+            tv_nsec: i64,
+        }
+        extern "C" {
+            fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
+        }
+        const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
+        let mut ts = Timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: clock_gettime writes one timespec (two 64-bit fields on 64-bit Linux) to a
+        // valid pointer.
+        if unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0 {
+            return ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64;
+        }
+    }
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs_f64())
+        .unwrap_or(0.0)
 }
 
 fn starts(file: &str) -> (Scene, Vec<[f64; 4]>) {
@@ -66,28 +83,35 @@ fn line(name: &str, order: usize, steps: usize, cpu: f64, tol: f64, pr: &TracePr
     )
 }
 
-#[test]
-fn profile_and_order_sweep_on_the_small_scenes() {
-    for (name, file) in [
-        ("sphere_patch_plane", "scenes/sphere_patch_plane.json"),
-        ("bicubic_transversal", "scenes/bicubic_transversal.json"),
-        ("two_loops_s31_s32", "scenes/two_loops_s31_s32.json"),
-    ] {
-        let (scene, starts) = starts(file);
-        let [p, q] = &scene.surfaces;
-        for order in [12, 14, 16, 18, 20, 24] {
-            let opts = CertifyOptions {
-                order,
-                ..CertifyOptions::default()
-            };
-            let (mut steps, mut cpu, mut tol) = (0, 0.0, 0.0f64);
-            let mut prof = TraceProfile::default();
-            for s in &starts {
-                let t0 = cpu_seconds();
-                let (b, pr) = certify_branch_profiled(p, q, *s, &opts).expect("certified");
-                cpu += cpu_seconds() - t0;
-                steps += b.steps();
-                tol = tol.max(b.tolerance);
+fn reps() -> usize {
+    std::env::var("SSITRACE_PERF_REPS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1)
+}
+
+/// Certifies every branch of `file` (arc-length budget `max_length` per half) at `order`, the
+/// best of `reps()` runs; checks every end is proven unless budgeted and, on the sphere scene,
+/// that every box meets the circle. Returns the printed line.
+fn run(name: &str, file: &str, max_length: f64, order: usize) -> String {
+    let (scene, starts) = starts(file);
+    let [p, q] = &scene.surfaces;
+    let opts = CertifyOptions {
+        order,
+        max_length,
+        ..CertifyOptions::default()
+    };
+    let mut best: Option<(f64, String)> = None;
+    for _ in 0..reps() {
+        let (mut steps, mut cpu, mut tol) = (0, 0.0, 0.0f64);
+        let mut prof = TraceProfile::default();
+        for s in &starts {
+            let t0 = cpu_seconds();
+            let (b, pr) = certify_branch_profiled(p, q, *s, &opts).expect("certified");
+            cpu += cpu_seconds() - t0;
+            steps += b.steps();
+            tol = tol.max(b.tolerance);
+            if max_length.is_infinite() {
                 assert!(
                     b.ends
                         .iter()
@@ -95,54 +119,92 @@ fn profile_and_order_sweep_on_the_small_scenes() {
                     "{name} order {order}: {:?}",
                     b.ends
                 );
-                if name == "sphere_patch_plane" {
-                    // Every box meets the circle (u − ½)² + (v − ½)² = 141/1024 on Q.
-                    let r2 = point(141.0) / point(1024.0);
-                    for bx in &b.boxes {
-                        let d = (bx.q[0] - point(0.5)).sqr() + (bx.q[1] - point(0.5)).sqr();
-                        assert!(!d.disjoint(r2), "box off the circle");
-                    }
-                }
-                prof.step_seconds += pr.step_seconds;
-                prof.anchor_seconds += pr.anchor_seconds;
-                prof.enclosure_seconds += pr.enclosure_seconds;
-                prof.closing_seconds += pr.closing_seconds;
-                let (a, w) = (&mut prof.integrator, pr.integrator);
-                a.steps += w.steps;
-                a.phase1_attempts += w.phase1_attempts;
-                a.phase1_failures += w.phase1_failures;
-                a.remainder_shrinks += w.remainder_shrinks;
-                a.remainder_cuts += w.remainder_cuts;
-                a.box_units += w.box_units;
-                a.phase1_units += w.phase1_units;
-                a.phase2_units += w.phase2_units;
             }
-            println!("{}", line(name, order, steps, cpu, tol, &prof));
+            if name == "sphere_patch_plane" {
+                let r2 = point(141.0) / point(1024.0);
+                for bx in &b.boxes {
+                    let d = (bx.q[0] - point(0.5)).sqr() + (bx.q[1] - point(0.5)).sqr();
+                    assert!(!d.disjoint(r2), "box off the circle");
+                }
+            }
+            prof.step_seconds += pr.step_seconds;
+            prof.anchor_seconds += pr.anchor_seconds;
+            prof.enclosure_seconds += pr.enclosure_seconds;
+            prof.closing_seconds += pr.closing_seconds;
+            let (a, w) = (&mut prof.integrator, pr.integrator);
+            a.steps += w.steps;
+            a.phase1_attempts += w.phase1_attempts;
+            a.phase1_failures += w.phase1_failures;
+            a.remainder_shrinks += w.remainder_shrinks;
+            a.remainder_cuts += w.remainder_cuts;
+            a.box_units += w.box_units;
+            a.phase1_units += w.phase1_units;
+            a.phase2_units += w.phase2_units;
         }
+        if best.as_ref().is_none_or(|(c, _)| cpu < *c) {
+            best = Some((cpu, line(name, order, steps, cpu, tol, &prof)));
+        }
+    }
+    best.map(|(_, l)| l).unwrap_or_default()
+}
+
+#[test]
+fn profile_at_the_default_order() {
+    let order = CertifyOptions::default().order;
+    for (name, file, len) in [
+        (
+            "sphere_patch_plane",
+            "scenes/sphere_patch_plane.json",
+            f64::INFINITY,
+        ),
+        (
+            "bicubic_transversal",
+            "scenes/bicubic_transversal.json",
+            f64::INFINITY,
+        ),
+        (
+            "two_loops_s31_s32",
+            "scenes/two_loops_s31_s32.json",
+            f64::INFINITY,
+        ),
+        ("wu_andrade_fig7 arc", "scenes/wu_andrade_fig7.json", 0.15),
+    ] {
+        println!("{}", run(name, file, len, order));
     }
 }
 
 #[test]
-fn dbg_fig7() {
-    let (scene, starts) = starts("scenes/wu_andrade_fig7.json");
-    let [p, q] = &scene.surfaces;
-    for order in [12, 14, 16, 18, 20] {
-        let opts = CertifyOptions {
-            max_length: 0.3,
-            order,
-            ..CertifyOptions::default()
-        };
-        let mut best = f64::INFINITY;
-        let mut out = String::new();
-        for _ in 0..3 {
-            let t0 = cpu_seconds();
-            let (b, pr) = certify_branch_profiled(p, q, starts[0], &opts).unwrap();
-            let cpu = cpu_seconds() - t0;
-            if cpu < best {
-                best = cpu;
-                out = line("fig7 arc", order, b.steps(), cpu, b.tolerance, &pr);
+fn taylor_order_sweep() {
+    // Lower orders cost less per step but need more steps; the totals are close (see the printed
+    // lines). Every order must give a sound, closed certificate on the sphere loop.
+    for order in [12, 16, 20] {
+        println!(
+            "{}",
+            run(
+                "sphere_patch_plane",
+                "scenes/sphere_patch_plane.json",
+                f64::INFINITY,
+                order
+            )
+        );
+    }
+    if std::env::var("SSITRACE_PERF_SWEEP").is_ok() {
+        for order in [12, 14, 16, 18, 20, 24] {
+            for (name, file, len) in [
+                (
+                    "bicubic_transversal",
+                    "scenes/bicubic_transversal.json",
+                    f64::INFINITY,
+                ),
+                (
+                    "two_loops_s31_s32",
+                    "scenes/two_loops_s31_s32.json",
+                    f64::INFINITY,
+                ),
+                ("wu_andrade_fig7 arc", "scenes/wu_andrade_fig7.json", 0.3),
+            ] {
+                println!("{}", run(name, file, len, order));
             }
         }
-        println!("{out}");
     }
 }
