@@ -239,9 +239,25 @@ struct Half {
     boxes: Vec<EnclosureBox>,
     tubes: Vec<TubePiece>,
     widths: Vec<f64>,
-    /// The largest tube radius plus joining piece over the half.
+    /// Bound on the distance of the half's true curve to its reported curve (see
+    /// [`join_tolerance`]); the last join is added by [`trace_half`].
     tolerance: f64,
+    /// The last step's model-space radius and the arc-length bound of the piece joining its end
+    /// to the next start (no tube follows it yet).
+    pending_join: Option<(f64, f64)>,
     end: CertifiedEnd,
+}
+
+/// Distance bound for the true curve piece joining a step's end `e` to the next start `a`, of arc
+/// length at most `bridge` (the field has unit speed): a point `b` on it has
+/// `min(|b − e|, |b − a|) ≤ bridge/2`, `e` is within `r_before` of the reported curve and `a`
+/// within `r_after`, so `b` is within `max(r_before, r_after) + bridge/2` of it. Without a next
+/// tube (`r_after = None`), `r_before + bridge`.
+fn join_tolerance(r_before: f64, bridge: f64, r_after: Option<f64>) -> f64 {
+    match r_after {
+        Some(r) => (point(r_before.max(r)) + point(bridge) / point(2.0)).sup(),
+        None => (point(r_before) + point(bridge)).sup(),
+    }
 }
 
 /// Data of the loop-closing test: the start's fixed coordinate, its value, the uniqueness box
@@ -266,7 +282,12 @@ fn trace_half(
     integ.set_adaptive_guess(opts.contract);
     let half = trace_half_with(&mut integ, p, q, y0, dir, closure, opts, profile);
     profile.add_work(integ.work());
-    half
+    half.map(|mut h| {
+        if let Some((r, b)) = h.pending_join.take() {
+            h.tolerance = h.tolerance.max(join_tolerance(r, b, None));
+        }
+        h
+    })
 }
 
 fn make_integrator(
@@ -312,6 +333,7 @@ fn trace_half_with(
         tubes: Vec::new(),
         widths: Vec::new(),
         tolerance: 0.0,
+        pending_join: None,
         end: CertifiedEnd::ClosedLoop,
     };
     let mut crossing = Crossing::default();
@@ -391,11 +413,15 @@ fn trace_half_with(
             xyz,
         });
         let tube = tube_piece(p, &rec, dir, s_err)?;
-        // Every true point of this step, and of the piece joining its end to the next start, is
-        // within radius_xyz + bridge of the reported curve (the field has unit speed).
-        half.tolerance = half
-            .tolerance
-            .max((point(tube.radius_xyz) + point(bridge)).sup());
+        // Every true point of this step is within radius_xyz of the reported curve; the piece
+        // joining the last step's end to this start is accounted for by join_tolerance.
+        half.tolerance = half.tolerance.max(tube.radius_xyz);
+        if let Some((r, b)) = half.pending_join.take() {
+            half.tolerance = half
+                .tolerance
+                .max(join_tolerance(r, b, Some(tube.radius_xyz)));
+        }
+        half.pending_join = (bridge > 0.0).then_some((tube.radius_xyz, bridge));
         half.tubes.push(tube);
         profile.enclosure_seconds += clock.elapsed().as_secs_f64();
         let previous_cover = cover;
@@ -660,12 +686,17 @@ fn tube_piece(
     // Model space: |P(σ, t) − P(σ', t')| ≤ sup‖P_σ‖·|σ − σ'| + sup‖P_t‖·|t − t'| over the a-priori
     // box grown by the radii (it holds both points and the path between them).
     let grow = |x: Interval, r: f64| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE);
-    let [_, ps, pt] = p.first_order(
+    // The partials in the centred (shifted power) form, far tighter over a long step's box than
+    // the Bernstein evaluation: S_σ = a/g, S_t = b/g with g > 0.
+    let (gs, gt) = (
         grow(rec.apriori[0], radii[0]),
         grow(rec.apriori[1], radii[1]),
     );
-    let radius_xyz =
-        (norm_sqr(&ps).sqrt() * point(radii[0]) + norm_sqr(&pt).sqrt() * point(radii[1])).sup();
+    let (a, b, g) = p.scaled_first_order_centred(gs, gt, point(gs.mid()), point(gt.mid()));
+    let [_, ps, pt] = p.first_order(gs, gt);
+    let norm_s = (norm_sqr(&a).sqrt() / g).intersection(norm_sqr(&ps).sqrt());
+    let norm_t = (norm_sqr(&b).sqrt() / g).intersection(norm_sqr(&pt).sqrt());
+    let radius_xyz = (norm_s * point(radii[0]) + norm_t * point(radii[1])).sup();
     if !(radius_param.is_finite() && radius_xyz.is_finite()) {
         return Err(Error::Certification {
             reason: "unbounded tube radius".into(),
