@@ -6,8 +6,18 @@
 //! 2. **Steps**: the transversal ODE ([`super::ode::TransversalOde`]) is integrated both ways by
 //!    [`Integrator`]; each step gives an a-priori box (the link of the chain), a tight end box and
 //!    Taylor coefficients with a remainder (the tube piece).
-//! 3. **Contraction**: each end box is pulled back onto `P = Q` by Krawczyk in three of the four
-//!    parameters (all curve points in the box stay in it), so widths stay near rounding level.
+//! 3. **Re-anchoring** (the contraction, [`CertifyOptions::contract`]): Krawczyk with the
+//!    fastest-moving parameter `x_k` held in an interval `X` around the end box's, on the end box
+//!    inflated in the other three, proves that the curve there is a graph over `x_k` and encloses
+//!    it (the *cover*); the next step starts from the curve point with `x_k = c = mid`, enclosed
+//!    by Krawczyk with `x_k = c` (a thin box: the along-curve spread of the end box is dropped, so
+//!    Taylor coefficients, tubes and tolerance stay at rounding level instead of growing along the
+//!    branch). That point's arc length is known up to a proven error, accumulated along the half:
+//!    the joining piece has arc length ≤ `|c − e_k| / min|x_k'|` over the cover (unit speed).
+//!    Boxes hold the covers too, so they hold the curve over their arc-length ranges despite the
+//!    error ([`EnclosureBox`]); tubes carry it ([`TubePiece::s0_error`]); the tolerance counts
+//!    the joining pieces. Re-anchored steps need no Jacobians (the direct Taylor form's wrapping
+//!    does not accumulate) and learn phase I's remainder guess from the last step.
 //! 4. **Ends**, each proven: the end box lies outside a domain (the last box straddles the
 //!    boundary); the curve crosses the start parameter's value inside the start's uniqueness box
 //!    (a closed loop: it is the start point, traced once); the field cannot be bounded because

@@ -5,11 +5,15 @@
 //! 2. step size `h = min_{i ∈ {k−1, k}, i ≥ 2} (ε/‖mid yᵢ(B)‖∞)^{1/i}` (the midpoints estimate
 //!    the coefficients at the centre), `ε = tol·max(1, ‖x̂‖∞)`, then
 //!    scaled by the ratio accepted at the previous step, capped by `h_max` and the time left;
-//! 3. phase I ([`prove_apriori_with_guess`](super::enclosure::prove_apriori_with_guess)) proves `[ỹ]` over `[t, t + h]`; on failure `h` shrinks by 0.7
-//!    until `h_min`, below which the integrator stops with [`Error::StepFailed`]; if the validated
-//!    remainder `hᵏ·‖y_k([ỹ])‖` exceeds ε (or 1e-9 of the set's width, if larger), `h` shrinks
-//!    and phase I runs again (at most 6 times);
-//! 4. phase II: `u = Σ_{i<p} yᵢ(x̂) hⁱ + Σ_{p≤i<k} yᵢ(B) hⁱ + hᵏ·y_k([ỹ])`, `S = Σ_{i<p} Jᵢ hⁱ`;
+//! 3. phase I ([`prove_apriori_with_guess`]) proves `[ỹ]` over `[t, t + h]`; on failure `h`
+//!    shrinks by 0.7 until `h_min`, below which the integrator stops with [`Error::StepFailed`];
+//!    if the validated remainder `hᵏ·‖y_k([ỹ])‖` exceeds ε (or 1e-9 of the set's width, if
+//!    larger), the step is cut to `h' = h·(ε/rem)^{1/k}` keeping `[ỹ]` and `y_k([ỹ])` (valid over
+//!    `[0, h'] ⊂ [0, h]`; `[ỹ]` is intersected with the Taylor form over `[0, h']`), or, when the
+//!    cut cannot be represented, `h` shrinks and phase I runs again (at most 6 times);
+//! 4. (with [`Integrator::set_mean_value`]`(false)`: the end box is the direct Taylor form
+//!    `Σ_{i<k} yᵢ(B) hⁱ + hᵏ·y_k([ỹ])` ∩ `[ỹ]`, no Jacobians; otherwise:)
+//!    phase II: `u = Σ_{i<p} yᵢ(x̂) hⁱ + Σ_{p≤i<k} yᵢ(B) hⁱ + hᵏ·y_k([ỹ])`, `S = Σ_{i<p} Jᵢ hⁱ`;
 //!    then every solution at `t + h` lies in `u + S·A·[r]` (mean-value theorem over the convex box
 //!    `B` for the orders below `p`, the range over `B` for the others, Taylor with the Lagrange
 //!    remainder over `[ỹ]`), which the [`LohnerSet`] update re-encloses without wrapping; the end
