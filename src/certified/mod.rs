@@ -5,6 +5,7 @@
 //! [`tangential`] classifies tangential contacts; [`trace`] certifies a branch; [`curve`] is what
 //! a certified branch reports.
 
+mod anchor;
 pub mod curve;
 pub mod field;
 pub mod krawczyk;
