@@ -276,6 +276,55 @@ mod tests {
     }
 
     #[test]
+    fn interval_fixed_coordinate_encloses_the_curve_piece_and_contract_box_keeps_its_point() {
+        // Circle of radius 0.5 (bowl against plane); σ held in a thin interval X around 0.3:
+        // the curve piece over X (t = +√(0.25 − σ²), u = σ, v = t) must lie in the enclosure.
+        let p = Bowl::new(1.0, -0.25);
+        let q = Bowl::new(0.0, 0.0);
+        let (s0, w) = (0.3, 1e-12);
+        let t0 = (0.25f64 - s0 * s0).sqrt();
+        let x = interval(s0 - w, s0 + w).unwrap();
+        let r = 1e-10;
+        let y = [
+            x,
+            interval(t0 - r, t0 + r).unwrap(),
+            interval(s0 - r, s0 + r).unwrap(),
+            interval(t0 - r, t0 + r).unwrap(),
+        ];
+        let KrawczykResult::Proven { enclosure, .. } = krawczyk(&p, &q, y, 0, 4) else {
+            panic!("not proven on a thin interval of the fixed coordinate");
+        };
+        for sigma in [s0 - w, s0, s0 + w] {
+            let t = (0.25f64 - sigma * sigma).sqrt();
+            for (i, v) in [sigma, t, sigma, t].iter().enumerate() {
+                assert!(
+                    enclosure[i].inf() <= v + 1e-15 && v - 1e-15 <= enclosure[i].sup(),
+                    "coord {i}"
+                );
+            }
+        }
+        // The mean-value form keeps the free widths near the curve's own spread over X.
+        assert!(enclosure[1].wid() < 1e-11, "{}", enclosure[1].wid());
+        // contract_box with σ = s0 exactly: tight and still holding the point.
+        let mut thin = enclosure;
+        thin[0] = point(s0);
+        let c = contract_box(&p, &q, thin, 0, 3).expect("contracts");
+        for (i, v) in [s0, t0, s0, t0].iter().enumerate() {
+            assert!(
+                c[i].inf() <= v + 1e-15 && v - 1e-15 <= c[i].sup(),
+                "coord {i}"
+            );
+            assert!(c[i].wid() <= thin[i].wid());
+        }
+        assert!(c[1].wid() < 1e-14, "{}", c[1].wid());
+        // A box without the curve is emptied.
+        let mut off = thin;
+        off[1] = interval(t0 + 1e-3, t0 + 2e-3).unwrap();
+        off[3] = off[1];
+        assert!(contract_box(&p, &q, off, 0, 3).is_none());
+    }
+
+    #[test]
     fn box_off_the_curve_is_not_proven() {
         let p = Bowl::new(1.0, -0.25);
         let q = Bowl::new(0.0, 0.0);
