@@ -411,7 +411,9 @@ fn trace_half_with(
             q: [link[2], link[3]],
             xyz,
         });
-        let tube = tube_piece(p, &rec, dir, s_err)?;
+        // The radius enters the tolerance alone and in the joins before and after this step.
+        let join = half.pending_join.map_or(0.0, |(_, b)| b).max(bridge);
+        let tube = tube_piece(p, &rec, dir, s_err, half.tolerance - 0.5 * join)?;
         // Every true point of this step is within radius_xyz of the reported curve; the piece
         // joining the last step's end to this start is accounted for by join_tolerance.
         half.tolerance = half.tolerance.max(tube.radius_xyz);
@@ -578,12 +580,14 @@ fn singular_near(
 }
 
 /// One step's tube: the polynomial through the centre of the step's initial set and its proven
-/// radii (the smaller of the direct and mean-value deviation bounds).
+/// radii (the smaller of the direct and mean-value deviation bounds). The model-space radius is
+/// tightened with the centred partials only if it would exceed `refine_above`.
 fn tube_piece(
     p: &RationalBezierPatch,
     rec: &StepRecord,
     dir: f64,
     s0_error: f64,
+    refine_above: f64,
 ) -> Result<TubePiece> {
     let poly = rec.centre_polynomial();
     let radii = rec.deviation_bound(&poly)?;
@@ -592,16 +596,32 @@ fn tube_piece(
     // Model space: |P(σ, t) − P(σ', t')| ≤ sup‖P_σ‖·|σ − σ'| + sup‖P_t‖·|t − t'| over the a-priori
     // box grown by the radii (it holds both points and the path between them).
     let grow = |x: Interval, r: f64| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE);
-    // The partials in the centred (shifted power) form, far tighter over a long step's box than
-    // the Bernstein evaluation: S_σ = a/g, S_t = b/g with g > 0.
     let (gs, gt) = (
         grow(rec.apriori[0], radii[0]),
         grow(rec.apriori[1], radii[1]),
     );
-    let (a, b, g) = p.scaled_first_order_centred(gs, gt, point(gs.mid()), point(gt.mid()));
     let [_, ps, pt] = p.first_order(gs, gt);
-    let norm_s = (norm_sqr(&a).sqrt() / g).intersection(norm_sqr(&ps).sqrt());
-    let norm_t = (norm_sqr(&b).sqrt() / g).intersection(norm_sqr(&pt).sqrt());
+    let (mut norm_s, mut norm_t) = (norm_sqr(&ps).sqrt(), norm_sqr(&pt).sqrt());
+    // Where the Bernstein evaluation over the box is loose (well above the values at its centre,
+    // typically on long steps of high-degree patches), intersect with the centred (shifted power)
+    // form S_σ = a/g, S_t = b/g, g > 0: far tighter there, but costlier to evaluate.
+    // Only when it matters: the branch's tolerance is the largest radius, so a radius below
+    // `refine_above` (the largest so far) is published as it is (it is a valid bound).
+    let [_, cs, ct] = p.first_order(gs.mid(), gt.mid());
+    let at_centre = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let loose = (norm_s * point(radii[0]) + norm_t * point(radii[1])).sup();
+    if loose > refine_above
+        && (norm_s.sup() > 1.25 * at_centre(cs) || norm_t.sup() > 1.25 * at_centre(ct))
+    {
+        let (a, b, g) = p.scaled_first_order_centred(gs, gt, point(gs.mid()), point(gt.mid()));
+        let centred = [norm_sqr(&a).sqrt() / g, norm_sqr(&b).sqrt() / g];
+        for (n, c) in [&mut norm_s, &mut norm_t].into_iter().zip(centred) {
+            let both = n.intersection(c);
+            if !both.is_empty() {
+                *n = both;
+            }
+        }
+    }
     let radius_xyz = (norm_s * point(radii[0]) + norm_t * point(radii[1])).sup();
     if !(radius_param.is_finite() && radius_xyz.is_finite()) {
         return Err(Error::Certification {
