@@ -1,8 +1,9 @@
-//! Benchmarks of certified branch tracing: one whole branch of the sphere-patch/plane circle and
-//! of the bicubic transversal scene at the default `CertifyOptions`, next to the marcher on the
-//! same branch and the certified trace without contraction (ratios in one process), and one
-//! Taylor expansion of
-//! the intersection ODE (order 20, with and without Jacobians) over a small box.
+//! Benchmarks of certified branch tracing: one whole branch of the sphere-patch/plane circle, of
+//! the bicubic transversal scene and of S31/S32, and an arc of Fig. 7, at the default
+//! `CertifyOptions`, next to the marcher on the same branch and the certified trace without
+//! contraction / re-anchoring (ratios in one process), and one Taylor expansion of the
+//! intersection ODE (order 20, with and without Jacobians) over a small box. Under load from
+//! other processes prefer `tests/certified_perf_compare.rs` (thread CPU time).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use ssitrace::certified::ode::TransversalOde;
@@ -27,13 +28,31 @@ fn scene_and_start(file: &str) -> (Scene, [f64; 4]) {
 fn bench_certify(c: &mut Criterion) {
     let mut group = c.benchmark_group("certify_branch");
     group.sample_size(10);
-    for (name, file) in [
-        ("sphere_patch_plane", "scenes/sphere_patch_plane.json"),
-        ("bicubic_transversal", "scenes/bicubic_transversal.json"),
+    // (Fig. 7 as an arc of arc length 1: its whole loops take seconds per iteration.)
+    for (name, file, max_length) in [
+        (
+            "sphere_patch_plane",
+            "scenes/sphere_patch_plane.json",
+            f64::INFINITY,
+        ),
+        (
+            "bicubic_transversal",
+            "scenes/bicubic_transversal.json",
+            f64::INFINITY,
+        ),
+        (
+            "two_loops_s31_s32",
+            "scenes/two_loops_s31_s32.json",
+            f64::INFINITY,
+        ),
+        ("wu_andrade_fig7_arc", "scenes/wu_andrade_fig7.json", 0.5),
     ] {
         let (scene, start) = scene_and_start(file);
         let [p, q] = &scene.surfaces;
-        let opts = CertifyOptions::default();
+        let opts = CertifyOptions {
+            max_length,
+            ..CertifyOptions::default()
+        };
         let steps = certify_branch(p, q, start, &opts)
             .expect("certify")
             .boxes
@@ -53,7 +72,7 @@ fn bench_certify(c: &mut Criterion) {
         });
         let plain = CertifyOptions {
             contract: false,
-            ..CertifyOptions::default()
+            ..opts
         };
         group.bench_function(format!("{name}/no_contraction"), |b| {
             b.iter(|| certify_branch(p, q, black_box(start), &plain).expect("certify"))

@@ -6,8 +6,11 @@ use inari::Interval;
 /// parameter domains and in model space.
 ///
 /// Guarantee: for every arc length `s ∈ [s[0], s[1]]` the true intersection point has
-/// parameters in `p` (on P) and `q` (on Q) and lies in `xyz`. Consecutive boxes of a branch
-/// share the point at their common arc length, so they overlap: the chain has no gaps.
+/// parameters in `p` (on P) and `q` (on Q) and lies in `xyz`. Consecutive ranges touch, and
+/// consecutive boxes share the point at their common arc length, so they overlap: the chain has
+/// no gaps. (A re-anchored step's nominal arc lengths are off by at most its
+/// [`TubePiece::s0_error`]; the box holds the curve over its nominal range widened by that error on
+/// both sides, and the published range is the part of it that makes the ranges touch.)
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnclosureBox {
     /// Arc-length range `[s0, s1]` from the branch's start point (negative backwards).
@@ -37,8 +40,11 @@ impl EnclosureBox {
 ///
 /// The reported parameter curve is `y(τ) = Σᵢ coeffs[i]·τⁱ` for `τ ∈ [0, h]` (arc length
 /// `s0 + τ`, or `s0 − τ` for a backward piece), `y = (σ, t, u, v)`; the reported model curve
-/// is `P(σ(τ), t(τ))`. Guarantee: the true curve at the same arc length is within
-/// `radius_param` (max norm, in parameters) and within `radius_xyz` (Euclidean, in model space).
+/// is `P(σ(τ), t(τ))`. Guarantee: the piece starts at a true curve point of arc length `s*`
+/// with `|s* − s0| ≤ s0_error`, and for every `τ ∈ [0, h]` the true curve at arc length
+/// `s* ± τ` is within `radius_param` (max norm, in parameters) and within `radius_xyz`
+/// (Euclidean, in model space) of the reported point at `τ`. The radii are transversal: the
+/// arc-length uncertainty `s0_error` does not enter them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TubePiece {
     /// Arc length at `τ = 0`.
@@ -53,6 +59,9 @@ pub struct TubePiece {
     pub radius_param: f64,
     /// Proven bound on the model-space deviation.
     pub radius_xyz: f64,
+    /// Proven bound on the error of `s0` as the arc length of the piece's start point (0 on
+    /// steps that were not re-anchored since the branch's start point).
+    pub s0_error: f64,
 }
 
 impl TubePiece {
@@ -131,13 +140,17 @@ pub struct CertifiedBranch {
     pub boxes: Vec<EnclosureBox>,
     /// One tube piece per step, in the same order as `boxes`.
     pub tubes: Vec<TubePiece>,
-    /// The largest `radius_xyz` of the tubes: the certified tolerance of the branch.
+    /// The certified tolerance of the branch: every point of the true curve between the ends is
+    /// within this model-space distance of the reported tube curve, and every reported point is
+    /// within it of the true curve: the largest `radius_xyz`, and for the short true curve piece
+    /// of arc length `b` joining a step's end to the next step's re-anchored start, the larger
+    /// radius of the two steps plus `b/2`.
     pub tolerance: f64,
     /// The end at the smallest arc length, and at the largest.
     pub ends: [CertifiedEnd; 2],
     /// Transversal width of every step's end box, in order: the largest width over the three
-    /// parameters other than the fastest-moving one (the along-curve spread is excluded). With
-    /// contraction this stays near rounding level.
+    /// parameters other than the fastest-moving one, after the contraction / re-anchoring when it
+    /// is on. With it this stays near rounding level; without it, it grows along the branch.
     pub widths: Vec<f64>,
 }
 

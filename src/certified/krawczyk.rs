@@ -45,60 +45,24 @@ where
     if fixed > 3 || y.iter().any(|c| c.is_empty()) {
         return KrawczykResult::NotProven("invalid box or fixed coordinate");
     }
-    let free: [usize; 3] = match fixed {
-        0 => [1, 2, 3],
-        1 => [0, 2, 3],
-        2 => [0, 1, 3],
-        _ => [0, 1, 2],
-    };
     let mut y = y;
     let mut proven = false;
     for it in 0..max_iter.max(1) {
-        // Interval Jacobian over the whole box (columns: the free unknowns).
-        let [_, ps, pt] = p.first_order(y[0], y[1]);
-        let [_, qu, qv] = q.first_order(y[2], y[3]);
-        let neg = |a: [Interval; 3]| a.map(|x| -x);
-        let cols_all = [ps, pt, neg(qu), neg(qv)];
-        let jac: [[Interval; 3]; 3] = free.map(|k| cols_all[k]); // jac[col][row]
-                                                                 // Midpoint inverse in f64 (any C works; a good one makes the test succeed).
-        let mid = Matrix3::from_fn(|r, c| jac[c][r].mid());
-        let Some(cinv) = mid.try_inverse() else {
-            return KrawczykResult::NotProven("singular Jacobian (tangential or singular point)");
-        };
-        let c: [[Interval; 3]; 3] =
-            std::array::from_fn(|r| std::array::from_fn(|k| point(cinv[(r, k)])));
-        // F at the midpoint of the free coordinates, the fixed one kept as its interval.
-        let mut ymid = y;
-        for &k in &free {
-            ymid[k] = point(y[k].mid());
-        }
-        let [pm, ..] = p.first_order(ymid[0], ymid[1]);
-        let [qm, ..] = q.first_order(ymid[2], ymid[3]);
-        let f: [Interval; 3] = std::array::from_fn(|r| pm[r] - qm[r]);
-        let mut kx = [Interval::EMPTY; 3];
-        for r in 0..3 {
-            let cf = c[r][0] * f[0] + c[r][1] * f[1] + c[r][2] * f[2];
-            let mut acc = ymid[free[r]] - cf;
-            for (col, &k) in free.iter().enumerate() {
-                // (I − C·J)[r][col]
-                let cj = c[r][0] * jac[col][0] + c[r][1] * jac[col][1] + c[r][2] * jac[col][2];
-                let ident = if r == col { point(1.0) } else { point(0.0) };
-                acc += (ident - cj) * (y[k] - ymid[k]);
+        let (next, inside) = match krawczyk_image(p, q, &y, fixed) {
+            None => {
+                return KrawczykResult::NotProven(
+                    "singular Jacobian (tangential or singular point)",
+                )
             }
-            kx[r] = acc;
-        }
-        let inside = (0..3).all(|r| kx[r].interior(y[free[r]]));
+            Some(Image::Empty) => {
+                return KrawczykResult::NotProven(
+                    "the box holds no curve point (Krawczyk image disjoint)",
+                )
+            }
+            Some(Image::Box { next, inside }) => (next, inside),
+        };
         proven |= inside;
-        let mut next = y;
-        for r in 0..3 {
-            next[free[r]] = kx[r].intersection(y[free[r]]);
-        }
-        if next.iter().any(|c| c.is_empty()) {
-            return KrawczykResult::NotProven(
-                "the box holds no curve point (Krawczyk image disjoint)",
-            );
-        }
-        let shrink = (0..3).all(|r| next[free[r]].wid() >= 0.9 * y[free[r]].wid());
+        let shrink = (0..4).all(|i| i == fixed || next[i].wid() >= 0.9 * y[i].wid());
         y = next;
         if proven && (shrink || it + 1 == max_iter.max(1)) {
             return KrawczykResult::Proven {
@@ -117,6 +81,123 @@ where
             "Krawczyk image not inside the box (box too large or near-singular)",
         )
     }
+}
+
+/// One Krawczyk image, intersected with the box.
+enum Image {
+    /// The image misses the box in some coordinate: no zero in the box.
+    Empty,
+    /// `next = K(y) ∩ y`; `inside`: `K(y) ⊂ int y` in the three free coordinates.
+    Box { next: ParamBox, inside: bool },
+}
+
+/// `K(y) ∩ y` holding coordinate `fixed`; `None` if the midpoint Jacobian is singular.
+fn krawczyk_image<P, Q>(p: &P, q: &Q, y: &ParamBox, fixed: usize) -> Option<Image>
+where
+    P: ScalarSurface + ?Sized,
+    Q: ScalarSurface + ?Sized,
+{
+    let free: [usize; 3] = match fixed {
+        0 => [1, 2, 3],
+        1 => [0, 2, 3],
+        2 => [0, 1, 3],
+        _ => [0, 1, 2],
+    };
+    // Interval Jacobian over the whole box (columns: the free unknowns).
+    let [_, ps, pt] = p.first_order(y[0], y[1]);
+    let [_, qu, qv] = q.first_order(y[2], y[3]);
+    let neg = |a: [Interval; 3]| a.map(|x| -x);
+    let cols_all = [ps, pt, neg(qu), neg(qv)];
+    let jac: [[Interval; 3]; 3] = free.map(|k| cols_all[k]); // jac[col][row]
+                                                             // Midpoint inverse in f64 (any C works; a good one makes the test succeed).
+    let mid = Matrix3::from_fn(|r, c| jac[c][r].mid());
+    let cinv = mid.try_inverse()?;
+    let c: [[Interval; 3]; 3] =
+        std::array::from_fn(|r| std::array::from_fn(|k| point(cinv[(r, k)])));
+    // F at the midpoint of the free coordinates, the fixed one kept as its interval: directly,
+    // and in mean-value form around the fixed coordinate's midpoint c,
+    // F(x̃, [p]) ⊂ F(x̃, c) + J_fixed(y)·([p] − c) (the segment lies in y). Both enclose it; the
+    // second is far tighter on a thin box, where the direct patch evaluation over [p] wraps.
+    let mut ymid = *y;
+    for &k in &free {
+        ymid[k] = point(y[k].mid());
+    }
+    let [pm, ..] = p.first_order(ymid[0], ymid[1]);
+    let [qm, ..] = q.first_order(ymid[2], ymid[3]);
+    let mut f: [Interval; 3] = std::array::from_fn(|r| pm[r] - qm[r]);
+    if y[fixed].wid() > 0.0 {
+        let c = point(y[fixed].mid());
+        let mut ycen = ymid;
+        ycen[fixed] = c;
+        let [pc, ..] = p.first_order(ycen[0], ycen[1]);
+        let [qc, ..] = q.first_order(ycen[2], ycen[3]);
+        let dk = y[fixed] - c;
+        for r in 0..3 {
+            let mv = pc[r] - qc[r] + cols_all[fixed][r] * dk;
+            let both = f[r].intersection(mv);
+            if !both.is_empty() {
+                f[r] = both;
+            }
+        }
+    }
+    let mut kx = [Interval::EMPTY; 3];
+    for r in 0..3 {
+        let cf = c[r][0] * f[0] + c[r][1] * f[1] + c[r][2] * f[2];
+        let mut acc = ymid[free[r]] - cf;
+        for (col, &k) in free.iter().enumerate() {
+            // (I − C·J)[r][col]
+            let cj = c[r][0] * jac[col][0] + c[r][1] * jac[col][1] + c[r][2] * jac[col][2];
+            let ident = if r == col { point(1.0) } else { point(0.0) };
+            acc += (ident - cj) * (y[k] - ymid[k]);
+        }
+        kx[r] = acc;
+    }
+    let inside = (0..3).all(|r| kx[r].interior(y[free[r]]));
+    let mut next = *y;
+    for r in 0..3 {
+        next[free[r]] = kx[r].intersection(y[free[r]]);
+    }
+    if next.iter().any(|c| c.is_empty()) {
+        return Some(Image::Empty);
+    }
+    Some(Image::Box { next, inside })
+}
+
+/// Contracts `y` with the Krawczyk operator, holding coordinate `fixed` in its interval, without
+/// the strict-interior test: every zero of `P − Q` in `y` (for the fixed coordinate in its
+/// interval) lies in the result, whether or not there is one. `None` if the box provably holds no
+/// zero (an image is disjoint from it) or the Jacobian is singular.
+///
+/// Use it when existence and uniqueness are known from elsewhere (e.g. a proven [`krawczyk`] on a
+/// larger box); the result is then a tighter box around the same points.
+pub fn contract_box<P, Q>(
+    p: &P,
+    q: &Q,
+    y: ParamBox,
+    fixed: usize,
+    iterations: usize,
+) -> Option<ParamBox>
+where
+    P: ScalarSurface + ?Sized,
+    Q: ScalarSurface + ?Sized,
+{
+    if fixed > 3 || y.iter().any(|c| c.is_empty()) {
+        return None;
+    }
+    let mut y = y;
+    for _ in 0..iterations {
+        match krawczyk_image(p, q, &y, fixed)? {
+            Image::Empty => return None,
+            Image::Box { next, .. } => {
+                let shrunk = (0..4).any(|i| next[i].wid() < 0.9 * y[i].wid());
+                y = next;
+                if !shrunk {
+                    break;
+                }
+            }
+        }
+    }
+    Some(y)
 }
 
 /// The coordinate to hold fixed at a curve point with parameter velocity `velocity`: the one
@@ -192,6 +273,55 @@ mod tests {
                 assert!(b[i].wid() < 1e-12, "coord {i} width {}", b[i].wid());
             }
         }
+    }
+
+    #[test]
+    fn interval_fixed_coordinate_encloses_the_curve_piece_and_contract_box_keeps_its_point() {
+        // Circle of radius 0.5 (bowl against plane); σ held in a thin interval X around 0.3:
+        // the curve piece over X (t = +√(0.25 − σ²), u = σ, v = t) must lie in the enclosure.
+        let p = Bowl::new(1.0, -0.25);
+        let q = Bowl::new(0.0, 0.0);
+        let (s0, w) = (0.3, 1e-12);
+        let t0 = (0.25f64 - s0 * s0).sqrt();
+        let x = interval(s0 - w, s0 + w).unwrap();
+        let r = 1e-10;
+        let y = [
+            x,
+            interval(t0 - r, t0 + r).unwrap(),
+            interval(s0 - r, s0 + r).unwrap(),
+            interval(t0 - r, t0 + r).unwrap(),
+        ];
+        let KrawczykResult::Proven { enclosure, .. } = krawczyk(&p, &q, y, 0, 4) else {
+            panic!("not proven on a thin interval of the fixed coordinate");
+        };
+        for sigma in [s0 - w, s0, s0 + w] {
+            let t = (0.25f64 - sigma * sigma).sqrt();
+            for (i, v) in [sigma, t, sigma, t].iter().enumerate() {
+                assert!(
+                    enclosure[i].inf() <= v + 1e-15 && v - 1e-15 <= enclosure[i].sup(),
+                    "coord {i}"
+                );
+            }
+        }
+        // The mean-value form keeps the free widths near the curve's own spread over X.
+        assert!(enclosure[1].wid() < 1e-11, "{}", enclosure[1].wid());
+        // contract_box with σ = s0 exactly: tight and still holding the point.
+        let mut thin = enclosure;
+        thin[0] = point(s0);
+        let c = contract_box(&p, &q, thin, 0, 3).expect("contracts");
+        for (i, v) in [s0, t0, s0, t0].iter().enumerate() {
+            assert!(
+                c[i].inf() <= v + 1e-15 && v - 1e-15 <= c[i].sup(),
+                "coord {i}"
+            );
+            assert!(c[i].wid() <= thin[i].wid());
+        }
+        assert!(c[1].wid() < 1e-14, "{}", c[1].wid());
+        // A box without the curve is emptied.
+        let mut off = thin;
+        off[1] = interval(t0 + 1e-3, t0 + 2e-3).unwrap();
+        off[3] = off[1];
+        assert!(contract_box(&p, &q, off, 0, 3).is_none());
     }
 
     #[test]

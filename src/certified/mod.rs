@@ -7,6 +7,7 @@
 //! [`centred_second_order`] (tight second derivatives for it), [`contact_cover`] (proven covers)
 //! and [`contact`] (the entry point [`certify_contact`]).
 
+mod anchor;
 pub mod centred_second_order;
 pub mod contact;
 pub mod contact_cover;
@@ -21,7 +22,7 @@ pub mod trace;
 
 pub use contact::{certify_contact, certify_contact_events, CertifiedContact, ContactOptions};
 pub use curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
-pub use trace::{certify_branch, CertifyOptions};
+pub use trace::{certify_branch, certify_branch_profiled, CertifyOptions, TraceProfile};
 
 #[cfg(test)]
 pub(crate) mod fixtures;

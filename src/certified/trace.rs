@@ -6,8 +6,18 @@
 //! 2. **Steps**: the transversal ODE ([`super::ode::TransversalOde`]) is integrated both ways by
 //!    [`Integrator`]; each step gives an a-priori box (the link of the chain), a tight end box and
 //!    Taylor coefficients with a remainder (the tube piece).
-//! 3. **Contraction**: each end box is pulled back onto `P = Q` by Krawczyk in three of the four
-//!    parameters (all curve points in the box stay in it), so widths stay near rounding level.
+//! 3. **Re-anchoring** (the contraction, [`CertifyOptions::contract`]): Krawczyk with the
+//!    fastest-moving parameter `x_k` held in an interval `X` around the end box's, on the end box
+//!    inflated in the other three, proves that the curve there is a graph over `x_k` and encloses
+//!    it (the *cover*); the next step starts from the curve point with `x_k = c = mid`, enclosed
+//!    by Krawczyk with `x_k = c` (a thin box: the along-curve spread of the end box is dropped, so
+//!    Taylor coefficients, tubes and tolerance stay at rounding level instead of growing along the
+//!    branch). That point's arc length is known up to a proven error, accumulated along the half:
+//!    the joining piece has arc length ≤ `|c − e_k| / min|x_k'|` over the cover (unit speed).
+//!    Boxes hold the covers too, so they hold the curve over their arc-length ranges despite the
+//!    error ([`EnclosureBox`]); tubes carry it ([`TubePiece::s0_error`]); the tolerance counts
+//!    the joining pieces. Re-anchored steps need no Jacobians (the direct Taylor form's wrapping
+//!    does not accumulate) and learn phase I's remainder guess from the last step.
 //! 4. **Ends**, each proven: the end box lies outside a domain (the last box straddles the
 //!    boundary); the curve crosses the start parameter's value inside the start's uniqueness box
 //!    (a closed loop: it is the start point, traced once); the field cannot be bounded because
@@ -15,6 +25,7 @@
 //!    normals separated (branches closer than can be resolved). A budget end is reported as
 //!    [`CertifiedEnd::Unproven`].
 
+use super::anchor::{join_tolerance, reanchor};
 use super::curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 use super::field::{norm_sqr, transversal_field, ScalarSurface};
 use super::krawczyk::{best_fixed_coordinate, krawczyk, KrawczykResult};
@@ -23,13 +34,17 @@ use crate::error::{Error, Result};
 use crate::geometry::surface::{pair_bounds as bounds, pair_widths};
 use crate::geometry::{Domain, RationalBezierPatch};
 use crate::scalar::{interval, point};
-use crate::validated::{Integrator, IntegratorOptions, StepFailure, StepRecord};
+use crate::validated::{Integrator, IntegratorOptions, IntegratorWork, StepFailure, StepRecord};
 use inari::Interval;
+use std::time::Instant;
 
 /// Parameters of [`certify_branch`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CertifyOptions {
-    /// Taylor order of the validated steps.
+    /// Taylor order of the validated steps (default 20). Measured with re-anchored thin boxes
+    /// (`tests/certified_perf_profile.rs`, thread CPU time): orders 14–20 cost within ≈ 5–8% of
+    /// each other on the sphere, bicubic, S31/S32 and Fig. 7 scenes (16–18 marginally fastest,
+    /// 12 and 24 slower); 20 keeps the longest steps at that cost.
     pub order: usize,
     /// Per-step size target of the last Taylor terms (the engine's tolerance).
     pub step_tolerance: f64,
@@ -77,6 +92,36 @@ fn transversal_width(v: &[Interval; 4], along: Option<usize>) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Where the time of [`certify_branch_profiled`] went (wall-clock seconds per part, and the
+/// validated integrator's work summed over both halves).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TraceProfile {
+    /// Validated steps (Taylor expansions, phase I and phase II).
+    pub step_seconds: f64,
+    /// Re-anchoring (Krawczyk on the end boxes, arc-length bounds).
+    pub anchor_seconds: f64,
+    /// Model-space boxes and tube radii.
+    pub enclosure_seconds: f64,
+    /// The loop-closing test.
+    pub closing_seconds: f64,
+    /// Counts and recurrence costs of the integrator.
+    pub integrator: IntegratorWork,
+}
+
+impl TraceProfile {
+    fn add_work(&mut self, w: IntegratorWork) {
+        let a = &mut self.integrator;
+        a.steps += w.steps;
+        a.phase1_attempts += w.phase1_attempts;
+        a.phase1_failures += w.phase1_failures;
+        a.remainder_shrinks += w.remainder_shrinks;
+        a.remainder_cuts += w.remainder_cuts;
+        a.box_units += w.box_units;
+        a.phase1_units += w.phase1_units;
+        a.phase2_units += w.phase2_units;
+    }
+}
+
 /// Certifies the branch through `start ≈ (σ, t, u, v)` (a point on the curve from the marcher).
 ///
 /// Errors: the start cannot be proven (singular, or not near the curve) or an internal check of
@@ -88,6 +133,17 @@ pub fn certify_branch(
     start: [f64; 4],
     opts: &CertifyOptions,
 ) -> Result<CertifiedBranch> {
+    certify_branch_profiled(p, q, start, opts).map(|(b, _)| b)
+}
+
+/// [`certify_branch`], also reporting where the time went.
+pub fn certify_branch_profiled(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    start: [f64; 4],
+    opts: &CertifyOptions,
+) -> Result<(CertifiedBranch, TraceProfile)> {
+    let mut profile = TraceProfile::default();
     let (dp, dq) = (p.domain(), q.domain());
     let scales = pair_widths(&dp, &dq);
     let fail = |reason: &str| Error::Certification {
@@ -117,17 +173,20 @@ pub fn certify_branch(
         1.0,
         Some((fixed, start[fixed], &uniq, v0.velocity[fixed])),
         opts,
+        &mut profile,
     )?;
     let (mut boxes, mut tubes, mut widths) = (Vec::new(), Vec::new(), Vec::new());
+    let mut tolerance = forward.tolerance;
     let first_end;
     if forward.end == CertifiedEnd::ClosedLoop {
         first_end = CertifiedEnd::ClosedLoop;
     } else {
-        let backward = trace_half(p, q, &y0, -1.0, None, opts)?;
+        let backward = trace_half(p, q, &y0, -1.0, None, opts, &mut profile)?;
         first_end = backward.end;
         boxes.extend(backward.boxes.into_iter().rev());
         tubes.extend(backward.tubes.into_iter().rev());
         widths.extend(backward.widths.into_iter().rev());
+        tolerance = tolerance.max(backward.tolerance);
     }
     let joined = boxes.len();
     boxes.extend(forward.boxes);
@@ -147,8 +206,7 @@ pub fn certify_branch(
             });
         }
     }
-    let tolerance = tubes.iter().map(|t| t.radius_xyz).fold(0.0, f64::max);
-    Ok(CertifiedBranch {
+    let branch = CertifiedBranch {
         start: y0,
         fixed,
         start_uniqueness: uniq,
@@ -157,7 +215,8 @@ pub fn certify_branch(
         tolerance,
         ends: [first_end, forward.end],
         widths,
-    })
+    };
+    Ok((branch, profile))
 }
 
 /// The proven start box and the box of its uniqueness proof: the largest of a few radii for which
@@ -191,6 +250,12 @@ struct Half {
     boxes: Vec<EnclosureBox>,
     tubes: Vec<TubePiece>,
     widths: Vec<f64>,
+    /// Bound on the distance of the half's true curve to its reported curve (see
+    /// [`join_tolerance`]); the last join is added by [`trace_half`].
+    tolerance: f64,
+    /// The last step's model-space radius and the arc-length bound of the piece joining its end
+    /// to the next start (no tube follows it yet).
+    pending_join: Option<(f64, f64)>,
     end: CertifiedEnd,
 }
 
@@ -206,14 +271,36 @@ fn trace_half(
     dir: f64,
     closure: Option<Closure>,
     opts: &CertifyOptions,
+    profile: &mut TraceProfile,
 ) -> Result<Half> {
-    let (dp, dq) = (p.domain(), q.domain());
+    let mut integ = make_integrator(p, q, dir, opts)?;
+    // Every step restarts from a thin re-anchored box: the direct Taylor form is enough (its
+    // wrapping does not accumulate) and saves the Jacobians. Without re-anchoring the set must
+    // not wrap: keep the mean-value form with Lohner's set.
+    integ.set_mean_value(!opts.contract);
+    integ.set_adaptive_guess(opts.contract);
+    let half = trace_half_with(&mut integ, p, q, y0, dir, closure, opts, profile);
+    profile.add_work(integ.work());
+    half.map(|mut h| {
+        if let Some((r, b)) = h.pending_join.take() {
+            h.tolerance = h.tolerance.max(join_tolerance(r, b, None));
+        }
+        h
+    })
+}
+
+fn make_integrator(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    dir: f64,
+    opts: &CertifyOptions,
+) -> Result<Integrator> {
     let ode = TransversalOde {
         p,
         q,
         orientation: dir,
     };
-    let mut integ = Integrator::new(
+    Integrator::new(
         &ode,
         IntegratorOptions {
             order: opts.order,
@@ -223,17 +310,38 @@ fn trace_half(
             qr: true,
             max_steps: usize::MAX,
         },
-    )?;
+    )
+}
+
+/// The loop of [`trace_half`] on a given integrator.
+#[allow(clippy::too_many_arguments)]
+fn trace_half_with(
+    integ: &mut Integrator,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y0: &[Interval; 4],
+    dir: f64,
+    closure: Option<Closure>,
+    opts: &CertifyOptions,
+    profile: &mut TraceProfile,
+) -> Result<Half> {
+    let (dp, dq) = (p.domain(), q.domain());
     let mut state = integ.start(y0, 0.0)?;
     let mut half = Half {
         boxes: Vec::new(),
         tubes: Vec::new(),
         widths: Vec::new(),
+        tolerance: 0.0,
+        pending_join: None,
         end: CertifiedEnd::ClosedLoop,
     };
     let mut crossing = Crossing::default();
     let scales = pair_widths(&dp, &dq);
     let mut current = *y0;
+    // The arc-length error of the current start (0 at the branch's start point) and a box holding
+    // the curve within twice that arc length of it (and the piece joining it to the last step).
+    let mut s_err = 0.0f64;
+    let mut cover = *y0;
     loop {
         if half.boxes.len() >= opts.max_steps || state.t >= opts.max_length {
             half.end = CertifiedEnd::Unproven {
@@ -247,7 +355,10 @@ fn trace_half(
             return Ok(half);
         }
         let limit = state.t + integ.options().h_max;
-        let rec = match integ.step(&mut state, limit) {
+        let clock = Instant::now();
+        let stepped = integ.step(&mut state, limit);
+        profile.step_seconds += clock.elapsed().as_secs_f64();
+        let rec = match stepped {
             Ok(r) => r,
             Err(Error::StepFailed { step, reason, .. }) => {
                 half.end = classify_failure(p, q, &current, step.max(opts.h_min), reason, &dp, &dq);
@@ -255,38 +366,93 @@ fn trace_half(
             }
             Err(e) => return Err(e),
         };
-        let apriori = to4(&rec.apriori);
-        let xyz = model_box(p, q, &apriori).ok_or_else(|| Error::Certification {
-            reason: "the model-space boxes of P and Q over the a-priori box are disjoint".into(),
-            near: mids(&apriori),
-        })?;
-        let s = if dir > 0.0 {
-            [rec.t0, rec.t1]
-        } else {
-            [-rec.t1, -rec.t0]
-        };
-        half.boxes.push(EnclosureBox {
-            s,
-            p: [apriori[0], apriori[1]],
-            q: [apriori[2], apriori[3]],
-            xyz,
-        });
-        half.tubes.push(tube_piece(p, &rec, dir)?);
         let end = to4(&rec.end);
-        current = end;
-        // The fastest-moving parameter: held fixed by the contraction, and the along-curve
+        // The fastest-moving parameter: held fixed by the re-anchoring, and the along-curve
         // direction when measuring the transversal width.
         let v = transversal_field(p, q, &mids(&end), dir).velocity;
         let along = v
             .iter()
             .all(|x| x.is_finite())
             .then(|| best_fixed_coordinate(&v, &scales));
-        if let (true, Some(k)) = (opts.contract, along) {
-            if let Some(enclosure) = contract(p, q, &end, k) {
-                let ratio = state.step_ratio;
-                state = integ.start(&enclosure, rec.t1)?;
+        let clock = Instant::now();
+        let anchor = match (opts.contract, along) {
+            (true, Some(k)) => reanchor(p, q, &end, k, &v, s_err, dir),
+            _ => None,
+        };
+        profile.anchor_seconds += clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let (next_err, next_cover, bridge) = match &anchor {
+            Some(a) => (a.s_err, a.cover, a.bridge),
+            None => (s_err, end, 0.0),
+        };
+        // The link: the a-priori box, and the curve pieces within the arc-length errors of both
+        // starts (which also join the flow's end to the re-anchored start).
+        let apriori = to4(&rec.apriori);
+        let link: [Interval; 4] =
+            std::array::from_fn(|i| apriori[i].convex_hull(cover[i]).convex_hull(next_cover[i]));
+        let xyz = model_box(p, q, &link).ok_or_else(|| Error::Certification {
+            reason: "the model-space boxes of P and Q over the a-priori box are disjoint".into(),
+            near: mids(&link),
+        })?;
+        // The arc-length range: the link holds the curve from (true) arc length t0 − s_err to
+        // t1 + next_err (the covers hold the curve within 2·err of either start); publish the part
+        // [t0 − s_err, t1 − next_err], so consecutive ranges touch. A last step that could not be
+        // re-anchored holds it up to t1 − s_err (next_err = s_err then).
+        let s = if dir > 0.0 {
+            let s0 = rec.t0 - s_err;
+            [s0, (rec.t1 - next_err).max(s0)]
+        } else {
+            let s1 = -rec.t0 + s_err;
+            [(-rec.t1 + next_err).min(s1), s1]
+        };
+        half.boxes.push(EnclosureBox {
+            s,
+            p: [link[0], link[1]],
+            q: [link[2], link[3]],
+            xyz,
+        });
+        // The radius enters the tolerance alone and in the joins before and after this step.
+        let join = half.pending_join.map_or(0.0, |(_, b)| b).max(bridge);
+        let tube = tube_piece(p, &rec, dir, s_err, half.tolerance - 0.5 * join)?;
+        // Every true point of this step is within radius_xyz of the reported curve; the piece
+        // joining the last step's end to this start is accounted for by join_tolerance.
+        half.tolerance = half.tolerance.max(tube.radius_xyz);
+        if let Some((r, b)) = half.pending_join.take() {
+            half.tolerance = half
+                .tolerance
+                .max(join_tolerance(r, b, Some(tube.radius_xyz)));
+        }
+        half.pending_join = (bridge > 0.0).then_some((tube.radius_xyz, bridge));
+        half.tubes.push(tube);
+        profile.enclosure_seconds += clock.elapsed().as_secs_f64();
+        let previous_cover = cover;
+        match anchor {
+            Some(a) => {
+                let (ratio, guess) = (state.step_ratio, state.guess_factor);
+                state = integ.start(&a.start, rec.t1)?;
                 state.step_ratio = ratio;
-                current = enclosure;
+                state.guess_factor = guess;
+                current = a.start;
+                s_err = a.s_err;
+                cover = a.cover;
+            }
+            None if s_err == 0.0 => {
+                // Not re-anchored: the integrator's set goes on, the arc length stays exact.
+                current = end;
+                cover = end;
+            }
+            None => {
+                let h = rec.h.max(opts.h_min);
+                half.end = match (outside(&end, &dp, &dq), singular_near(p, q, &end, h)) {
+                    (Some(surface), _) => CertifiedEnd::Boundary { surface },
+                    (None, Some(near)) => CertifiedEnd::Singular { near },
+                    (None, None) => CertifiedEnd::Unproven {
+                        reason: "the end box of a step could not be re-anchored on the curve"
+                            .into(),
+                        near: end,
+                    },
+                };
+                return Ok(half);
             }
         }
         half.widths.push(transversal_width(&current, along));
@@ -295,38 +461,14 @@ fn trace_half(
             return Ok(half);
         }
         if let Some(c) = closure {
-            if closes(&rec, &apriori, c, &mut crossing)? {
+            let clock = Instant::now();
+            let closed = closes(&rec, &link, &previous_cover, c, &mut crossing)?;
+            profile.closing_seconds += clock.elapsed().as_secs_f64();
+            if closed {
                 half.end = CertifiedEnd::ClosedLoop;
                 return Ok(half);
             }
         }
-    }
-}
-
-/// Pulls a box holding the curve back onto `P = Q`: Krawczyk with coordinate `k` held in its
-/// interval, on the box inflated in the other coordinates (a thin box whose free widths already
-/// equal the along-curve spread cannot pass the strict-interior test itself). All curve points of
-/// the inflated box lie in the Krawczyk image, so the image intersected with the original box
-/// still holds the curve point the original held.
-fn contract(
-    p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
-    y: &[Interval; 4],
-    k: usize,
-) -> Option<[Interval; 4]> {
-    let mut grown = *y;
-    for (i, g) in grown.iter_mut().enumerate() {
-        if i != k {
-            let r = g.wid().max(1e-15 * g.mag().max(1.0));
-            *g = interval(g.inf() - r, g.sup() + r)?;
-        }
-    }
-    match krawczyk(p, q, grown, k, 4) {
-        KrawczykResult::Proven { enclosure, .. } => {
-            let out: [Interval; 4] = std::array::from_fn(|i| enclosure[i].intersection(y[i]));
-            (!out.iter().any(|x| x.is_empty())).then_some(out)
-        }
-        KrawczykResult::NotProven(_) => None,
     }
 }
 
@@ -385,23 +527,8 @@ fn classify_failure(
     dp: &Domain,
     dq: &Domain,
 ) -> CertifiedEnd {
-    // Near a singular point the Taylor coefficients blow up (their radius of convergence is the
-    // distance to it), so the step collapses at a distance of many steps. Look for `0 ∈ m2` in
-    // boxes of radius 10ʲ·h·(1 + speed), j = 0..3, around the current box.
-    let speed = transversal_field(p, q, &mids(y), 1.0)
-        .velocity
-        .iter()
-        .fold(
-            1.0f64,
-            |m, v| if v.is_finite() { m.max(v.abs()) } else { m },
-        );
-    for factor in [1.0, 10.0, 100.0, 1000.0] {
-        let r = factor * h * (1.0 + speed);
-        let near = y.map(|x| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE));
-        let m2 = transversal_field(p, q, &near, 1.0).cross_norm_sqr;
-        if m2.contains(0.0) || m2.is_empty() {
-            return CertifiedEnd::Singular { near };
-        }
+    if let Some(near) = singular_near(p, q, y, h) {
+        return CertifiedEnd::Singular { near };
     }
     // A box reaching over a boundary does not prove that the curve leaves there (it may only
     // touch it): say so instead of claiming a boundary end.
@@ -422,33 +549,80 @@ fn classify_failure(
     }
 }
 
-/// One step's tube: midpoint polynomial and proven radii.
-fn tube_piece(p: &RationalBezierPatch, rec: &StepRecord, dir: f64) -> Result<TubePiece> {
-    let k = rec.coeffs.len();
-    let tau = interval(0.0, rec.h).unwrap_or(Interval::ENTIRE);
-    let coeffs: Vec<[f64; 4]> = rec
-        .coeffs
+/// A box around `y` on which `|N^P × N^Q|` may vanish (a singular or tangential point may lie in
+/// it), if one is found.
+///
+/// Near a singular point the Taylor coefficients blow up (their radius of convergence is the
+/// distance to it), so the step collapses at a distance of many steps. Looks for `0 ∈ m2` in
+/// boxes of radius 10ʲ·h·(1 + speed), j = 0..3, around `y`.
+fn singular_near(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y: &[Interval; 4],
+    h: f64,
+) -> Option<[Interval; 4]> {
+    let speed = transversal_field(p, q, &mids(y), 1.0)
+        .velocity
         .iter()
-        .map(|c| [c[0].mid(), c[1].mid(), c[2].mid(), c[3].mid()])
-        .collect();
-    // true(τ) − reported(τ) ∈ Σ_{j<k} (c_j − mid c_j) τʲ + R τᵏ, τ ∈ [0, h].
-    let radius_param = (0..4)
-        .map(|i| {
-            (0..k)
-                .rev()
-                .fold(rec.remainder_coeff[i], |acc, j| {
-                    acc * tau + (rec.coeffs[j][i] - point(coeffs[j][i]))
-                })
-                .mag()
-        })
-        .fold(0.0f64, f64::max);
-    // Model space: |P(y) − P(y')| ≤ (sup‖P_σ‖ + sup‖P_t‖)·r over the a-priori box grown by r.
-    let grow = |x: Interval| {
-        interval(x.inf() - radius_param, x.sup() + radius_param).unwrap_or(Interval::ENTIRE)
-    };
-    let [_, ps, pt] = p.first_order(grow(rec.apriori[0]), grow(rec.apriori[1]));
-    let lipschitz = norm_sqr(&ps).sqrt() + norm_sqr(&pt).sqrt();
-    let radius_xyz = (lipschitz * point(radius_param)).sup();
+        .fold(
+            1.0f64,
+            |m, v| if v.is_finite() { m.max(v.abs()) } else { m },
+        );
+    for factor in [1.0, 10.0, 100.0, 1000.0] {
+        let r = factor * h * (1.0 + speed);
+        let near = y.map(|x| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE));
+        let m2 = transversal_field(p, q, &near, 1.0).cross_norm_sqr;
+        if m2.contains(0.0) || m2.is_empty() {
+            return Some(near);
+        }
+    }
+    None
+}
+
+/// One step's tube: the polynomial through the centre of the step's initial set and its proven
+/// radii (the smaller of the direct and mean-value deviation bounds). The model-space radius is
+/// tightened with the centred partials only if it would exceed `refine_above`.
+fn tube_piece(
+    p: &RationalBezierPatch,
+    rec: &StepRecord,
+    dir: f64,
+    s0_error: f64,
+    refine_above: f64,
+) -> Result<TubePiece> {
+    let poly = rec.centre_polynomial();
+    let radii = rec.deviation_bound(&poly)?;
+    let radius_param = radii.iter().cloned().fold(0.0f64, f64::max);
+    let coeffs: Vec<[f64; 4]> = poly.iter().map(|c| [c[0], c[1], c[2], c[3]]).collect();
+    // Model space: |P(σ, t) − P(σ', t')| ≤ sup‖P_σ‖·|σ − σ'| + sup‖P_t‖·|t − t'| over the a-priori
+    // box grown by the radii (it holds both points and the path between them).
+    let grow = |x: Interval, r: f64| interval(x.inf() - r, x.sup() + r).unwrap_or(Interval::ENTIRE);
+    let (gs, gt) = (
+        grow(rec.apriori[0], radii[0]),
+        grow(rec.apriori[1], radii[1]),
+    );
+    let [_, ps, pt] = p.first_order(gs, gt);
+    let (mut norm_s, mut norm_t) = (norm_sqr(&ps).sqrt(), norm_sqr(&pt).sqrt());
+    // Where the Bernstein evaluation over the box is loose (well above the values at its centre,
+    // typically on long steps of high-degree patches), intersect with the centred (shifted power)
+    // form S_σ = a/g, S_t = b/g, g > 0: far tighter there, but costlier to evaluate.
+    // Only when it matters: the branch's tolerance is the largest radius, so a radius below
+    // `refine_above` (the largest so far) is published as it is (it is a valid bound).
+    let [_, cs, ct] = p.first_order(gs.mid(), gt.mid());
+    let at_centre = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let loose = (norm_s * point(radii[0]) + norm_t * point(radii[1])).sup();
+    if loose > refine_above
+        && (norm_s.sup() > 1.25 * at_centre(cs) || norm_t.sup() > 1.25 * at_centre(ct))
+    {
+        let (a, b, g) = p.scaled_first_order_centred(gs, gt, point(gs.mid()), point(gt.mid()));
+        let centred = [norm_sqr(&a).sqrt() / g, norm_sqr(&b).sqrt() / g];
+        for (n, c) in [&mut norm_s, &mut norm_t].into_iter().zip(centred) {
+            let both = n.intersection(c);
+            if !both.is_empty() {
+                *n = both;
+            }
+        }
+    }
+    let radius_xyz = (norm_s * point(radii[0]) + norm_t * point(radii[1])).sup();
     if !(radius_param.is_finite() && radius_xyz.is_finite()) {
         return Err(Error::Certification {
             reason: "unbounded tube radius".into(),
@@ -462,6 +636,7 @@ fn tube_piece(p: &RationalBezierPatch, rec: &StepRecord, dir: f64) -> Result<Tub
         coeffs,
         radius_param,
         radius_xyz,
+        s0_error,
     })
 }
 
@@ -481,6 +656,7 @@ struct Crossing {
 fn closes(
     rec: &StepRecord,
     apriori: &[Interval; 4],
+    bridge: &[Interval; 4],
     c: Closure,
     state: &mut Crossing,
 ) -> Result<bool> {
@@ -499,6 +675,12 @@ fn closes(
         return Ok(false);
     }
     let hull = &mut state.hull;
+    // The curve piece from the last step's end to this step's start.
+    if let Some(h) = hull.as_mut() {
+        for i in 0..4 {
+            h[i] = h[i].convex_hull(bridge[i]);
+        }
+    }
     let before = |x: Interval| {
         if speed > 0.0 {
             x.sup() < value

@@ -71,12 +71,25 @@ impl Expansion {
     }
 }
 
+/// Work done by a [`TaylorAd`] since it was created (for profiling; counts only).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AdWork {
+    /// Number of expansions.
+    pub expansions: usize,
+    /// Σ (order + 1)² over the expansions: the coefficient recurrences' cost, in units of one
+    /// order-0 pass over the tape.
+    pub coefficient_units: f64,
+    /// Σ n·(order + 1)² over the expansions with Jacobians: their extra cost, same unit.
+    pub jacobian_units: f64,
+}
+
 /// Taylor-mode AD engine for one recorded field, with reusable work buffers.
 #[derive(Clone, Debug)]
 pub struct TaylorAd {
     tape: Tape,
     coef: Vec<Interval>,
     dcoef: Vec<Interval>,
+    work: AdWork,
 }
 
 impl TaylorAd {
@@ -86,7 +99,13 @@ impl TaylorAd {
             tape,
             coef: Vec::new(),
             dcoef: Vec::new(),
+            work: AdWork::default(),
         }
+    }
+
+    /// The work done so far (counts of expansions and their recurrence costs).
+    pub fn work(&self) -> AdWork {
+        self.work
     }
 
     /// The dimension of the field.
@@ -145,6 +164,11 @@ impl TaylorAd {
         }
         let nodes = self.tape.ops.len();
         let s = order + 1;
+        self.work.expansions += 1;
+        self.work.coefficient_units += (s * s) as f64;
+        if with_jacobian {
+            self.work.jacobian_units += (n * s * s) as f64;
+        }
         self.coef.clear();
         self.coef.resize(nodes * s, ZERO);
         let nd = if with_jacobian { n } else { 0 };

@@ -85,6 +85,26 @@ pub fn prove_apriori(
     h: f64,
     scratch: &mut Expansion,
 ) -> Result<Apriori, EnclosureFailure> {
+    prove_apriori_with_guess(ad, y, exp_box, k, h, DEFAULT_GUESS_FACTOR, scratch)
+}
+
+/// The factor by which the first remainder guess of the high-order test exceeds the remainder
+/// term of the initial box's own expansion.
+pub const DEFAULT_GUESS_FACTOR: f64 = 1e3;
+
+/// [`prove_apriori`] with the first remainder guess `guess_factor·|y_k([y])·hᵏ|` (plus a small
+/// absolute term) instead of `1e3·|…|`. The remainder over the a-priori box usually exceeds the
+/// initial box's by a ratio that changes slowly along a trajectory; a caller that remembers it
+/// ([`remainder_ratio`]) saves the second expansion of a failed first guess. Any factor is sound.
+pub fn prove_apriori_with_guess(
+    ad: &mut TaylorAd,
+    y: &[Interval],
+    exp_box: &Expansion,
+    k: usize,
+    h: f64,
+    guess_factor: f64,
+    scratch: &mut Expansion,
+) -> Result<Apriori, EnclosureFailure> {
     if k == 0
         || exp_box.order < k
         || exp_box.dim != y.len()
@@ -108,7 +128,7 @@ pub fn prove_apriori(
             // Generous on purpose: Z is dominated by the polynomial part (width ≈ h·|f|), so a
             // large guess costs nothing in tightness (the remainder is recomputed over the proven
             // box afterwards) and usually passes the test at the first evaluation.
-            let r = (*c * tk).mag() * 1e3 + 1e-12 * (p.mag() + 1e-3) * h.min(1.0);
+            let r = (*c * tk).mag() * guess_factor + 1e-12 * (p.mag() + 1e-3) * h.min(1.0);
             symmetric(r)
         })
         .collect();
@@ -180,6 +200,20 @@ pub fn prove_apriori(
         Some(e) => EnclosureFailure::Domain(e),
         None => EnclosureFailure::NotContained,
     })
+}
+
+/// The largest ratio, over the components, of the proven remainder coefficient `a` to the
+/// initial box's own order-`k` coefficient (what [`prove_apriori_with_guess`]'s factor had to
+/// exceed); `None` where undefined (a zero or unbounded coefficient).
+pub fn remainder_ratio(a: &Apriori, exp_box: &Expansion, k: usize) -> Option<f64> {
+    let mut ratio: Option<f64> = None;
+    for (r, c) in a.remainder_coeff.iter().zip(exp_box.coeff(k)) {
+        let (rm, cm) = (r.mag(), c.mag());
+        if cm > 0.0 && rm.is_finite() && cm.is_finite() {
+            ratio = Some(ratio.map_or(rm / cm, |x| x.max(rm / cm)));
+        }
+    }
+    ratio
 }
 
 /// Given a proven enclosure `boxed`, encloses the remainder coefficient over it and intersects

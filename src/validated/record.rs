@@ -3,7 +3,7 @@
 use super::enclosure::EnclosureMethod;
 use super::lohner::{mat_mul, mat_vec};
 use crate::error::{Error, InputProblem, Result};
-use crate::scalar::interval;
+use crate::scalar::{interval, point};
 use inari::Interval;
 
 /// One proven step from `t0` to `t0 + h`.
@@ -36,7 +36,8 @@ pub struct StepRecord {
     /// Mean-value data: Taylor coefficients at the centre `x̂` of the initial set for `i < p`, and
     /// over the initial box for `p ≤ i < k` (`p` = the number of Jacobians).
     pub(crate) center_coeffs: Vec<Vec<Interval>>,
-    /// Mean-value data: `Jᵢ` (`i < p`, `1 ≤ p ≤ k`) row-major over the initial box.
+    /// Mean-value data: `Jᵢ` (`i < p`, `1 ≤ p ≤ k`) row-major over the initial box; empty for a
+    /// step without the mean-value form (then `center_coeffs` are the ranges over the box).
     pub(crate) jacobians: Vec<Vec<Interval>>,
     /// Mean-value data: the initial set is `x̂ + A·[r]`; this is `A` (interval copy of exact values).
     pub(crate) basis: Vec<Interval>,
@@ -77,15 +78,8 @@ impl StepRecord {
         };
         let direct = horner(&self.coeffs, &self.remainder_coeff);
         let central = horner(&self.center_coeffs, &self.remainder_coeff);
-        // S(τ) = Σ_{i<p} Jᵢ τⁱ, by Horner on matrices (orders p..k are ranges in `central`).
-        let p = self.jacobians.len();
-        let mut s = self.jacobians[p - 1].clone();
-        for jac in self.jacobians[..p - 1].iter().rev() {
-            for (sv, jv) in s.iter_mut().zip(jac) {
-                *sv = *sv * t + *jv;
-            }
-        }
-        let spread = mat_vec(&mat_mul(&s, &self.basis, n), &self.r, n);
+        // S(τ)·A·[r], S(τ) = Σ_{i<p} Jᵢ τⁱ (orders p..k are ranges in `central`).
+        let spread = self.spread(t);
         Ok((0..n)
             .map(|j| {
                 let mv = central[j] + spread[j];
@@ -98,6 +92,71 @@ impl StepRecord {
                 }
             })
             .collect())
+    }
+
+    /// A polynomial close to the solution from the centre of the initial set: the midpoints of
+    /// the coefficients at the centre (orders below the number of Jacobians) and over the initial
+    /// box (the others), `k` coefficients of dimension `n`.
+    pub fn centre_polynomial(&self) -> Vec<Vec<f64>> {
+        self.center_coeffs
+            .iter()
+            .map(|c| c.iter().map(|x| x.mid()).collect())
+            .collect()
+    }
+
+    /// For any polynomial `poly` (coefficients `poly[i][j]` of `τⁱ`, at most `k` of them, each of
+    /// dimension `n`), a proven bound per component of `|y(t0 + τ) − Σ poly[i]·τⁱ|` over
+    /// `τ ∈ [0, h]` and every solution from the initial set: the smaller of the direct Taylor form
+    /// (coefficient ranges over the initial box) and the mean-value form (centre coefficients
+    /// plus `(Σ Jᵢ τⁱ)·A·[r]`, which does not wrap the initial set). Errors on a wrong shape.
+    pub fn deviation_bound(&self, poly: &[Vec<f64>]) -> Result<Vec<f64>> {
+        let n = self.start.len();
+        let k = self.coeffs.len();
+        if poly.len() > k || poly.iter().any(|c| c.len() != n) {
+            return Err(Error::input(
+                "poly",
+                InputProblem::WrongCount {
+                    expected: k,
+                    found: poly.len(),
+                },
+            ));
+        }
+        let t = interval(0.0, self.h).unwrap_or(Interval::ENTIRE);
+        let zero = vec![0.0; n];
+        let horner = |cs: &[Vec<Interval>]| -> Vec<Interval> {
+            let mut acc = self.remainder_coeff.clone();
+            for (i, c) in cs.iter().enumerate().rev() {
+                let pc = poly.get(i).unwrap_or(&zero);
+                for j in 0..n {
+                    acc[j] = acc[j] * t + (c[j] - point(pc[j]));
+                }
+            }
+            acc
+        };
+        let direct = horner(&self.coeffs);
+        let central = horner(&self.center_coeffs);
+        let spread = self.spread(t);
+        Ok((0..n)
+            .map(|j| direct[j].mag().min((central[j] + spread[j]).mag()))
+            .collect())
+    }
+
+    /// `(Σ_{i<p} Jᵢ tⁱ)·A·[r]` for the times `t`: the mean-value part of the deviation of the
+    /// solutions from the one through the centre.
+    fn spread(&self, t: Interval) -> Vec<Interval> {
+        let n = self.start.len();
+        let p = self.jacobians.len();
+        if p == 0 {
+            // No mean-value data: the centre coefficients are the ranges over the initial box.
+            return vec![point(0.0); n];
+        }
+        let mut s = self.jacobians[p - 1].clone();
+        for jac in self.jacobians[..p - 1].iter().rev() {
+            for (sv, jv) in s.iter_mut().zip(jac) {
+                *sv = *sv * t + *jv;
+            }
+        }
+        mat_vec(&mat_mul(&s, &self.basis, n), &self.r, n)
     }
 
     /// Largest width of the end box.

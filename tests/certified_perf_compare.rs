@@ -1,0 +1,108 @@
+//! Certified tracing against the marcher on the same branch, in thread CPU time.
+//!
+//! `cargo test --release --test certified_perf_compare -- --nocapture` prints, per scene and
+//! branch: certified steps, CPU time (the best of `SSITRACE_PERF_REPS` runs, default 1), the
+//! marcher's CPU time on the same branch from the same start, their ratio, and the certified
+//! tolerance. Fig. 7 is an arc of arc length 1 (both halves together) to keep the suite fast.
+//! Uses only `certify_branch` and `trace_branch`, so the same file measures older versions.
+
+use ssitrace::certified::{certify_branch, CertifyOptions};
+use ssitrace::io::scene::Scene;
+use ssitrace::marching::{trace_branch, MarchOptions};
+use ssitrace::pipeline::{run_scene, RunOptions};
+use std::path::Path;
+
+/// CPU time of this thread in seconds (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)` on Linux, wall
+/// time elsewhere). Under load from other processes wall time is meaningless; thread CPU time
+/// still is (up to cache effects).
+fn cpu_seconds() -> f64 {
+    #[cfg(target_os = "linux")]
+    {
+        #[repr(C)]
+        struct Timespec {
+            tv_sec: i64,
+            tv_nsec: i64,
+        }
+        extern "C" {
+            fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
+        }
+        const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
+        let mut ts = Timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: clock_gettime writes one timespec (two 64-bit fields on 64-bit Linux) to a
+        // valid pointer.
+        if unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0 {
+            return ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64;
+        }
+    }
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs_f64())
+        .unwrap_or(0.0)
+}
+
+fn best_of<T>(reps: usize, mut f: impl FnMut() -> T) -> (T, f64) {
+    let mut best = f64::INFINITY;
+    let mut out = None;
+    for _ in 0..reps.max(1) {
+        let t0 = cpu_seconds();
+        let r = f();
+        best = best.min(cpu_seconds() - t0);
+        out = Some(r);
+    }
+    (out.expect("one run"), best)
+}
+
+#[test]
+fn certified_against_marching_cpu_time() {
+    let reps = std::env::var("SSITRACE_PERF_REPS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
+    for (file, max_length) in [
+        ("scenes/sphere_patch_plane.json", f64::INFINITY),
+        ("scenes/bicubic_transversal.json", f64::INFINITY),
+        ("scenes/two_loops_s31_s32.json", f64::INFINITY),
+        ("scenes/wu_andrade_fig7.json", 0.5),
+    ] {
+        let scene = Scene::from_path(Path::new(file)).expect("scene");
+        let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
+        let [p, q] = &scene.surfaces;
+        let branches = &outcome.intersection.branches;
+        let take = if max_length.is_finite() {
+            1
+        } else {
+            branches.len()
+        };
+        for b in branches.iter().take(take) {
+            let pt = b.points[b.points.len() / 2];
+            let start = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+            let opts = CertifyOptions {
+                max_length,
+                ..CertifyOptions::default()
+            };
+            let (c, cert) = best_of(reps, || {
+                certify_branch(p, q, start, &opts).expect("certify")
+            });
+            let march = MarchOptions {
+                step: scene.options.step,
+                ..MarchOptions::default()
+            };
+            let (_, marched) = best_of(reps.max(3), || trace_branch(p, q, start, &march));
+            println!(
+                "{file} branch {}: {} certified steps, {:.1} ms ({:.3} ms/step); marcher {:.2} ms; \
+                 ratio {:.0}x; tolerance {:.1e}",
+                b.id,
+                c.steps(),
+                1e3 * cert,
+                1e3 * cert / c.steps() as f64,
+                1e3 * marched,
+                cert / marched.max(1e-9),
+                c.tolerance
+            );
+            assert!(c.tolerance < 1e-9, "tolerance {}", c.tolerance);
+        }
+    }
+}
