@@ -140,8 +140,8 @@ fn fig7_points_spliced_from_a_neighbouring_loop_stray_onto_it() {
             })
             .unwrap()
     };
-    let own = certify(&s, &middle.points[i0], 20);
-    let other = certify(&s, &nearest(&middle.points[i0]), 20);
+    let own = certify(&s, &middle.points[i0], 60);
+    let other = certify(&s, &nearest(&middle.points[i0]), 60);
     let mut strayed = middle.clone();
     // Either side of the certified start (the marched point i0 itself).
     let spliced = [i0 - 1, i0 + 1];

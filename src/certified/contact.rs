@@ -658,5 +658,7 @@ fn tube_piece(p: &RationalBezierPatch, rec: &StepRecord, dir: f64) -> Result<Tub
         coeffs,
         radius_param,
         radius_xyz,
+        // The contact trace is not re-anchored: arc length counts exactly from the start.
+        s0_error: 0.0,
     })
 }
