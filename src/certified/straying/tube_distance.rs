@@ -182,6 +182,7 @@ mod tests {
             coeffs: vec![[0.0; 4], [1.0, 0.0, 0.0, 0.0]],
             radius_param: 1e-12,
             radius_xyz: 1e-12,
+            s0_error: 0.0,
         };
         let y = [0.5, 1e-6, 0.0, 0.0];
         let (tau, est) = closest(&t, &y);
@@ -200,6 +201,7 @@ mod tests {
             coeffs: vec![[0.0; 4], [1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]],
             radius_param: 0.0,
             radius_xyz: 0.0,
+            s0_error: 0.0,
         };
         let y = [0.5, 0.25 + 1e-5, 0.0, 0.0];
         let samples = 1_000_000;
