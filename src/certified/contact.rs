@@ -23,15 +23,15 @@
 use super::centred_second_order::CentredSecondOrder;
 use super::contact_cover::{contact_cover, ContactCover, CoverOptions};
 use super::curve::TubePiece;
-use super::field::{norm_sqr, ScalarSurface};
 use super::tangential::{contact_quadratic, tangential_velocity, ContactCase, TangentialFormula};
 use super::tangential_ode::{ScaledContact, TangentialOde};
+use super::trace::{h_max_for, tube_piece};
 use crate::error::{Error, Result};
 use crate::geometry::surface::{pair_bounds, pair_widths};
 use crate::geometry::RationalBezierPatch;
 use crate::intersection::{Event, EventKind};
 use crate::scalar::{interval, point};
-use crate::validated::{Integrator, IntegratorOptions, IntegratorState, StepRecord};
+use crate::validated::{Integrator, IntegratorOptions, IntegratorState};
 use inari::Interval;
 
 /// What one parameter box is, decided in interval arithmetic.
@@ -581,7 +581,9 @@ fn trace_half(
             xyz: p.enclose(apriori[0], apriori[1]),
             case,
         });
-        half.tubes.push(tube_piece(p, &rec, dir)?);
+        // Not re-anchored: arc length counts exactly from the start (`s0_error` 0); the
+        // model-space radius is always tightened with the centred partials.
+        half.tubes.push(tube_piece(p, &rec, dir, 0.0, 0.0)?);
         current = to4(&rec.end);
         t = rec.t1;
         let ode = TangentialOde {
@@ -609,56 +611,3 @@ fn trace_half(
     }
 }
 
-/// `h_max`, at most 1/8 of the smaller model-space diameter of the two patches.
-fn h_max_for(p: &RationalBezierPatch, q: &RationalBezierPatch, h_max: f64) -> f64 {
-    let diameter = |b: [Interval; 3]| b.iter().map(|x| x.wid()).fold(0.0, f64::max);
-    let size = diameter(p.bounding_box()).min(diameter(q.bounding_box()));
-    if size.is_finite() && size > 0.0 {
-        h_max.min(0.125 * size)
-    } else {
-        h_max
-    }
-}
-
-/// One step's tube: the midpoint polynomial and proven radii (as for transversal branches).
-fn tube_piece(p: &RationalBezierPatch, rec: &StepRecord, dir: f64) -> Result<TubePiece> {
-    let tau = interval(0.0, rec.h).unwrap_or(Interval::ENTIRE);
-    let coeffs: Vec<[f64; 4]> = rec
-        .coeffs
-        .iter()
-        .map(|c| [c[0].mid(), c[1].mid(), c[2].mid(), c[3].mid()])
-        .collect();
-    // solution(τ) − reported(τ) ∈ Σ_j (c_j − mid c_j) τʲ + R τᵏ for τ ∈ [0, h].
-    let radius_param = (0..4)
-        .map(|i| {
-            (0..coeffs.len())
-                .rev()
-                .fold(rec.remainder_coeff[i], |acc, j| {
-                    acc * tau + (rec.coeffs[j][i] - point(coeffs[j][i]))
-                })
-                .mag()
-        })
-        .fold(0.0f64, f64::max);
-    let grow = |x: Interval| {
-        interval(x.inf() - radius_param, x.sup() + radius_param).unwrap_or(Interval::ENTIRE)
-    };
-    let [_, ps, pt] = p.first_order(grow(rec.apriori[0]), grow(rec.apriori[1]));
-    let lipschitz = norm_sqr(&ps).sqrt() + norm_sqr(&pt).sqrt();
-    let radius_xyz = (lipschitz * point(radius_param)).sup();
-    if !(radius_param.is_finite() && radius_xyz.is_finite()) {
-        return Err(Error::Certification {
-            reason: "unbounded tangential tube radius".into(),
-            near: mids(&to4(&rec.apriori)),
-        });
-    }
-    Ok(TubePiece {
-        s0: dir * rec.t0,
-        direction: dir,
-        h: rec.h,
-        coeffs,
-        radius_param,
-        radius_xyz,
-        // The contact trace is not re-anchored: arc length counts exactly from the start.
-        s0_error: 0.0,
-    })
-}

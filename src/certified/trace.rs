@@ -306,7 +306,7 @@ fn make_integrator(
             order: opts.order,
             tolerance: opts.step_tolerance,
             h_min: opts.h_min,
-            h_max: h_max_for(p, q, opts),
+            h_max: h_max_for(p, q, opts.h_max),
             qr: true,
             max_steps: usize::MAX,
         },
@@ -472,15 +472,15 @@ fn trace_half_with(
     }
 }
 
-/// The largest step: `opts.h_max`, at most 1/8 of the smaller model-space diameter of the two
+/// The largest step: `h_max`, at most 1/8 of the smaller model-space diameter of the two
 /// patches.
-fn h_max_for(p: &RationalBezierPatch, q: &RationalBezierPatch, opts: &CertifyOptions) -> f64 {
+pub(crate) fn h_max_for(p: &RationalBezierPatch, q: &RationalBezierPatch, h_max: f64) -> f64 {
     let diameter = |b: [Interval; 3]| b.iter().map(|x| x.wid()).fold(0.0, f64::max);
     let size = diameter(p.bounding_box()).min(diameter(q.bounding_box()));
     if size.is_finite() && size > 0.0 {
-        opts.h_max.min(0.125 * size)
+        h_max.min(0.125 * size)
     } else {
-        opts.h_max
+        h_max
     }
 }
 
@@ -582,7 +582,7 @@ fn singular_near(
 /// One step's tube: the polynomial through the centre of the step's initial set and its proven
 /// radii (the smaller of the direct and mean-value deviation bounds). The model-space radius is
 /// tightened with the centred partials only if it would exceed `refine_above`.
-fn tube_piece(
+pub(crate) fn tube_piece(
     p: &RationalBezierPatch,
     rec: &StepRecord,
     dir: f64,
