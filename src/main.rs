@@ -318,11 +318,18 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
         );
     }
     let s = &outcome.stats;
-    if s.undecided_leaves > 0 || s.search_truncated || s.failed_starts > 0 {
+    if s.search_complete && s.failed_starts == 0 {
+        let _ = writeln!(
+            out,
+            "  search complete: {} pair(s) proven disjoint, {} proven free of closed loops",
+            s.disjoint_pairs, s.loop_free_pairs
+        );
+    } else {
         let _ = writeln!(out,
-            "  warning: {} undecided search box(es){}, {} failed start(s): small features may be missing",
-            s.undecided_leaves,
+            "  warning: search not complete: {} undecided region(s){}, {} undecided boundary leaves, {} failed start(s): small features may be missing (regions in the result's stats)",
+            s.undecided_regions.len(),
             if s.search_truncated { ", search truncated" } else { "" },
+            s.undecided_leaves,
             s.failed_starts
         );
     }

@@ -503,6 +503,15 @@ fn stats_json(o: &IntersectOutcome, step: f64) -> Map<String, Value> {
         "failed_starts": s.failed_starts,
         "undecided_leaves": s.undecided_leaves,
         "search_truncated": s.search_truncated,
+        "search_complete": s.search_complete,
+        "disjoint_pairs": s.disjoint_pairs,
+        "loop_free_pairs": s.loop_free_pairs,
+        "undecided_regions": s
+            .undecided_regions
+            .iter()
+            .map(|r| json!({"p": r.p, "q": r.q}))
+            .collect::<Vec<_>>(),
+        "contact_points": s.contact_points,
         "search_seconds": s.search_seconds,
         "march_seconds": s.march_seconds,
     });
