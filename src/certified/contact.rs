@@ -610,4 +610,3 @@ fn trace_half(
         }
     }
 }
-
