@@ -6,7 +6,9 @@ use ssitrace::certified::CertifiedEnd;
 use ssitrace::intersection::{BranchStatus, EndReason};
 use ssitrace::io::result_json::write_result;
 use ssitrace::io::scene::{Method, Scene};
-use ssitrace::io::svg::{certified_overlay, write_svg_with_overlay, DEFAULT_OVERLAY_BOXES};
+use ssitrace::io::svg::{
+    add_contact_boxes, certified_overlay, write_svg_with_overlay, DEFAULT_OVERLAY_BOXES,
+};
 use ssitrace::pipeline::{BranchCertificate, RunOptions, RunReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -146,7 +148,8 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
             .iter()
             .filter_map(|c| c.result.as_ref().ok())
             .collect();
-        let overlay = certified_overlay(&certified, DEFAULT_OVERLAY_BOXES);
+        let mut overlay = certified_overlay(&certified, DEFAULT_OVERLAY_BOXES);
+        add_contact_boxes(&mut overlay, &report.contacts, DEFAULT_OVERLAY_BOXES);
         write_svg_with_overlay(path, &outcome.intersection, domains, &title, &overlay)?;
         say(&format!("picture written to {}\n", path.display()));
     }

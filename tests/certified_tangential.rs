@@ -387,6 +387,23 @@ fn contact_json_holds_the_cover_boxes_bit_for_bit() {
             assert_eq!(interval_from_json(&j["xyz"][c]).unwrap(), b.xyz[c]);
         }
     }
+    // The SVG overlay draws the step boxes (merged into at most 4 hulls here), each holding the
+    // contact line's points of its steps.
+    let mut overlay = ssitrace::io::svg::Overlay::default();
+    ssitrace::io::svg::add_contact_boxes(&mut overlay, std::slice::from_ref(&r), 4);
+    let expected = r.steps.len().div_ceil(r.steps.len().div_ceil(4));
+    assert_eq!(overlay.p_boxes.len(), expected);
+    assert_eq!(overlay.xyz_boxes.len(), expected);
+    for k in 0..=100 {
+        let y = -0.45 + 0.9 * k as f64 / 100.0;
+        assert!(
+            overlay
+                .p_boxes
+                .iter()
+                .any(|b| b[0][0] <= 0.0 && 0.0 <= b[0][1] && b[1][0] <= y && y <= b[1][1]),
+            "contact point (0, {y}) outside the drawn boxes"
+        );
+    }
 }
 
 #[test]

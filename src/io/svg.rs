@@ -17,6 +17,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use crate::certified::contact::CertifiedContact;
 use crate::certified::{CertifiedBranch, CertifiedEnd, EnclosureBox};
 use crate::geometry::surface::Domain;
 use crate::intersection::{Branch, BranchStatus, EndReason, EventKind, Intersection};
@@ -135,6 +136,33 @@ pub fn certified_overlay(branches: &[&CertifiedBranch], max_boxes: usize) -> Ove
         }
     }
     overlay
+}
+
+/// Adds the step boxes of certified tangential contacts to `overlay` (consecutive boxes merged
+/// into their hulls so that at most `max_boxes` are drawn per contact; boxes with a non-finite
+/// bound are left out).
+pub fn add_contact_boxes(overlay: &mut Overlay, contacts: &[CertifiedContact], max_boxes: usize) {
+    for c in contacts {
+        let n = c.steps.len();
+        let per = n.div_ceil(max_boxes.max(1)).max(1);
+        for run in c.steps.chunks(per) {
+            let boxes: Vec<EnclosureBox> = run
+                .iter()
+                .map(|st| EnclosureBox {
+                    s: st.s,
+                    p: [st.apriori[0], st.apriori[1]],
+                    q: [st.apriori[2], st.apriori[3]],
+                    xyz: st.xyz,
+                })
+                .collect();
+            let (pb, mb) = hull(&boxes);
+            if finite_box(&pb[0]) && finite_box(&pb[1]) && finite_box(&mb) {
+                overlay.p_boxes.push(pb[0]);
+                overlay.q_boxes.push(pb[1]);
+                overlay.xyz_boxes.push(mb);
+            }
+        }
+    }
 }
 
 /// The colour of branch number `index` (its position in the result).
