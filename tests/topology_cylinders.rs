@@ -170,6 +170,36 @@ fn both_tangent_points_are_branch_points_with_four_arcs_each_traced_once() {
         assert_eq!(n.exits.len(), 4);
     }
 
+    // The search leaves undecided only tiny boxes at the two tangent points, which are
+    // (σ, t) = (±1, 0) on P and (s, t) = (±1, 0) on Q: nothing can hide elsewhere.
+    let st = &out.stats;
+    let off_node = |b: &[[f64; 2]; 2]| {
+        let far_s = b[0]
+            .iter()
+            .map(|x| (x.abs() - 1.0).abs())
+            .fold(0.0, f64::max);
+        let far_t = b[1].iter().map(|x| x.abs()).fold(0.0, f64::max);
+        far_s.max(far_t)
+    };
+    let spread = st
+        .undecided_regions
+        .iter()
+        .map(|r| off_node(&r.p).max(off_node(&r.q)))
+        .fold(0.0, f64::max);
+    println!(
+        "search: {:.2} s, complete {}, boundary starts {}, interior candidates {}, skipped {}, \
+         undecided regions {} (all within {spread:.1e} of the tangent points in parameters)",
+        st.search_seconds,
+        st.search_complete,
+        st.boundary_starts,
+        st.interior_candidates,
+        st.skipped_covered,
+        st.undecided_regions.len()
+    );
+    assert_eq!(st.failed_starts, 0);
+    assert!(!st.search_truncated);
+    assert!(spread < 1e-3);
+
     // Every traced point on both cylinders and on one of the planes x = ±y. Near the nodes x and
     // y are both small, so the plane test is |x² − y²| (the product of the two plane distances).
     let mut worst_cyl = 0.0f64;
