@@ -7,6 +7,9 @@
 //! Bernstein coefficients given by its blossom at the domain ends (see `monomial_bernstein`),
 //! summed per term in [`Interval`] arithmetic, so the resulting Bézier net encloses the exact
 //! Bernstein coefficients. (Expanding `(u0 + h·s)ⁱ` in powers of `s` first would cancel badly.)
+//! When the denominator's Bernstein coefficients are not all provably positive in the lowest
+//! degree (a circle arc of 180° or more), the same tables are built in a higher degree until
+//! they are (degree elevation, see [`PowerSurface::to_bezier`]).
 
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::bezier::{check_domain, RationalBezierPatch};
