@@ -53,6 +53,13 @@ pub enum InputProblem {
     /// A patch whose control net is degenerate (all control points coincide, so it has no normal).
     #[error("a degenerate patch (control points span no surface)")]
     Degenerate,
+    /// A rational denominator whose Bernstein coefficients stayed not provably positive up to
+    /// the largest degree tried (it may touch or nearly touch zero on the domain).
+    #[error("a weight polynomial not proven positive after degree elevation to {max_degree}")]
+    WeightNotProvenPositive {
+        /// The largest degree (per parameter direction) that was tried.
+        max_degree: usize,
+    },
 }
 
 /// Every error `ssitrace` reports. Variants carry the data needed to locate the problem.

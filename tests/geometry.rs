@@ -660,14 +660,14 @@ fn power_conversion_rejects_bad_input() {
     s.w = Some(vec![(1, 0, 1.0), (0, 0, -0.5)]);
     let (f, p) = input_error(s.to_bezier().unwrap_err());
     assert_eq!((f.as_str(), p), ("w", InputProblem::NonPositiveWeight));
-    // 1 + u² is positive on [−1, 1] but its Bernstein coefficients (2, 0, 2) are not provably so.
+    // 1 + u² is positive on [−1, 1] but its degree-2 Bernstein coefficients (2, 0, 2) are not
+    // provably so; in degree 3 they are (2, 2/3, 2/3, 2) > 0, so the conversion elevates to it.
     let mut s = base();
     s.domain = Domain::new(-1.0, 1.0, 0.0, 1.0);
     s.w = Some(vec![(0, 0, 1.0), (2, 0, 1.0)]);
-    assert_eq!(
-        input_error(s.to_bezier().unwrap_err()).1,
-        InputProblem::NonPositiveWeight
-    );
+    let elevated = s.to_bezier().unwrap();
+    assert_eq!(elevated.degree()[0], 3);
+    assert!(elevated.homogeneous().iter().all(|h| h[3].inf() > 0.0));
     let mut s = base();
     s.y[0].2 = f64::NAN;
     assert_eq!(
