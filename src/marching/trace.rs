@@ -36,7 +36,7 @@ use super::crossing::{cross_node, singular_between};
 use super::dqoc_step::dqoc_step;
 use super::newton::{refine, Constraint};
 use super::options::{MarchOptions, StepMethod};
-use super::tangent::{curve_frame, parameter_direction, CurveFrame};
+use super::tangent::{curvature, curve_frame, frame_from_derivs, parameter_direction, CurveFrame};
 use super::tangent_step::tangent_step;
 use super::StepPrediction;
 use crate::error::{Error, InputProblem, Result};
@@ -81,6 +81,8 @@ pub(super) struct Node {
     pub(super) x: [f64; 4],
     pub(super) frame: CurveFrame,
     pub(super) iterations: usize,
+    /// Curvature estimate `κ` of the curve here (see [`curvature`]); infinite at a singular point.
+    pub(super) curvature: f64,
     /// Whether the tangent is `−N^P × N^Q` (reversed to follow the direction of travel). Along a
     /// regular arc this never changes; a change between two points means the march stepped
     /// across a zero of `N^P × N^Q`: a singular point.
@@ -160,7 +162,9 @@ where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
-    let mut frame = curve_frame(p, q, x);
+    let (dp, dq) = (p.derivs(x[0], x[1]), q.derivs(x[2], x[3]));
+    let mut frame = frame_from_derivs(&dp, &dq);
+    let kappa = curvature(&dp, &dq, &frame);
     let mut flipped = false;
     if let Some(dir) = along {
         if frame.tangent.dot(&dir) < 0.0 {
@@ -172,6 +176,7 @@ where
         x,
         frame,
         iterations,
+        curvature: kappa,
         flipped,
     }
 }
@@ -202,27 +207,49 @@ where
     }
 }
 
+/// The predicted next point. The step `L` is an angle on tight curves: the arc is capped by the
+/// radius of curvature `R = 1/κ` estimated at the current point from second derivatives, so a
+/// loop far smaller than `L` (in model units) is still followed: the first step is at most `L·R`
+/// long, a circular step whose circle disagrees with `κ` (arc beyond `2·L·R`) becomes a tangent
+/// step of length `L·R`, and a tangent step is at most `R/2` long.
 fn predict(prev: Option<&Node>, cur: &Node, opts: &MarchOptions, step: f64) -> StepPrediction {
     let (xyz, t) = (&cur.frame.xyz, &cur.frame.tangent);
+    // Radius of curvature (infinite on straight stretches; 0 only at a singular point, where
+    // the cap is not applied: the singular-point rules handle it).
+    let radius = if cur.curvature > 0.0 && cur.curvature.is_finite() {
+        1.0 / cur.curvature
+    } else {
+        f64::INFINITY
+    };
     match (prev, opts.method) {
-        (_, StepMethod::Tangent) => tangent_step(xyz, t, step),
-        (None, _) => tangent_step(xyz, t, step * opts.first_step_fraction),
-        (Some(pv), StepMethod::Circular) => circular_step(
-            &pv.frame.xyz,
-            &pv.frame.tangent,
-            xyz,
-            t,
-            step,
-            opts.parallel_tolerance,
-        ),
-        (Some(pv), StepMethod::Dqoc) => dqoc_step(
-            &pv.frame.xyz,
-            &pv.frame.tangent,
-            xyz,
-            t,
-            step,
-            opts.parallel_tolerance,
-        ),
+        (_, StepMethod::Tangent) => tangent_step(xyz, t, step.min(0.5 * radius)),
+        (None, _) => tangent_step(xyz, t, (step * opts.first_step_fraction).min(step * radius)),
+        (Some(pv), method) => {
+            let pred = if method == StepMethod::Dqoc {
+                dqoc_step(
+                    &pv.frame.xyz,
+                    &pv.frame.tangent,
+                    xyz,
+                    t,
+                    step,
+                    opts.parallel_tolerance,
+                )
+            } else {
+                circular_step(
+                    &pv.frame.xyz,
+                    &pv.frame.tangent,
+                    xyz,
+                    t,
+                    step,
+                    opts.parallel_tolerance,
+                )
+            };
+            if pred.arc > 2.0 * step * radius {
+                tangent_step(xyz, t, step * radius)
+            } else {
+                pred
+            }
+        }
     }
 }
 
