@@ -207,49 +207,57 @@ where
     }
 }
 
-/// The predicted next point. The step `L` is an angle on tight curves: the arc is capped by the
-/// radius of curvature `R = 1/κ` estimated at the current point from second derivatives, so a
-/// loop far smaller than `L` (in model units) is still followed: the first step is at most `L·R`
-/// long, a circular step whose circle disagrees with `κ` (arc beyond `2·L·R`) becomes a tangent
-/// step of length `L·R`, and a tangent step is at most `R/2` long.
+/// Below this chord (relative to the size of the coordinates, `max(|x|, 1)`) the circle through
+/// the last two points is dominated by f64 noise (`ε|x|` on a chord of `√ε|x|`-ish), and the
+/// radius of curvature from second derivatives replaces it.
+const TINY_CHORD: f64 = 1e-5;
+
+/// The predicted next point. The step `L` is an angle on tight curves: a circular step's arc is
+/// `L` times the radius of the circle through the last two points (when below 1), so the marcher
+/// follows a loop of any size. Where that circle cannot be trusted the radius of curvature
+/// `R = 1/κ` estimated at the current point from second derivatives gives the step: the first
+/// step of a half (no circle yet) is at most `L·R` long, and on chords shorter than
+/// [`TINY_CHORD`] (a loop of radius 1e-6 at unit coordinates) a tangent step of `L·min(R, 1)`
+/// replaces the circular one.
 fn predict(prev: Option<&Node>, cur: &Node, opts: &MarchOptions, step: f64) -> StepPrediction {
     let (xyz, t) = (&cur.frame.xyz, &cur.frame.tangent);
-    // Radius of curvature (infinite on straight stretches; 0 only at a singular point, where
-    // the cap is not applied: the singular-point rules handle it).
-    let radius = if cur.curvature > 0.0 && cur.curvature.is_finite() {
-        1.0 / cur.curvature
-    } else {
-        f64::INFINITY
-    };
+    // Infinite on straight stretches (no cap), 0 never (κ is finite or infinite).
+    let radius = 1.0 / cur.curvature;
     match (prev, opts.method) {
-        (_, StepMethod::Tangent) => tangent_step(xyz, t, step.min(0.5 * radius)),
-        (None, _) => tangent_step(xyz, t, (step * opts.first_step_fraction).min(step * radius)),
-        (Some(pv), method) => {
-            let pred = if method == StepMethod::Dqoc {
-                dqoc_step(
-                    &pv.frame.xyz,
-                    &pv.frame.tangent,
-                    xyz,
-                    t,
-                    step,
-                    opts.parallel_tolerance,
-                )
-            } else {
-                circular_step(
-                    &pv.frame.xyz,
-                    &pv.frame.tangent,
-                    xyz,
-                    t,
-                    step,
-                    opts.parallel_tolerance,
-                )
-            };
-            if pred.arc > 2.0 * step * radius {
-                tangent_step(xyz, t, step * radius)
-            } else {
-                pred
-            }
+        (_, StepMethod::Tangent) => tangent_step(xyz, t, step),
+        (None, _) => {
+            let first = step * opts.first_step_fraction;
+            tangent_step(
+                xyz,
+                t,
+                if radius > 0.0 {
+                    first.min(step * radius)
+                } else {
+                    first
+                },
+            )
         }
+        (Some(pv), _)
+            if radius > 0.0 && (xyz - pv.frame.xyz).norm() < TINY_CHORD * xyz.norm().max(1.0) =>
+        {
+            tangent_step(xyz, t, step * radius.min(1.0))
+        }
+        (Some(pv), StepMethod::Circular) => circular_step(
+            &pv.frame.xyz,
+            &pv.frame.tangent,
+            xyz,
+            t,
+            step,
+            opts.parallel_tolerance,
+        ),
+        (Some(pv), StepMethod::Dqoc) => dqoc_step(
+            &pv.frame.xyz,
+            &pv.frame.tangent,
+            xyz,
+            t,
+            step,
+            opts.parallel_tolerance,
+        ),
     }
 }
 
@@ -517,7 +525,12 @@ fn check_options(opts: &MarchOptions) -> Result<()> {
 
 /// Refines a start guess onto the curve: a parameter already on a domain boundary is held there,
 /// otherwise the point moves orthogonally to the (approximate) tangent.
-fn refine_start<S1, S2>(p: &S1, q: &S2, guess: [f64; 4], opts: &MarchOptions) -> Result<Node>
+pub(super) fn refine_start<S1, S2>(
+    p: &S1,
+    q: &S2,
+    guess: [f64; 4],
+    opts: &MarchOptions,
+) -> Result<Node>
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
