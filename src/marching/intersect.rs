@@ -197,6 +197,49 @@ fn segment_distance(c: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::analytic::{AnalyticSurface, Jet2};
+    use crate::geometry::Domain;
+    use crate::intersection::{BranchStatus, CurvePoint, EndReason};
+
+    #[test]
+    fn covers_holds_the_curve_but_not_a_circle_0_002_away() {
+        // The plane z = 0 as P (parameters = x, y); a traced circle of radius 0.3 with points
+        // every 0.05 rad from 0 to 5 rad (chords 0.015, sagitta 0.3·(1 − cos 0.025) ≈ 9.4e-5).
+        let d = Domain::new(-1.0, 1.0, -1.0, 1.0);
+        let plane = AnalyticSurface::new(d, |u: Jet2, v: Jet2| [u, v, Jet2::constant(0.0)]);
+        let at = |r: f64, a: f64| [r * a.cos(), r * a.sin()];
+        let points: Vec<CurvePoint> = (0..=100)
+            .map(|k| {
+                let [x, y] = at(0.3, 0.05 * k as f64);
+                CurvePoint {
+                    p: [x, y],
+                    q: [x, y],
+                    xyz: [x, y, 0.0],
+                }
+            })
+            .collect();
+        let branch = Branch {
+            id: 0,
+            status: BranchStatus::Open,
+            ends: [EndReason::PointLimit, EndReason::PointLimit],
+            points,
+        };
+        let scales = [2.0; 4];
+        // Points of the circle itself between the traced points (worst: chord midpoints).
+        for k in 0..100 {
+            let [x, y] = at(0.3, 0.05 * k as f64 + 0.025);
+            assert!(covers(&branch, &[x, y, x, y], &plane, 1e-8, &scales));
+        }
+        // The concentric circle 0.002 outside and inside, and a point of the circle beyond the traced arc (0 to 5 rad).
+        for k in 0..100 {
+            for r in [0.302, 0.298] {
+                let [x, y] = at(r, 0.05 * k as f64 + 0.025);
+                assert!(!covers(&branch, &[x, y, x, y], &plane, 1e-8, &scales));
+            }
+        }
+        let [x, y] = at(0.3, 5.5);
+        assert!(!covers(&branch, &[x, y, x, y], &plane, 1e-8, &scales));
+    }
 
     #[test]
     fn segment_distance_matches_closed_form() {
