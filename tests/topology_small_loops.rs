@@ -1,6 +1,9 @@
 //! No missed branches (issue #5): small interior loops are found by the start-point search with
 //! its rigorous loop-exclusion test, down to a loop of radius 1e-6 in a unit-size model, and the
-//! search says whether it settled every region or which boxes it left undecided.
+//! search says whether it settled every region or which boxes it left undecided; the marcher
+//! (default options, step 0.05) closes each of those loops once. At r = 1e-8 the plane
+//! z = 1 − r² rounds to 1 − 2⁻⁵³ and the search honestly reports undecided boxes holding the
+//! circle. Close loops (0.002 apart, step 0.05) are each traced once.
 //!
 //! Each case checks against closed forms: the paraboloid z = 1 − x² − y² (an exact biquadratic
 //! Bézier patch) cut by the plane z = c is the circle of radius √(1 − c) about the z axis.
@@ -80,7 +83,7 @@ fn loops_of_radius_1e2_1e4_1e6_are_found_or_boxed() {
         "radius  complete pairs disjoint loop-free undecided starts start-err quadrants \
          marched   points radius-err search-ms"
     );
-    for r in [1e-2f64, 1e-4, 1e-6] {
+    for r in [1e-2f64, 1e-4, 1e-6, 1e-8] {
         let c = 1.0 - r * r;
         // 1 − c is exact in f64 (Sterbenz), so the true radius of the patches used is:
         let exact_r = (1.0 - c).sqrt();
@@ -89,13 +92,11 @@ fn loops_of_radius_1e2_1e4_1e6_are_found_or_boxed() {
         let report = find_start_points(&bump, &q, &SearchOptions::default());
         let ms = 1e3 * t0.elapsed().as_secs_f64();
         let (start_err, quadrants) = starts_on_circle(&report, exact_r);
-        // The marcher's residual tolerance must resolve the radius: the normals meet at an
-        // angle of about 2r, so a residual τ moves the curve by about τ / 2r.
-        let march = MarchOptions {
-            step: 0.05,
-            tolerance: (1e-10f64).min(1e-4 * r * r).max(2e-15),
-            ..MarchOptions::default()
-        };
+        // Default options (step L = 0.05, tolerance 1e-10) at every radius: the marcher's steps
+        // follow the curvature, and its Newton stops on corrections below the tolerance (or the
+        // f64 position noise, ε/2r here), not on the residual alone (the normals meet at an
+        // angle of about 2r, so a residual τ would only hold the curve to τ / 2r).
+        let march = MarchOptions::default();
         let out = intersect(&bump, &q, &march, &SearchOptions::default());
         let closed: Vec<&Branch> = out
             .intersection
@@ -137,16 +138,14 @@ fn loops_of_radius_1e2_1e4_1e6_are_found_or_boxed() {
                 quadrants >= 3,
                 "r = {r}: starts in {quadrants} quadrants only"
             );
-            if r >= 1e-4 {
-                // Marched: one closed branch on the circle.
-                assert_eq!(closed.len(), 1, "r = {r}: {:?}", out.stats);
-                assert_eq!(out.intersection.branches.len(), 1);
-                assert!(err < 1e-3, "r = {r}: relative radius error {err}");
-            } else {
-                // At r = 1e-6 the normals meet at 2e-6 rad: the marcher's Newton (model-unit
-                // tolerance, f64) cannot hold the curve to 1e-3·r; what it does is printed.
-                println!("  r = {r}: marching outcome {:?}", out.stats);
-            }
+            // Marched: one closed branch on the circle, traced once, at every radius (the
+            // marcher's steps are capped by the radius of curvature, ~r here, not by L).
+            assert_eq!(closed.len(), 1, "r = {r}: {:?}", out.stats);
+            assert_eq!(out.intersection.branches.len(), 1);
+            assert!(err < 1e-3, "r = {r}: relative radius error {err}");
+            // A full turn in angle steps of about L = 0.05 rad: ~2π/L points, not thousands.
+            let pts = closed[0].points.len();
+            assert!((100..=400).contains(&pts), "r = {r}: {pts} points");
         } else {
             // Not settled: the loop is either found anyway, or an undecided box holds it.
             println!("  r = {r}: search not complete; checking the undecided boxes");
@@ -326,4 +325,66 @@ fn touching_point_is_reported_as_undecided_not_dropped() {
             .max(r.p[1][0].abs().min(r.p[1][1].abs()));
         assert!(far < 1e-3, "undecided region away from the apex: {r:?}");
     }
+}
+
+#[test]
+fn concentric_loops_0_002_apart_are_each_traced_once_with_the_default_step() {
+    // z = K(w − a)(w − b), w = x² + y², cut by z = 0: exactly the concentric circles of radius
+    // 0.3 and 0.302 (a = 0.3², b = 0.302²), 0.002 apart, far closer than the step L = 0.05
+    // (chords ≈ 0.015 long). K = 100 makes the surfaces meet at a slope of about 0.07.
+    let (r1, r2, k) = (0.3f64, 0.302f64, 100.0);
+    let (a, b) = (r1 * r1, r2 * r2);
+    let p = patch(vec![
+        (4, 0, k),
+        (2, 2, 2.0 * k),
+        (0, 4, k),
+        (2, 0, -k * (a + b)),
+        (0, 2, -k * (a + b)),
+        (0, 0, k * a * b),
+    ]);
+    let q = plane(0.0);
+    let out = intersect(&p, &q, &MarchOptions::default(), &SearchOptions::default());
+    println!(
+        "concentric loops: search complete {}, starts {}, skipped {}, branches {}",
+        out.stats.search_complete,
+        out.stats.interior_candidates + out.stats.boundary_starts,
+        out.stats.skipped_covered,
+        out.intersection.branches.len()
+    );
+    // Between the circles z has a ring of minima (w = (a + b)/2, z = −K(b − a)²/4 < 0) where the
+    // normals are parallel: the search may leave boxes there undecided, but only there.
+    for reg in &out.stats.undecided_regions {
+        let [x, y] = reg.p;
+        let near = |lo: f64, hi: f64| 0.0f64.clamp(lo, hi);
+        let dmin = near(x[0], x[1]).hypot(near(y[0], y[1]));
+        let dmax = x[0].abs().max(x[1].abs()).hypot(y[0].abs().max(y[1].abs()));
+        assert!(
+            dmin <= r2 + 0.01 && dmax >= r1 - 0.01,
+            "undecided box away from the annulus: {reg:?}"
+        );
+    }
+    assert_eq!(
+        out.intersection.branches.len(),
+        2,
+        "skipped {} of {} starts",
+        out.stats.skipped_covered,
+        out.stats.interior_candidates
+    );
+    let mut found = Vec::new();
+    for br in &out.intersection.branches {
+        assert_eq!(br.status, BranchStatus::Closed);
+        let (lo, hi) = radius_range(br);
+        let r = if (lo - r1).abs() < 1e-3 { r1 } else { r2 };
+        let worst = (lo - r).abs().max((hi - r).abs());
+        println!(
+            "  loop r = {r}: {} points, radius range [{lo:.12}, {hi:.12}], worst error {worst:.1e}",
+            br.points.len()
+        );
+        assert!(worst < 1e-8, "branch off its circle: [{lo}, {hi}]");
+        // Once round: ~2π/L points (about 127), not twice that.
+        assert!((100..=200).contains(&br.points.len()));
+        found.push(r);
+    }
+    found.sort_by(f64::total_cmp);
+    assert_eq!(found, vec![r1, r2], "each circle traced exactly once");
 }

@@ -11,7 +11,7 @@
 
 use super::branch_point::{analyse_node, locate_singular_point, SingularNode};
 use super::intersect::{covers, dist3};
-use super::trace::{trace_branch, trace_from_node, TracedBranch};
+use super::trace::{refine_start, trace_branch, trace_from_node, TracedBranch};
 use super::MarchOptions;
 use crate::certified::tangential::ContactCase;
 use crate::geometry::surface::pair_widths;
@@ -222,12 +222,16 @@ where
         out: GraphOutcome::default(),
     };
     let scales = pair_widths(&p.domain(), &q.domain());
-    let cover = opts.step / 3.0;
+    // Points are accurate to the Newton tolerance (a hundredfold margin for the start's own
+    // refinement and the chords' end points).
+    let floor = 100.0 * opts.tolerance;
     for start in starts {
+        // Tested on the curve: the start refined by Newton (the raw guess if that fails).
+        let on_curve = refine_start(p, q, *start, &opts).map_or(*start, |n| n.x);
         if g.out
             .branches
             .iter()
-            .any(|b| covers(b, start, p, cover, &scales))
+            .any(|b| covers(b, &on_curve, p, floor, &scales))
         {
             g.out.stats.skipped_covered += 1;
             continue;

@@ -40,8 +40,9 @@ pub struct Refined {
 
 /// Refines `guess` onto `P = Q` under `constraint`.
 ///
-/// Iterations count corrections until one moves the point by at most `tol` (model units) and
-/// leaves `|P − Q| ≤ tol` (the usual "correction below tolerance" rule: a prediction already
+/// Iterations count corrections until one moves the point by at most `tol` (model units; or by
+/// at most the f64 position noise `4ε·max(|P|, 1) / sin∠(N^P, N^Q)` where that is larger, so
+/// near-tangent surfaces, e.g. a loop of radius 1e-6, converge) and leaves `|P − Q| ≤ tol` (the usual "correction below tolerance" rule: a prediction already
 /// within `tol` takes one iteration, the confirming one).
 ///
 /// Guarantees on `Ok`: `|P − Q| ≤ tol` and the constraint residual `≤ tol` at the returned point,
@@ -114,7 +115,15 @@ where
             Constraint::Plane { point, normal } => normal.dot(&(pp - point)).abs(),
             Constraint::Fixed { index, value } => (x[index] - value).abs(),
         };
-        if moved <= tol && residual <= tol && c_res <= tol.max(1e-15) {
+        // The correction cannot fall below the position noise of f64: evaluation errors of
+        // about ε|P| in P − Q move the solution by that over the sine of the normals' angle
+        // (5e-11 for a loop of radius 1e-6 at z ≈ 1). A correction at that floor counts as
+        // converged; the residual tests below are unchanged, so `|P − Q| ≤ tol` still holds.
+        let (np, nq) = (dp.normal(), dq.normal());
+        let sine = np.cross(&nq).norm() / (np.norm() * nq.norm());
+        let noise = 4.0 * f64::EPSILON * pp.norm().max(qq.norm()).max(1.0) / sine;
+        let step_ok = moved <= tol || (noise.is_finite() && moved <= noise);
+        if step_ok && residual <= tol && c_res <= tol.max(1e-15) {
             return Ok(Refined {
                 x: [x[0], x[1], x[2], x[3]],
                 iterations: it,

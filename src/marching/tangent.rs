@@ -59,6 +59,34 @@ pub fn frame_from_derivs(dp: &SurfaceDerivs, dq: &SurfaceDerivs) -> CurveFrame {
     }
 }
 
+/// Curvature `κ ≥ 0` of the intersection curve at a point, from second derivatives.
+///
+/// The curvature vector `k ⟂ t` has normal components `k·n̂ᴾ = IIᴾ(t, t)` and `k·n̂^Q = II^Q(t, t)`
+/// (the normal curvatures of both surfaces along the unit tangent `t`), so with `c = n̂ᴾ·n̂^Q`,
+/// `κ² = (κᴾ² + κ^Q² − 2c κᴾκ^Q) / (1 − c²)`. An estimate in f64 (not a bound); infinite where
+/// the normals are parallel or a surface is degenerate.
+pub fn curvature(dp: &SurfaceDerivs, dq: &SurfaceDerivs, frame: &CurveFrame) -> f64 {
+    let (np, nq) = (dp.normal(), dq.normal());
+    let (lp, lq) = (np.norm(), nq.norm());
+    if lp == 0.0 || lq == 0.0 || frame.tangent == Vec3::zeros() {
+        return f64::INFINITY;
+    }
+    let (np, nq) = (np / lp, nq / lq);
+    let normal_curvature = |d: &SurfaceDerivs, n: &Vec3, [a, b]: [f64; 2]| {
+        n.dot(&(d.suu * (a * a) + d.suv * (2.0 * a * b) + d.svv * (b * b)))
+    };
+    let kp = normal_curvature(dp, &np, frame.tangent_p);
+    let kq = normal_curvature(dq, &nq, frame.tangent_q);
+    let c = np.dot(&nq);
+    let sin2 = np.cross(&nq).norm_squared();
+    let k2 = (kp * kp + kq * kq - 2.0 * c * kp * kq).max(0.0) / sin2;
+    if k2.is_finite() {
+        k2.sqrt()
+    } else {
+        f64::INFINITY
+    }
+}
+
 impl CurveFrame {
     /// The same frame with the tangent (and parameter tangents) reversed.
     pub fn reversed(mut self) -> Self {
@@ -89,5 +117,30 @@ mod tests {
         let s = f.tangent.dot(&exact).signum();
         assert!((f.tangent_p[0] - s).abs() < 1e-14 && f.tangent_p[1].abs() < 1e-14);
         assert!((f.tangent_q[0] + s * a.sin()).abs() < 1e-14);
+        // The unit circle: curvature 1.
+        let (dp, dq) = (cyl.derivs(a, 0.0), plane.derivs(a.cos(), a.sin()));
+        assert!((curvature(&dp, &dq, &f) - 1.0).abs() < 1e-13);
+    }
+
+    #[test]
+    fn sphere_and_plane_curvature_is_one_over_the_circle_radius() {
+        // Sphere of radius 2 (longitude u, latitude v) against z = 1.9: a circle of radius
+        // √(4 − 1.9²), met at the latitude v = asin(0.95), where the normals are far from parallel.
+        let d = Domain::new(-4.0, 4.0, -4.0, 4.0);
+        let sphere = AnalyticSurface::new(d, |u: Jet2, v: Jet2| {
+            [
+                u.cos() * v.cos() * 2.0,
+                u.sin() * v.cos() * 2.0,
+                v.sin() * 2.0,
+            ]
+        });
+        let plane = AnalyticSurface::new(d, |u: Jet2, v: Jet2| [u, v, Jet2::constant(1.9)]);
+        let (u, v) = (0.4f64, 0.95f64.asin());
+        let r = 2.0 * v.cos();
+        let x = [u, v, r * u.cos(), r * u.sin()];
+        let f = curve_frame(&sphere, &plane, x);
+        let (dp, dq) = (sphere.derivs(x[0], x[1]), plane.derivs(x[2], x[3]));
+        let k = curvature(&dp, &dq, &f);
+        assert!((k * r - 1.0).abs() < 1e-12, "κ = {k}, 1/r = {}", 1.0 / r);
     }
 }

@@ -36,7 +36,7 @@ use super::crossing::{cross_node, singular_between};
 use super::dqoc_step::dqoc_step;
 use super::newton::{refine, Constraint};
 use super::options::{MarchOptions, StepMethod};
-use super::tangent::{curve_frame, parameter_direction, CurveFrame};
+use super::tangent::{curvature, curve_frame, frame_from_derivs, parameter_direction, CurveFrame};
 use super::tangent_step::tangent_step;
 use super::StepPrediction;
 use crate::error::{Error, InputProblem, Result};
@@ -81,6 +81,8 @@ pub(super) struct Node {
     pub(super) x: [f64; 4],
     pub(super) frame: CurveFrame,
     pub(super) iterations: usize,
+    /// Curvature estimate `κ` of the curve here (see [`curvature`]); infinite at a singular point.
+    pub(super) curvature: f64,
     /// Whether the tangent is `−N^P × N^Q` (reversed to follow the direction of travel). Along a
     /// regular arc this never changes; a change between two points means the march stepped
     /// across a zero of `N^P × N^Q`: a singular point.
@@ -160,7 +162,9 @@ where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
-    let mut frame = curve_frame(p, q, x);
+    let (dp, dq) = (p.derivs(x[0], x[1]), q.derivs(x[2], x[3]));
+    let mut frame = frame_from_derivs(&dp, &dq);
+    let kappa = curvature(&dp, &dq, &frame);
     let mut flipped = false;
     if let Some(dir) = along {
         if frame.tangent.dot(&dir) < 0.0 {
@@ -172,6 +176,7 @@ where
         x,
         frame,
         iterations,
+        curvature: kappa,
         flipped,
     }
 }
@@ -202,11 +207,41 @@ where
     }
 }
 
+/// Below this chord (relative to the size of the coordinates, `max(|x|, 1)`) the circle through
+/// the last two points is dominated by f64 noise (`ε|x|` on a chord of `√ε|x|`-ish), and the
+/// radius of curvature from second derivatives replaces it.
+const TINY_CHORD: f64 = 1e-5;
+
+/// The predicted next point. The step `L` is an angle on tight curves: a circular step's arc is
+/// `L` times the radius of the circle through the last two points (when below 1), so the marcher
+/// follows a loop of any size. Where that circle cannot be trusted the radius of curvature
+/// `R = 1/κ` estimated at the current point from second derivatives gives the step: the first
+/// step of a half (no circle yet) is at most `L·R` long, and on chords shorter than
+/// [`TINY_CHORD`] (a loop of radius 1e-6 at unit coordinates) a tangent step of `L·min(R, 1)`
+/// replaces the circular one.
 fn predict(prev: Option<&Node>, cur: &Node, opts: &MarchOptions, step: f64) -> StepPrediction {
     let (xyz, t) = (&cur.frame.xyz, &cur.frame.tangent);
+    // Infinite on straight stretches (no cap), 0 never (κ is finite or infinite).
+    let radius = 1.0 / cur.curvature;
     match (prev, opts.method) {
         (_, StepMethod::Tangent) => tangent_step(xyz, t, step),
-        (None, _) => tangent_step(xyz, t, step * opts.first_step_fraction),
+        (None, _) => {
+            let first = step * opts.first_step_fraction;
+            tangent_step(
+                xyz,
+                t,
+                if radius > 0.0 {
+                    first.min(step * radius)
+                } else {
+                    first
+                },
+            )
+        }
+        (Some(pv), _)
+            if radius > 0.0 && (xyz - pv.frame.xyz).norm() < TINY_CHORD * xyz.norm().max(1.0) =>
+        {
+            tangent_step(xyz, t, step * radius.min(1.0))
+        }
         (Some(pv), StepMethod::Circular) => circular_step(
             &pv.frame.xyz,
             &pv.frame.tangent,
@@ -490,7 +525,12 @@ fn check_options(opts: &MarchOptions) -> Result<()> {
 
 /// Refines a start guess onto the curve: a parameter already on a domain boundary is held there,
 /// otherwise the point moves orthogonally to the (approximate) tangent.
-fn refine_start<S1, S2>(p: &S1, q: &S2, guess: [f64; 4], opts: &MarchOptions) -> Result<Node>
+pub(super) fn refine_start<S1, S2>(
+    p: &S1,
+    q: &S2,
+    guess: [f64; 4],
+    opts: &MarchOptions,
+) -> Result<Node>
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
