@@ -97,13 +97,27 @@ pub fn loop_test(
     // First the normals in model axes: for graph-like pieces (a partial with exact components)
     // the cross products then wrap least; `d · (N_P × N_Q) = N_P · (N_Q × d)` is tested for
     // each frame row `d`.
-    let plain = |piece: &Piece, d: &crate::geometry::Domain, origin: &[f64; 3]| match piece
+    // Also notes whether both partials have a (nearly) exact component (an axis-aligned,
+    // graph-like parametrisation): then the model axes are already the best frame.
+    let mut graph_like = true;
+    let mut plain = |piece: &Piece, d: &crate::geometry::Domain, origin: &[f64; 3]| match piece
         .partials(d, None, origin, 0.0)
     {
-        Some([Some(a), Some(b)]) => Some(cross_i(&a, &b)),
-        _ => None,
+        Some([Some(a), Some(b)]) => {
+            let exact = |x: &[Interval; 3]| {
+                let mag = x.iter().map(|c| c.mag()).fold(0.0, f64::max);
+                x.iter().any(|c| c.wid() <= 1e-9 * mag)
+            };
+            graph_like &= exact(&a) && exact(&b);
+            Some(cross_i(&a, &b))
+        }
+        _ => {
+            graph_like = false;
+            None
+        }
     };
-    if let (Some(enp), Some(enq)) = (plain(pp, &dp, &dp_c.p), plain(pq, &dq, &dq_c.p)) {
+    let (enp, enq) = (plain(pp, &dp, &dp_c.p), plain(pq, &dq, &dq_c.p));
+    if let (Some(enp), Some(enq)) = (enp, enq) {
         // Candidates: the frame rows, then the point of the box enclosing `N_P × N_Q` nearest
         // to the origin (when the box excludes the origin, every tangent in it makes a positive
         // product with that point: the widest pair any single direction can settle).
@@ -132,6 +146,15 @@ pub fn loop_test(
                 };
             }
         }
+    }
+    // The rotated frame only helps where the model-axes cross products wrap; for two graph-like
+    // pieces it was never seen to settle a pair the test above could not (skipping it only
+    // forgoes a proof).
+    if graph_like {
+        return LoopTest {
+            proof: None,
+            spread: [relative_spread(enp.as_ref()), relative_spread(enq.as_ref())],
+        };
     }
     let normal = |piece: &Piece, d: &crate::geometry::Domain, origin: &[f64; 3]| match piece
         .partials(d, Some(&frame), origin, 0.0)
