@@ -359,7 +359,7 @@ fn add_dir(a: f64, b: f64, up: bool) -> f64 {
 /// unconditionally.
 fn mul_dir(a: f64, b: f64, up: bool) -> f64 {
     let p = a * b;
-    if !(p.abs() >= 1e-280) {
+    if p.is_nan() || p.abs() < 1e-280 {
         return if up { p.next_up() } else { p.next_down() };
     }
     let e = a.mul_add(b, -p);
