@@ -123,6 +123,7 @@ impl Piece {
                 l * (n + 1) + k
             }
         };
+        let coords = if self.polynomial { 3 } else { 4 };
         let (mut lo, mut hi) = (self.net.clone(), self.net.clone());
         let mut work = vec![[point(0.0); 4]; count];
         for l in 0..lines {
@@ -134,8 +135,9 @@ impl Piece {
             for level in 1..count {
                 for k in 0..count - level {
                     let next = work[k + 1];
-                    for (w, x) in work[k].iter_mut().zip(next) {
-                        *w = halve(*w + x);
+                    // A polynomial piece's weights stay exactly 1: only x, y, z are averaged.
+                    for (w, x) in work[k][..coords].iter_mut().zip(next) {
+                        *w = average(*w, x);
                     }
                 }
                 lo[idx(level, l)] = work[0];
@@ -172,7 +174,7 @@ impl Piece {
                 for k in 0..pts.len() - 1 {
                     let next = pts[k + 1];
                     for (w, x) in pts[k].iter_mut().zip(next) {
-                        *w = halve(*w + x);
+                        *w = average(*w, x);
                     }
                 }
                 pts.pop();
@@ -222,9 +224,8 @@ impl Piece {
         grow: f64,
     ) -> Option<[Option<[Interval; 3]>; 2]> {
         let [m, n] = self.degree;
-        let rows = frame.map(|f| f.map(|row| row.map(point)));
-        let rotate = |x: [Interval; 3]| match &rows {
-            Some(r) => std::array::from_fn(|k| r[k][0] * x[0] + r[k][1] * x[1] + r[k][2] * x[2]),
+        let rotate = |x: [Interval; 3]| match frame {
+            Some(r) => std::array::from_fn(|k| dot_point(&r[k], &x)),
             None => x,
         };
         // Σ|B| growth factors for degrees (a, b) under the widening.
@@ -240,9 +241,15 @@ impl Piece {
         };
         if self.polynomial {
             // S_s = m·Σ B ΔX: only the differences of the net matter (no translation needed).
-            let net = &self.net;
+            // The net is rotated first (R·ΔX ⊂ R·X₁ − R·X₀, one rotation per control point
+            // rather than per difference).
+            let net: Vec<[Interval; 3]> = self
+                .net
+                .iter()
+                .map(|h| rotate([h[0], h[1], h[2]]))
+                .collect();
             let diff = |a: usize, b: usize| -> [Interval; 3] {
-                rotate(std::array::from_fn(|c| net[b][c] - net[a][c]))
+                std::array::from_fn(|c| sub(net[b][c], net[a][c]))
             };
             let (mut hs, mut hr) = (Hull3::default(), Hull3::default());
             for i in 0..=m {
@@ -330,17 +337,82 @@ impl Piece {
     }
 }
 
-/// `x / 2`: halving both bounds is exact in binary floating point unless a result is subnormal,
-/// where the (outward-rounded) interval product is used instead.
-fn halve(x: Interval) -> Interval {
-    let (lo, hi) = (0.5 * x.inf(), 0.5 * x.sup());
-    let exact = |y: f64| y == 0.0 || y.abs() >= f64::MIN_POSITIVE;
-    if exact(lo) && exact(hi) {
-        if let Ok(h) = Interval::try_from((lo, hi)) {
-            return h;
-        }
+/// `a + b` rounded down / up (`up` false / true), exactly as directed rounding would: the
+/// rounding error of the nearest sum is recovered exactly by TwoSum, and the sum stepped one ulp
+/// when it lies on the wrong side. An overflowing or infinite sum is returned as is (an
+/// infinite bound is only ever on the safe side or makes the caller's interval invalid).
+fn add_dir(a: f64, b: f64, up: bool) -> f64 {
+    let s = a + b;
+    let bb = s - a;
+    let e = (a - (s - bb)) + (b - bb);
+    if up && e > 0.0 {
+        s.next_up()
+    } else if !up && e < 0.0 {
+        s.next_down()
+    } else {
+        s
     }
-    x * point(0.5)
+}
+
+/// `a · b` rounded down / up: the error of the nearest product is exact by a fused
+/// multiply-add, except near the subnormal range, where the product is stepped outward
+/// unconditionally.
+fn mul_dir(a: f64, b: f64, up: bool) -> f64 {
+    let p = a * b;
+    if p.is_nan() || p.abs() < 1e-280 {
+        return if up { p.next_up() } else { p.next_down() };
+    }
+    let e = a.mul_add(b, -p);
+    if up && e > 0.0 {
+        p.next_up()
+    } else if !up && e < 0.0 {
+        p.next_down()
+    } else {
+        p
+    }
+}
+
+/// `x / 2` rounded down / up: exact unless the result is subnormal (detected by doubling back).
+fn half_dir(x: f64, up: bool) -> f64 {
+    let h = 0.5 * x;
+    if 2.0 * h == x {
+        h
+    } else if up {
+        h.next_up()
+    } else {
+        h.next_down()
+    }
+}
+
+/// `(a + b) / 2`, rounded outward.
+fn average(a: Interval, b: Interval) -> Interval {
+    let lo = half_dir(add_dir(a.inf(), b.inf(), false), false);
+    let hi = half_dir(add_dir(a.sup(), b.sup(), true), true);
+    Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
+}
+
+/// `b − a`, rounded outward.
+fn sub(b: Interval, a: Interval) -> Interval {
+    let lo = add_dir(b.inf(), -a.sup(), false);
+    let hi = add_dir(b.sup(), -a.inf(), true);
+    Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
+}
+
+/// `r · x` for an exact row `r` and an interval vector `x`, rounded outward (every product and
+/// partial sum rounded in its bound's direction). `ENTIRE` if a bound is not a number (e.g.
+/// `0 · ∞`).
+fn dot_point(r: &[f64; 3], x: &[Interval; 3]) -> Interval {
+    let (mut lo, mut hi) = (0.0f64, 0.0f64);
+    for (&rk, xk) in r.iter().zip(x) {
+        let (a, b) = if rk >= 0.0 {
+            (xk.inf(), xk.sup())
+        } else {
+            (xk.sup(), xk.inf())
+        };
+        lo = add_dir(lo, mul_dir(rk, a, false), false);
+        hi = add_dir(hi, mul_dir(rk, b, true), true);
+    }
+    Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
 }
 
 /// `x` widened about its midpoint: `mid ± rad·f` (outward); `x` itself when `f` is exactly 1.
@@ -422,6 +494,42 @@ mod tests {
             Domain::new(-1.0, 2.0, 0.5, 1.5),
         )
         .unwrap()
+    }
+
+    #[test]
+    fn float_directed_helpers_match_inari() {
+        // The helpers round each bound in its direction exactly as inari does (normal range):
+        // the results are the same intervals, and at the subnormal edge still enclose.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let m = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            m * 10f64.powi((seed % 13) as i32 - 6)
+        };
+        for _ in 0..2000 {
+            let (a0, a1, b0, b1) = (next(), next(), next(), next());
+            let a = interval(a0.min(a1), a0.max(a1)).unwrap();
+            let b = interval(b0.min(b1), b0.max(b1)).unwrap();
+            assert_eq!(sub(b, a), b - a);
+            assert_eq!(average(a, b), (a + b) * point(0.5));
+            let r = [next(), next(), next()];
+            let x = [a, b, a - b];
+            let expect = point(r[0]) * x[0] + point(r[1]) * x[1] + point(r[2]) * x[2];
+            assert_eq!(dot_point(&r, &x), expect);
+        }
+        let tiny = interval(f64::MIN_POSITIVE / 3.0, f64::MIN_POSITIVE / 3.0).unwrap();
+        let exact = (tiny + tiny) * point(0.5);
+        assert!(exact.subset(average(tiny, tiny)));
+        let d = dot_point(&[1e-300, 0.0, 0.0], &[interval(3e-20, 3e-20).unwrap(); 3]);
+        assert!((point(1e-300) * point(3e-20)).subset(d));
+        // 0 · ∞ is not a number: the whole line.
+        let e = dot_point(
+            &[0.0, 1.0, 1.0],
+            &[Interval::ENTIRE, point(1.0), point(2.0)],
+        );
+        assert!(e.is_entire());
     }
 
     #[test]
