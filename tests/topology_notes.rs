@@ -159,3 +159,43 @@ fn circle_touching_an_edge_from_outside_gives_no_branch() {
     });
     assert!(touch, "events: {:?}", out.intersection.events);
 }
+
+#[test]
+fn arcs_into_nodes_approach_them_in_few_points() {
+    // Both tangent points of two crossing cylinders are nodes; an arc approaches a node
+    // geometrically (halving the distance), so it needs about log2(step / 1e-6) ≈ 16 points per
+    // node end beyond its length / step, not hundreds of rounding-sized steps.
+    let s = scene("cylinders_full.json");
+    let [p, q] = &s.surfaces;
+    let march = MarchOptions {
+        step: s.options.step,
+        ..MarchOptions::default()
+    };
+    let out = intersect(p, q, &march, &SearchOptions::default());
+    assert_eq!(out.intersection.branches.len(), 7);
+    for b in &out.intersection.branches {
+        let len: f64 = b
+            .points
+            .windows(2)
+            .map(|w| {
+                (0..3)
+                    .map(|i| (w[1].xyz[i] - w[0].xyz[i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .sum();
+        let node_ends = b.ends.iter().filter(|e| **e == EndReason::Singular).count();
+        let bound = 1.5 * len / march.step + 25.0 * node_ends as f64 + 5.0;
+        println!(
+            "arc {}: {} points, length {len:.4}, bound {bound:.0}",
+            b.id,
+            b.points.len()
+        );
+        assert!(
+            (b.points.len() as f64) <= bound,
+            "arc {}: {} points for length {len}",
+            b.id,
+            b.points.len()
+        );
+    }
+}

@@ -218,8 +218,16 @@ const TINY_CHORD: f64 = 1e-5;
 /// `R = 1/κ` estimated at the current point from second derivatives gives the step: the first
 /// step of a half (no circle yet) is at most `L·R` long, and on chords shorter than
 /// [`TINY_CHORD`] (a loop of radius 1e-6 at unit coordinates) a tangent step of `L·min(R, 1)`
-/// replaces the circular one.
-fn predict(prev: Option<&Node>, cur: &Node, opts: &MarchOptions, step: f64) -> StepPrediction {
+/// replaces the circular one — except while `approaching` a singular point (the sine of the
+/// normals' angle falling fast), where the curvature estimate diverges and the geometric
+/// approach (`step`) rules.
+fn predict(
+    prev: Option<&Node>,
+    cur: &Node,
+    opts: &MarchOptions,
+    step: f64,
+    approaching: bool,
+) -> StepPrediction {
     let (xyz, t) = (&cur.frame.xyz, &cur.frame.tangent);
     // Infinite on straight stretches (no cap), 0 never (κ is finite or infinite).
     let radius = 1.0 / cur.curvature;
@@ -238,7 +246,9 @@ fn predict(prev: Option<&Node>, cur: &Node, opts: &MarchOptions, step: f64) -> S
             )
         }
         (Some(pv), _)
-            if radius > 0.0 && (xyz - pv.frame.xyz).norm() < TINY_CHORD * xyz.norm().max(1.0) =>
+            if !approaching
+                && radius > 0.0
+                && (xyz - pv.frame.xyz).norm() < TINY_CHORD * xyz.norm().max(1.0) =>
         {
             tangent_step(xyz, t, step * radius.min(1.0))
         }
@@ -365,14 +375,19 @@ where
         // Near a singular point (sine small and decreasing) aim at most half way to where the
         // sine would vanish at its current rate of decrease: a geometric approach.
         let mut step = opts.step;
+        let mut approaching = false;
         if let Some(pv) = prev.as_ref() {
             let chord = (cur.frame.xyz - pv.frame.xyz).norm();
             let rate = (pv.frame.sine - cur.frame.sine) / chord;
             if cur.frame.sine < opts.watch_sine && rate > 0.0 {
                 step = step.min(0.5 * cur.frame.sine / rate);
+                // At this rate the sine vanishes within a hundred chords: heading into a
+                // singular point (on a tiny loop the sine is small but constant, its rate
+                // rounding noise, and the predicted zero far away).
+                approaching = cur.frame.sine < 100.0 * rate * chord;
             }
         }
-        let pred = predict(prev.as_ref(), &cur, opts, step);
+        let pred = predict(prev.as_ref(), &cur, opts, step, approaching);
 
         if closure && half.nodes.len() >= 2 {
             let to_start = start.frame.xyz - cur.frame.xyz;
@@ -409,7 +424,7 @@ where
         for tries in 0..4 {
             if tries > 0 {
                 step *= 0.5;
-                attempt = predict(prev.as_ref(), &cur, opts, step);
+                attempt = predict(prev.as_ref(), &cur, opts, step, approaching);
                 half.retried += 1;
             }
             let guess = predict_parameters(p, q, &cur.x, &attempt.point);
