@@ -693,41 +693,13 @@ where
     nodes.extend(half.nodes.iter().copied());
     let mut events = half.events.clone();
     events.insert(0, make_event(EventKind::Singular, &n0));
-    let ends = [EndReason::Singular, half.end];
-    let regular = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
-    let status = if regular(&ends[1]) {
-        BranchStatus::Open
-    } else {
-        BranchStatus::Incomplete
-    };
-    let mut histogram = Vec::new();
-    for n in &nodes {
-        if histogram.len() <= n.iterations {
-            histogram.resize(n.iterations + 1, 0);
-        }
-        histogram[n.iterations] += 1;
-    }
-    Ok(TracedBranch {
-        branch: Branch {
-            id: 0,
-            status,
-            ends,
-            points: nodes.iter().map(to_curve_point).collect(),
-        },
-        newton_iterations: nodes.iter().map(|n| n.iterations).collect(),
-        tangents: nodes
-            .iter()
-            .map(|n| [n.frame.tangent.x, n.frame.tangent.y, n.frame.tangent.z])
-            .collect(),
+    Ok(assemble(
+        nodes,
+        [EndReason::Singular, half.end],
         events,
-        turning: half.turning[0],
-        turning_q: half.turning[1],
-        stats: MarchStats {
-            points: nodes.len(),
-            newton_histogram: histogram,
-            retried_steps: half.retried,
-        },
-    })
+        half.turning,
+        half.retried,
+    ))
 }
 
 /// Traces the branch of `P ∩ Q` through `start = (σ, t, u, v)` (a guess close to the curve).
@@ -830,9 +802,27 @@ where
             first_end
         }
     };
-    let ends = [first_end, last_end];
+    Ok(assemble(
+        nodes,
+        [first_end, last_end],
+        events,
+        turning,
+        retried,
+    ))
+}
+
+/// The traced branch from its points, ends, events, turning (in P's and Q's domains) and retry
+/// count: closed when the last end closes a loop, open when both ends are regular (boundary or
+/// singular point), incomplete otherwise; with the Newton-iteration histogram.
+fn assemble(
+    nodes: Vec<Node>,
+    ends: [EndReason; 2],
+    events: Vec<Event>,
+    turning: [f64; 2],
+    retried: usize,
+) -> TracedBranch {
     let regular = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
-    let status = if last_end == EndReason::ClosedLoop {
+    let status = if ends[1] == EndReason::ClosedLoop {
         BranchStatus::Closed
     } else if regular(&ends[0]) && regular(&ends[1]) {
         BranchStatus::Open
@@ -846,7 +836,7 @@ where
         }
         histogram[n.iterations] += 1;
     }
-    Ok(TracedBranch {
+    TracedBranch {
         branch: Branch {
             id: 0,
             status,
@@ -866,5 +856,5 @@ where
             newton_histogram: histogram,
             retried_steps: retried,
         },
-    })
+    }
 }
