@@ -199,3 +199,41 @@ fn arcs_into_nodes_approach_them_in_few_points() {
         );
     }
 }
+
+#[test]
+fn a_curve_of_tangency_is_one_certified_contact_and_no_branch() {
+    // P − Q = (1 + 0.3x)(y − x/2)² on [−1, 1]²: the surfaces touch along y = x/2 and nowhere
+    // cross. Its singular points are contacts (no arcs), so the run has no branch, and the
+    // contact is certified once, every step a tangential curve.
+    let s = scene("cubic_quadratic_tangential.json");
+    let opts = RunOptions {
+        method: Method::Both,
+        ..RunOptions::from_scene(&s)
+    };
+    let report = run(&s, &opts).expect("runs");
+    assert!(report.outcome.intersection.branches.is_empty());
+    assert!(report.outcome.nodes.iter().all(|n| n.exits.is_empty()));
+    assert_eq!(report.contacts.len(), 1, "one contact, certified once");
+    let c = &report.contacts[0];
+    assert!(!c.steps.is_empty());
+    for st in &c.steps {
+        assert_eq!(
+            format!("{:?}", st.case),
+            "TangentialCurve",
+            "a step's case at s = {:?}",
+            st.s
+        );
+    }
+    assert!(c.tube_radius < 1e-9, "tube radius {}", c.tube_radius);
+    // The closed-form contact line lies in the step boxes.
+    for k in 0..=200 {
+        let x = -0.99 + 1.98 * k as f64 / 200.0;
+        let y = [x, x / 2.0, x, x / 2.0];
+        assert!(
+            c.steps
+                .iter()
+                .any(|st| (0..4).all(|i| st.apriori[i].contains(y[i]))),
+            "contact point at x = {x} outside every step box"
+        );
+    }
+}

@@ -375,8 +375,14 @@ pub fn certify_contact_events(
     opts: &ContactOptions,
 ) -> Result<Vec<CertifiedContact>> {
     let mut out: Vec<CertifiedContact> = Vec::new();
+    let (dp, dq) = (p.domain(), q.domain());
     for e in events.iter().filter(|e| e.kind == EventKind::Singular) {
-        let y = [e.p[0], e.p[1], e.q[0], e.q[1]];
+        // A located contact point may sit a rounding-sized distance outside a domain: clamp it
+        // in, so that it is recognised inside an earlier contact's (clipped) region.
+        let y: [f64; 4] = std::array::from_fn(|i| {
+            let [lo, hi] = pair_bounds(&dp, &dq, i);
+            [e.p[0], e.p[1], e.q[0], e.q[1]][i].clamp(lo, hi)
+        });
         let seen = out.iter().any(|c| {
             c.cover
                 .region

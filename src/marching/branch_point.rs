@@ -135,6 +135,60 @@ where
     ok.then_some([x[0], x[1], x[2], x[3]])
 }
 
+/// Whether P and Q stay tangent along the parameter direction `d = (σ', t')` from the singular
+/// point `x`: at `x ± r·d` (model distance `r = radius / 2`) on P, the closest point of Q (two
+/// Gauss–Newton iterations from the tangent map `a`, then more until converged) is within `tol`
+/// and the normals are parallel there to within a sine of 1e-6. At a tacnode the two branches
+/// share a tangent too, but the surfaces open up away from the point, so this fails there.
+fn tangency_continues<S1, S2>(
+    p: &S1,
+    q: &S2,
+    x: &[f64; 4],
+    d: [f64; 2],
+    a: [[f64; 2]; 2],
+    radius: f64,
+    tol: f64,
+) -> bool
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let dp = p.derivs(x[0], x[1]);
+    let speed = (dp.su * d[0] + dp.sv * d[1]).norm();
+    if !(speed > 0.0 && speed.is_finite()) {
+        return false;
+    }
+    let h = 0.5 * radius / speed;
+    [1.0, -1.0].iter().all(|&sign| {
+        let (s, t) = (x[0] + sign * h * d[0], x[1] + sign * h * d[1]);
+        let target = p.point(s, t);
+        let (mut u, mut v) = (
+            x[2] + sign * h * (a[0][0] * d[0] + a[0][1] * d[1]),
+            x[3] + sign * h * (a[1][0] * d[0] + a[1][1] * d[1]),
+        );
+        for _ in 0..20 {
+            let dq = q.derivs(u, v);
+            let r = target - dq.p;
+            let (g11, g12, g22) = (dq.su.dot(&dq.su), dq.su.dot(&dq.sv), dq.sv.dot(&dq.sv));
+            let (r1, r2) = (dq.su.dot(&r), dq.sv.dot(&r));
+            let det = g11 * g22 - g12 * g12;
+            if !(det.abs() > 0.0) {
+                return false;
+            }
+            let (du, dv) = ((g22 * r1 - g12 * r2) / det, (g11 * r2 - g12 * r1) / det);
+            u += du;
+            v += dv;
+            if du.abs().max(dv.abs()) <= 1e-15 * (1.0 + u.abs().max(v.abs())) {
+                break;
+            }
+        }
+        let (ep, eq) = (p.derivs(s, t), q.derivs(u, v));
+        let (np, nq) = (ep.normal(), eq.normal());
+        let sine = np.cross(&nq).norm() / (np.norm() * nq.norm());
+        (ep.p - eq.p).norm() <= tol && sine <= 1e-6
+    })
+}
+
 /// Classifies the node at `x` and finds its exits at distance `radius` (see the module docs).
 /// `tol` and `max_newton` are the Newton settings used to refine the exits.
 pub fn analyse_node<S1, S2>(
@@ -153,7 +207,7 @@ where
     let dp = p.derivs(x[0], x[1]);
     let dq = q.derivs(x[2], x[3]);
     let centre = (dp.p + dq.p) * 0.5;
-    let (_, [b11, b12, b22]) = contact_quadratic_f64(&dp, &dq);
+    let (a, [b11, b12, b22]) = contact_quadratic_f64(&dp, &dq);
     let disc = b12 * b12 - b11 * b22;
     let size = b11.abs().max(b12.abs()).max(b22.abs());
     let rel = 1e-3;
@@ -204,9 +258,21 @@ where
             }
         }
     }
+    // A point of a curve of tangency (the surfaces stay tangent along the double root) is a
+    // contact, not a node with arcs: no exits.
+    let contact_curve = case == ContactCase::TangentialCurve && {
+        let d = if b11.abs() >= b22.abs() {
+            [-b12, b11]
+        } else {
+            [b22, -b12]
+        };
+        tangency_continues(p, q, &x, d, a, radius, tol)
+    };
     // Fall back on the circle when the quadratic does not give four distinct exits (and use it
     // for every degenerate case).
-    if case != ContactCase::IsolatedPoint && (case != ContactCase::BranchPoint || exits.len() != 4)
+    if !contact_curve
+        && case != ContactCase::IsolatedPoint
+        && (case != ContactCase::BranchPoint || exits.len() != 4)
     {
         exits.clear();
         for e in node.exits_on_circle(p, q, radius, tol, max_newton) {

@@ -252,6 +252,11 @@ where
                         continue;
                     }
                 }
+                if !single && is_contact_excursion(&mut g, p, q, &traced.branch) {
+                    // A start beside a curve of tangency marches off it and straight back: the
+                    // contact (its node, no arcs) is all there is.
+                    continue;
+                }
                 if single {
                     // The start is itself a singular point: make it a node, its arcs come later.
                     let cp = traced.branch.points[0];
@@ -286,6 +291,33 @@ where
         }
     }
     g.out
+}
+
+/// Whether `branch` runs from a singular point to a singular point over less than a step and
+/// both are contact nodes without arcs (a start beside a curve of tangency that marched off it
+/// and straight back); the nodes are recorded either way.
+fn is_contact_excursion<S1, S2>(g: &mut Graph, p: &S1, q: &S2, branch: &Branch) -> bool
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    if branch.ends != [EndReason::Singular; 2] || branch.points.len() < 2 {
+        return false;
+    }
+    let length: f64 = branch
+        .points
+        .windows(2)
+        .map(|w| dist3(&w[0].xyz, &w[1].xyz))
+        .sum();
+    if length >= g.opts.step {
+        return false;
+    }
+    let params = |c: &CurvePoint| [c.p[0], c.p[1], c.q[0], c.q[1]];
+    let ends = [&branch.points[0], &branch.points[branch.points.len() - 1]];
+    ends.iter().all(|c| {
+        let i = g.node_for(p, q, params(c));
+        !has_arcs(&g.out.nodes[i])
+    })
 }
 
 /// Whether a node is a crossing of branches (arcs leave it) rather than an isolated contact.
