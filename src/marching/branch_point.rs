@@ -172,7 +172,7 @@ where
             let (g11, g12, g22) = (dq.su.dot(&dq.su), dq.su.dot(&dq.sv), dq.sv.dot(&dq.sv));
             let (r1, r2) = (dq.su.dot(&r), dq.sv.dot(&r));
             let det = g11 * g22 - g12 * g12;
-            if !(det.abs() > 0.0) {
+            if det == 0.0 || !det.is_finite() {
                 return false;
             }
             let (du, dv) = ((g22 * r1 - g12 * r2) / det, (g11 * r2 - g12 * r1) / det);
