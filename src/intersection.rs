@@ -59,6 +59,26 @@ pub struct Branch {
     pub points: Vec<CurvePoint>,
 }
 
+impl Branch {
+    /// Model-space length of the polyline through the points (0 for fewer than two).
+    pub fn length(&self) -> f64 {
+        polyline_length(&self.points)
+    }
+}
+
+/// Model-space length of the polyline through `points` (0 for fewer than two).
+pub fn polyline_length(points: &[CurvePoint]) -> f64 {
+    points
+        .windows(2)
+        .map(|w| {
+            (0..3)
+                .map(|i| (w[1].xyz[i] - w[0].xyz[i]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .sum()
+}
+
 /// Kinds of noteworthy points.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]

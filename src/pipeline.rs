@@ -322,19 +322,6 @@ fn certify_contacts(
     }
 }
 
-/// Model-space length of the marched polyline.
-fn marched_length(b: &Branch) -> f64 {
-    b.points
-        .windows(2)
-        .map(|w| {
-            (0..3)
-                .map(|i| (w[1].xyz[i] - w[0].xyz[i]).powi(2))
-                .sum::<f64>()
-                .sqrt()
-        })
-        .sum()
-}
-
 /// `sin²` of the angle between the normals of P and Q at `y`: 1 for perpendicular surfaces,
 /// 0 at tangency (a floating-point estimate, used only to pick a start point).
 fn transversality(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[f64; 4]) -> f64 {
@@ -390,7 +377,7 @@ pub fn certify_marched_branch(
     opts: &RunOptions,
 ) -> BranchCertificate {
     let started = Instant::now();
-    let length = marched_length(b);
+    let length = b.length();
     // A closed loop is traced once from its start, an open branch each way from the middle:
     // 1.5 × the marched length covers either with room to spare.
     let max_length = if length > 0.0 {

@@ -3,7 +3,7 @@
 //! boundary from inside stays one closed loop (its touching points are neither starts nor ends).
 
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
-use ssitrace::intersection::{Branch, BranchStatus, EndReason, EventKind};
+use ssitrace::intersection::{BranchStatus, EndReason, EventKind};
 use ssitrace::io::result_json::{result_from_json, result_to_json};
 use ssitrace::io::scene::{Method, Scene};
 use ssitrace::marching::intersect::intersect;
@@ -14,19 +14,6 @@ use std::path::Path;
 
 fn graph(d: Domain, z: Vec<(u32, u32, f64)>) -> RationalBezierPatch {
     PowerSurface::graph(d, z).to_bezier().expect("valid graph")
-}
-
-/// Model-space length of a marched polyline.
-fn polyline_length(b: &Branch) -> f64 {
-    b.points
-        .windows(2)
-        .map(|w| {
-            (0..3)
-                .map(|i| (w[1].xyz[i] - w[0].xyz[i]).powi(2))
-                .sum::<f64>()
-                .sqrt()
-        })
-        .sum()
 }
 
 fn scene(name: &str) -> Scene {
@@ -69,7 +56,7 @@ fn circle_touching_all_four_edges_from_inside_is_one_closed_loop() {
         assert!((r - 0.5).abs() < 1e-8, "point off the circle: r = {r}");
     }
     // Once round: the marched length is the circumference (within a step).
-    let len = polyline_length(b);
+    let len = b.length();
     let circumference = std::f64::consts::PI;
     assert!(
         (len - circumference).abs() < march.step,
@@ -178,7 +165,7 @@ fn arcs_into_nodes_approach_them_in_few_points() {
     let out = intersect(p, q, &march, &SearchOptions::default());
     assert_eq!(out.intersection.branches.len(), 7);
     for b in &out.intersection.branches {
-        let len = polyline_length(b);
+        let len = b.length();
         let node_ends = b.ends.iter().filter(|e| **e == EndReason::Singular).count();
         let bound = 1.5 * len / march.step + 25.0 * node_ends as f64 + 5.0;
         println!(

@@ -93,7 +93,7 @@ impl StrayReport {
             unchecked: (0..marched.points.len()).collect(),
             looping: false,
             covered_fraction: 0.0,
-            marched_length: polyline_length(&marched.points),
+            marched_length: marched.length(),
             certified_length: 0.0,
         }
     }
@@ -150,7 +150,7 @@ pub fn check_branch(
     }
     let pts = &marched.points;
     let n = pts.len();
-    let marched_length = polyline_length(pts);
+    let marched_length = marched.length();
     let [s_min, s_max] = certified_span(p, q, own);
     let certified_length = if s_max > s_min { s_max - s_min } else { 0.0 };
     let max_h = own.tubes.iter().map(|t| t.h).fold(0.0, f64::max);
@@ -384,10 +384,6 @@ fn params(c: &CurvePoint) -> [f64; 4] {
 
 fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
-}
-
-fn polyline_length(pts: &[CurvePoint]) -> f64 {
-    pts.windows(2).map(|w| dist3(&w[0].xyz, &w[1].xyz)).sum()
 }
 
 /// `tol / s₃`: the parameter distance from the curve, to first order, of a point with

@@ -304,12 +304,7 @@ where
     if branch.ends != [EndReason::Singular; 2] || branch.points.len() < 2 {
         return false;
     }
-    let length: f64 = branch
-        .points
-        .windows(2)
-        .map(|w| dist3(&w[0].xyz, &w[1].xyz))
-        .sum();
-    if length >= g.opts.step {
+    if branch.length() >= g.opts.step {
         return false;
     }
     let params = |c: &CurvePoint| [c.p[0], c.p[1], c.q[0], c.q[1]];
