@@ -110,15 +110,7 @@ pub struct TraceProfile {
 
 impl TraceProfile {
     fn add_work(&mut self, w: IntegratorWork) {
-        let a = &mut self.integrator;
-        a.steps += w.steps;
-        a.phase1_attempts += w.phase1_attempts;
-        a.phase1_failures += w.phase1_failures;
-        a.remainder_shrinks += w.remainder_shrinks;
-        a.remainder_cuts += w.remainder_cuts;
-        a.box_units += w.box_units;
-        a.phase1_units += w.phase1_units;
-        a.phase2_units += w.phase2_units;
+        self.integrator += w;
     }
 }
 

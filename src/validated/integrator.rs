@@ -163,6 +163,20 @@ pub struct IntegratorWork {
     pub phase2_units: f64,
 }
 
+impl std::ops::AddAssign for IntegratorWork {
+    /// Adds another run's counts and costs to these.
+    fn add_assign(&mut self, w: IntegratorWork) {
+        self.steps += w.steps;
+        self.phase1_attempts += w.phase1_attempts;
+        self.phase1_failures += w.phase1_failures;
+        self.remainder_shrinks += w.remainder_shrinks;
+        self.remainder_cuts += w.remainder_cuts;
+        self.box_units += w.box_units;
+        self.phase1_units += w.phase1_units;
+        self.phase2_units += w.phase2_units;
+    }
+}
+
 /// A validated Taylor integrator for one [`OdeSystem`].
 #[derive(Clone, Debug)]
 pub struct Integrator {
