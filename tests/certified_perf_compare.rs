@@ -4,7 +4,8 @@
 //! branch: certified steps, CPU time (the best of `SSITRACE_PERF_REPS` runs, default 1), the
 //! marcher's CPU time on the same branch from the same start, their ratio, and the certified
 //! tolerance. Fig. 7 is an arc of arc length 1 (both halves together) to keep the suite fast.
-//! Uses only `certify_branch` and `trace_branch`, so the same file measures older versions.
+//! Uses only `certify_branch` and `trace_branch`, so the same file (with `tests/common/`)
+//! measures older versions.
 
 use ssitrace::certified::{certify_branch, CertifyOptions};
 use ssitrace::io::scene::Scene;
@@ -12,36 +13,8 @@ use ssitrace::marching::{trace_branch, MarchOptions};
 use ssitrace::pipeline::{run_scene, RunOptions};
 use std::path::Path;
 
-/// CPU time of this thread in seconds (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)` on Linux, wall
-/// time elsewhere). Under load from other processes wall time is meaningless; thread CPU time
-/// still is (up to cache effects).
-fn cpu_seconds() -> f64 {
-    #[cfg(target_os = "linux")]
-    {
-        #[repr(C)]
-        struct Timespec {
-            tv_sec: i64,
-            tv_nsec: i64,
-        }
-        extern "C" {
-            fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
-        }
-        const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
-        let mut ts = Timespec {
-            tv_sec: 0,
-            tv_nsec: 0,
-        };
-        // SAFETY: clock_gettime writes one timespec (two 64-bit fields on 64-bit Linux) to a
-        // valid pointer.
-        if unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0 {
-            return ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64;
-        }
-    }
-    std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_secs_f64())
-        .unwrap_or(0.0)
-}
+mod common;
+use common::cpu_seconds;
 
 fn best_of<T>(reps: usize, mut f: impl FnMut() -> T) -> (T, f64) {
     let mut best = f64::INFINITY;

@@ -11,36 +11,8 @@ use ssitrace::pipeline::{run_scene, RunOptions};
 use ssitrace::scalar::point;
 use std::path::Path;
 
-/// CPU time of this thread in seconds (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)` on Linux, wall
-/// time elsewhere). Under load from other processes wall time is meaningless; thread CPU time
-/// still is (up to cache effects).
-fn cpu_seconds() -> f64 {
-    #[cfg(target_os = "linux")]
-    {
-        #[repr(C)]
-        struct Timespec {
-            tv_sec: i64,
-            tv_nsec: i64,
-        }
-        extern "C" {
-            fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
-        }
-        const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
-        let mut ts = Timespec {
-            tv_sec: 0,
-            tv_nsec: 0,
-        };
-        // SAFETY: clock_gettime writes one timespec (two 64-bit fields on 64-bit Linux) to a
-        // valid pointer.
-        if unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0 {
-            return ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64;
-        }
-    }
-    std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_secs_f64())
-        .unwrap_or(0.0)
-}
+mod common;
+use common::cpu_seconds;
 
 fn starts(file: &str) -> (Scene, Vec<[f64; 4]>) {
     let scene = Scene::from_path(Path::new(file)).expect("scene");
@@ -131,15 +103,7 @@ fn run(name: &str, file: &str, max_length: f64, order: usize) -> String {
             prof.anchor_seconds += pr.anchor_seconds;
             prof.enclosure_seconds += pr.enclosure_seconds;
             prof.closing_seconds += pr.closing_seconds;
-            let (a, w) = (&mut prof.integrator, pr.integrator);
-            a.steps += w.steps;
-            a.phase1_attempts += w.phase1_attempts;
-            a.phase1_failures += w.phase1_failures;
-            a.remainder_shrinks += w.remainder_shrinks;
-            a.remainder_cuts += w.remainder_cuts;
-            a.box_units += w.box_units;
-            a.phase1_units += w.phase1_units;
-            a.phase2_units += w.phase2_units;
+            prof.integrator += pr.integrator;
         }
         if best.as_ref().is_none_or(|(c, _)| cpu < *c) {
             best = Some((cpu, line(name, order, steps, cpu, tol, &prof)));
