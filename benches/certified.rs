@@ -6,12 +6,12 @@
 //! other processes prefer `tests/certified_perf_compare.rs` (thread CPU time).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use ssitrace::certified::ode::TransversalOde;
-use ssitrace::certified::{certify_branch, CertifyOptions};
+use ssitrace::certify::ode::TransversalOde;
+use ssitrace::certify::{certify_branch, CertifyOptions};
 use ssitrace::io::scene::Scene;
-use ssitrace::marching::{trace_branch, MarchOptions};
+use ssitrace::march::{trace_branch, MarchOptions};
+use ssitrace::numeric::scalar::interval;
 use ssitrace::pipeline::{run_scene, RunOptions};
-use ssitrace::scalar::interval;
 use ssitrace::validated::tape::Tape;
 use ssitrace::validated::{Expansion, TaylorAd};
 use std::hint::black_box;

@@ -2,7 +2,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use ssitrace::geometry::{Domain, ParametricSurface, RationalBezierPatch};
-use ssitrace::scalar::{interval, point};
+use ssitrace::numeric::scalar::{interval, point};
 
 fn patch(deg: usize) -> RationalBezierPatch {
     let mut pts = Vec::new();

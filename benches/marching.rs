@@ -5,9 +5,9 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
-use ssitrace::marching::intersect::intersect;
-use ssitrace::marching::start_points::{find_start_points, SearchOptions};
-use ssitrace::marching::{trace_branch, MarchOptions, StepMethod};
+use ssitrace::march::{trace_branch, MarchOptions, StepMethod};
+use ssitrace::search::start_points::{find_start_points, SearchOptions};
+use ssitrace::topology::intersect::intersect;
 
 /// z = (u² + v² − 0.5)(1 + 0.1uv) − 0.05u³ against z = 0.05 u³v³ over [−1, 1]²: both bicubic;
 /// one closed loop near the circle of radius √0.5.

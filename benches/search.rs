@@ -5,9 +5,9 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
 use ssitrace::io::scene::Scene;
-use ssitrace::marching::intersect::intersect;
-use ssitrace::marching::start_points::{find_start_points, SearchOptions};
-use ssitrace::marching::{trace_branch, MarchOptions};
+use ssitrace::march::{trace_branch, MarchOptions};
+use ssitrace::search::start_points::{find_start_points, SearchOptions};
+use ssitrace::topology::intersect::intersect;
 use std::path::Path;
 use std::time::Instant;
 

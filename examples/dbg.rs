@@ -1,6 +1,6 @@
 use ssitrace::geometry::subdivision::SubPatch;
 use ssitrace::io::scene::Scene;
-use ssitrace::marching::start_points::{find_start_points, SearchOptions};
+use ssitrace::search::start_points::{find_start_points, SearchOptions};
 fn main() {
     let s = Scene::from_path(std::path::Path::new("/tmp/tangent_scene.json")).unwrap();
     let [p, q] = &s.surfaces;

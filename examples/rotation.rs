@@ -5,7 +5,7 @@
 //!
 //! Usage: `cargo run --release --example rotation [ORDER]` (default 20).
 
-use ssitrace::scalar::interval;
+use ssitrace::numeric::scalar::interval;
 use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem};
 use ssitrace::{Error, Scalar};
 

@@ -115,7 +115,7 @@ pub enum Error {
         /// Enclosure of the state at `time`.
         state: Vec<inari::Interval>,
         /// Why the step failed.
-        reason: crate::validated::StepFailure,
+        reason: StepFailure,
     },
     /// A certified trace could not start, or an internal consistency check of the certificate
     /// failed (e.g. two consecutive boxes of a chain that do not overlap); nothing is claimed.
@@ -176,3 +176,33 @@ impl Error {
 
 /// Result with the crate's [`Error`](enum@Error).
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// Why a validated step could not be proven.
+#[derive(Clone, Copy, Debug, PartialEq, Error)]
+pub enum StepFailure {
+    /// Phase I failed for every step size down to `h_min`.
+    #[error("no a-priori enclosure found for any step size down to h_min = {h_min:e}")]
+    BelowMinimumStep {
+        /// The minimum step size of the options.
+        h_min: f64,
+    },
+    /// The field cannot be evaluated (smoothly) on the current set.
+    #[error("the field is not defined on the current set ({0:?})")]
+    Domain(DomainError),
+    /// The options' step budget is spent.
+    #[error("more than {0} steps")]
+    TooManySteps(usize),
+}
+
+/// The expansion hit a point where the field is not (smoothly) defined on the given box.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DomainError {
+    /// A divisor whose enclosure contains zero.
+    DivisionByZero,
+    /// A square root whose argument's enclosure reaches zero or below.
+    SqrtOfNonPositive,
+    /// An interval that is empty or unbounded (overflow).
+    Unbounded,
+    /// An initial box whose length is not the field's dimension.
+    WrongDimension,
+}

@@ -2,19 +2,27 @@
 //!
 //! Intersection curves of two parametric surfaces (rational Bézier patches), traced and certified.
 //!
-//! The pipeline, one module each: [`geometry`] (surfaces and rigorous bounds) → [`marching`]
-//! (fast circular-step tracing that finds the branches) → [`validated`] (the validated Taylor ODE
-//! engine) → certified curves → [`io`] (scene files, result JSON, SVG).
+//! The layers, each importing only the ones before it:
+//! [`numeric`] (the [`Scalar`] trait, rigorous dot products) → [`geometry`] (surfaces, Bézier
+//! and power-basis patches, sub-patches, rigorous bounds) → [`pair`] (local geometry of `P ∩ Q`:
+//! the field, Newton, Krawczyk, the contact quadratic, boundary directions, branch points) →
+//! [`search`] (a start on every branch) → [`march`] (the fast circular-step marcher) →
+//! [`topology`] (all branches, the arc graph, branch ends) → [`validated`] (the validated Taylor
+//! ODE engine) → [`certify`] (certified branches and contacts) → [`check`] (straying and
+//! looping) → [`pipeline`] (the whole job) → [`io`] (scene files, result JSON, SVG).
 
-pub mod certified;
+pub mod certify;
+pub mod check;
 pub mod error;
 pub mod geometry;
-pub mod intersection;
 pub mod io;
-pub mod marching;
+pub mod march;
+pub mod numeric;
+pub mod pair;
 pub mod pipeline;
-pub mod scalar;
+pub mod search;
+pub mod topology;
 pub mod validated;
 
 pub use error::{Error, InputProblem, Result};
-pub use scalar::Scalar;
+pub use numeric::scalar::Scalar;

@@ -1,14 +1,14 @@
 //! The `ssitrace` command line: `ssitrace trace SCENE.json ...` and `ssitrace demo`.
 
 use clap::{Parser, Subcommand, ValueEnum};
-use ssitrace::certified::straying::StrayReport;
-use ssitrace::certified::CertifiedEnd;
-use ssitrace::intersection::{BranchStatus, EndReason};
+use ssitrace::certify::CertifiedEnd;
+use ssitrace::check::straying::StrayReport;
 use ssitrace::io::result_json::write_result;
 use ssitrace::io::scene::{Method, Scene};
 use ssitrace::io::svg::{
     add_contact_boxes, certified_overlay, write_svg_with_overlay, DEFAULT_OVERLAY_BOXES,
 };
+use ssitrace::march::branch::{BranchStatus, EndReason};
 use ssitrace::pipeline::{BranchCertificate, RunOptions, RunReport};
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -9,25 +9,25 @@
 
 use std::time::Instant;
 
-use crate::certified::contact::{certify_contact_events, CertifiedContact, ContactOptions};
-use crate::certified::contact_cover::CoverOptions;
-use crate::certified::straying::{check_branches, StrayReport};
-use crate::certified::{certify_branch, CertifiedBranch, CertifyOptions};
+use crate::certify::contact::{certify_contact_events, CertifiedContact, ContactOptions};
+use crate::certify::contact_cover::CoverOptions;
+use crate::certify::{certify_branch, CertifiedBranch, CertifyOptions};
+use crate::check::straying::{check_branches, StrayReport};
 use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
-use crate::intersection::Branch;
-use crate::intersection::EventKind;
 use crate::io::result_json::{
     certified_contact_to_json, certified_error_to_json, certified_events_to_json,
     certified_to_json, ResultMeta, CERTIFIED_CONTACT_EVENT,
 };
 use crate::io::scene::{Method, Scene};
 use crate::io::topology_json::{boundary_ends_to_json, node_to_json};
-use crate::marching::boundary_direction::BoundaryOptions;
-use crate::marching::branch_ends::check_branch_ends;
-use crate::marching::intersect::{intersect, IntersectOutcome};
-use crate::marching::start_points::SearchOptions;
-use crate::marching::MarchOptions;
+use crate::march::branch::Branch;
+use crate::march::branch::EventKind;
+use crate::march::MarchOptions;
+use crate::pair::boundary_direction::BoundaryOptions;
+use crate::search::start_points::SearchOptions;
+use crate::topology::branch_ends::check_branch_ends;
+use crate::topology::intersect::{intersect, IntersectOutcome};
 use inari::Interval;
 use serde_json::{json, Map, Value};
 

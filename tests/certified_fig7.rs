@@ -6,10 +6,10 @@
 //! reported curve against the ellipse, dense samples of the ellipse against the reported curve),
 //! and must meet the target of 1e-9 for this unit-size model.
 
-use ssitrace::certified::{CertifiedBranch, CertifiedEnd, TubePiece};
+use ssitrace::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
 use ssitrace::io::scene::{Method, Scene};
+use ssitrace::numeric::scalar::point;
 use ssitrace::pipeline::{run, RunOptions};
-use ssitrace::scalar::point;
 
 #[test]
 fn three_nested_loops_are_certified_with_disjoint_tubes() {
@@ -28,8 +28,7 @@ fn three_nested_loops_are_certified_with_disjoint_tubes() {
     for c in &loops {
         assert_eq!(c.ends, [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop]);
         // The level 3σ² + t² of this loop: every box meets exactly that ellipse.
-        let level =
-            |b: &ssitrace::certified::EnclosureBox| point(3.0) * b.p[0].sqr() + b.p[1].sqr();
+        let level = |b: &ssitrace::certify::EnclosureBox| point(3.0) * b.p[0].sqr() + b.p[1].sqr();
         let first = level(&c.boxes[0]);
         let own = [0.5, 0.6, 0.7]
             .into_iter()

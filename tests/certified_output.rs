@@ -7,15 +7,15 @@
 
 use inari::Interval;
 use serde_json::Value;
-use ssitrace::certified::{CertifiedBranch, CertifiedEnd, EnclosureBox};
-use ssitrace::intersection::{Branch, BranchStatus, CurvePoint, EndReason};
+use ssitrace::certify::{CertifiedBranch, CertifiedEnd, EnclosureBox};
 use ssitrace::io::result_json::{
     enclosures_from_json, interval_from_json, result_from_json, result_to_json,
 };
 use ssitrace::io::scene::{Method, Scene};
 use ssitrace::io::svg::{certified_overlay, render_svg_with_overlay};
+use ssitrace::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
+use ssitrace::numeric::scalar::{interval, point};
 use ssitrace::pipeline::{certificate_json, certify_marched_branch, run, RunOptions, RunReport};
-use ssitrace::scalar::{interval, point};
 
 /// z = x² + y² over [−1/32, 1/32]² against the plane y = 1/64: the arc
 /// `(x, 1/64, x² + 1/4096)`, `x ∈ [−1/32, 1/32]`, from P's boundary to P's boundary; on Q
@@ -321,7 +321,7 @@ fn singular_and_close_branch_ends_become_box_events() {
     }
     let mut meta = ssitrace::io::result_json::ResultMeta::new(None, "validated");
     meta.certified_events = events.clone();
-    let ix = ssitrace::intersection::Intersection::default();
+    let ix = ssitrace::march::branch::Intersection::default();
     let doc = result_to_json(&ix, &meta);
     assert_eq!(doc["events"].as_array().unwrap().len(), 2);
     let back = result_from_json(&doc).unwrap();

@@ -8,10 +8,10 @@
 //! (bicubic).
 
 use inari::Interval;
-use ssitrace::certified::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
+use ssitrace::certify::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
 use ssitrace::io::scene::Scene;
+use ssitrace::numeric::scalar::point;
 use ssitrace::pipeline::{run_scene, RunOptions};
-use ssitrace::scalar::point;
 use std::path::Path;
 use std::time::Instant;
 

@@ -7,9 +7,9 @@
 //! Uses only `certify_branch` and `trace_branch`, so the same file (with `tests/common/`)
 //! measures older versions.
 
-use ssitrace::certified::{certify_branch, CertifyOptions};
+use ssitrace::certify::{certify_branch, CertifyOptions};
 use ssitrace::io::scene::Scene;
-use ssitrace::marching::{trace_branch, MarchOptions};
+use ssitrace::march::{trace_branch, MarchOptions};
 use ssitrace::pipeline::{run_scene, RunOptions};
 use std::path::Path;
 

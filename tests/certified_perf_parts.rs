@@ -4,9 +4,9 @@
 //! time-constant centre against closed-form Taylor coefficients.
 
 use inari::Interval;
-use ssitrace::certified::field::{cross, det, norm_sqr, transversal_field, ScalarSurface};
 use ssitrace::geometry::{Domain, RationalBezierPatch};
-use ssitrace::scalar::{interval, point};
+use ssitrace::numeric::scalar::{interval, point};
+use ssitrace::pair::field::{cross, det, norm_sqr, transversal_field, ScalarSurface};
 use ssitrace::validated::tape::{Op, Tape};
 use ssitrace::validated::{Expansion, OdeSystem, TaylorAd};
 use ssitrace::Scalar;
@@ -248,7 +248,7 @@ fn remainder_over_pieces_is_sound() {
 
 #[test]
 fn remainder_over_pieces_lengthens_steps_of_the_intersection_ode() {
-    use ssitrace::certified::ode::TransversalOde;
+    use ssitrace::certify::ode::TransversalOde;
     use ssitrace::io::scene::Scene;
     use ssitrace::validated::{Integrator, IntegratorOptions};
     let scene = Scene::from_path(std::path::Path::new("scenes/sphere_patch_plane.json")).unwrap();

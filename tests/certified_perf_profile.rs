@@ -5,10 +5,10 @@
 //! phase-I attempts and the Taylor recurrence work per phase; then the same for several orders.
 //! The checks are soundness checks on closed forms that hold at every order.
 
-use ssitrace::certified::{certify_branch_profiled, CertifiedEnd, CertifyOptions, TraceProfile};
+use ssitrace::certify::{certify_branch_profiled, CertifiedEnd, CertifyOptions, TraceProfile};
 use ssitrace::io::scene::Scene;
+use ssitrace::numeric::scalar::point;
 use ssitrace::pipeline::{run_scene, RunOptions};
-use ssitrace::scalar::point;
 use std::path::Path;
 
 mod common;

@@ -6,7 +6,7 @@
 //! δ ∈ [z]), the steps grow as |δ| shrinks, and δ = 0 is reported as singular with a box that
 //! holds the crossing.
 
-use ssitrace::certified::{certify_branch, CertifiedEnd, CertifyOptions};
+use ssitrace::certify::{certify_branch, CertifiedEnd, CertifyOptions};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
 
 fn graph(z: Vec<(u32, u32, f64)>) -> RationalBezierPatch {

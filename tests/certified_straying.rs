@@ -4,13 +4,13 @@
 //! unchecked; and `both` is the command line's default method.
 
 use serde_json::Value;
-use ssitrace::certified::straying::{check_branch, check_branches, StrayReport};
-use ssitrace::certified::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
-use ssitrace::intersection::{Branch, BranchStatus, CurvePoint, EndReason};
+use ssitrace::certify::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
+use ssitrace::check::straying::{check_branch, check_branches, StrayReport};
 use ssitrace::io::scene::Scene;
-use ssitrace::marching::intersect::intersect;
-use ssitrace::marching::start_points::SearchOptions;
-use ssitrace::marching::MarchOptions;
+use ssitrace::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
+use ssitrace::march::MarchOptions;
+use ssitrace::search::start_points::SearchOptions;
+use ssitrace::topology::intersect::intersect;
 use std::path::Path;
 use std::time::Instant;
 

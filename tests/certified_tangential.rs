@@ -2,13 +2,13 @@
 //! cover, checked against closed-form contact curves.
 
 use inari::Interval;
-use ssitrace::certified::contact::{
+use ssitrace::certify::contact::{
     certify_contact, classify_box, CertifiedContact, ContactEnd, ContactOptions, StepCase,
 };
-use ssitrace::certified::contact_cover::CoverOptions;
-use ssitrace::certified::{certify_branch, CertifyOptions};
+use ssitrace::certify::contact_cover::CoverOptions;
+use ssitrace::certify::{certify_branch, CertifyOptions};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
-use ssitrace::scalar::{interval, point};
+use ssitrace::numeric::scalar::{interval, point};
 use std::time::Instant;
 
 /// A 90° arc of the cylinder x² + (z − ½)² = ¼ around its lowest line, along y ∈ [−1, 1]; the
@@ -232,7 +232,7 @@ fn cubic_quadratic_tangential_contact_is_covered_and_traced() {
     // Band: largest model-space distance of a kept box from the parabola (x, x/2, 0.9x²),
     // measured in the closed form (distance to the nearest of dense samples), for the cover
     // above and for finer covers of the same region.
-    let band_of = |boxes: &[ssitrace::certified::contact_cover::CoverBox]| {
+    let band_of = |boxes: &[ssitrace::certify::contact_cover::CoverBox]| {
         boxes
             .iter()
             .map(|b| {
@@ -262,7 +262,7 @@ fn cubic_quadratic_tangential_contact_is_covered_and_traced() {
             };
             // The finer cover on a few region boxes only (its cost grows ≈ 8× per halving).
             let part = &row.r.cover.region[..6];
-            ssitrace::certified::contact_cover::contact_cover(&p, &q, part, &o)
+            ssitrace::certify::contact_cover::contact_cover(&p, &q, part, &o)
         };
         assert!(cover.resolved);
         for k in 0..=1000 {
@@ -410,9 +410,9 @@ fn contact_json_holds_the_cover_boxes_bit_for_bit() {
 fn scene_contact_events_off_the_line_feed_the_contact_certifier() {
     // The marcher reports this contact as singular events near (not on) the line (its run on
     // this scene takes ≈ 7 s, too slow here): two such events, 1e-9 off the line in t.
-    use ssitrace::certified::contact::certify_contact_events;
-    use ssitrace::intersection::{Event, EventKind};
+    use ssitrace::certify::contact::certify_contact_events;
     use ssitrace::io::scene::Scene;
+    use ssitrace::march::branch::{Event, EventKind};
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/scenes/cubic_quadratic_tangential.json"

@@ -6,7 +6,7 @@
 //! below the box widths along the curve (so a box that misses the curve cannot pass).
 
 use inari::Interval;
-use ssitrace::certified::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
+use ssitrace::certify::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
 use ssitrace::io::scene::Scene;
 use ssitrace::pipeline::{run_scene, RunOptions};
@@ -256,7 +256,7 @@ fn quarter_cylinder(
     lo: f64,
     hi: f64,
 ) -> RationalBezierPatch {
-    use ssitrace::scalar::{interval, point};
+    use ssitrace::numeric::scalar::{interval, point};
     let arc = [[r, 0.0], [r, r], [0.0, r]];
     let mut pts = Vec::new();
     for c in arc {
@@ -281,11 +281,11 @@ fn cylinder_against_cylinder_open_branch_is_enclosed() {
     // (√3/2, 0, 1/2), on the boundaries of the quarter patches.
     let p = quarter_cylinder(1.0, 0, 2, 1, -1.0, 1.0);
     let q = quarter_cylinder(0.5, 1, 2, 0, 0.0, 2.0);
-    let found = ssitrace::marching::intersect::intersect(
+    let found = ssitrace::topology::intersect::intersect(
         &p,
         &q,
-        &ssitrace::marching::MarchOptions::default(),
-        &ssitrace::marching::start_points::SearchOptions::default(),
+        &ssitrace::march::MarchOptions::default(),
+        &ssitrace::search::start_points::SearchOptions::default(),
     );
     assert_eq!(found.intersection.branches.len(), 1);
     let pts = &found.intersection.branches[0].points;
@@ -304,9 +304,9 @@ fn cylinder_against_cylinder_open_branch_is_enclosed() {
         "{:?}",
         c.ends
     );
-    let one = ssitrace::scalar::point(1.0);
-    let quarter = ssitrace::scalar::point(0.25);
-    let m = ssitrace::scalar::interval(-MARGIN, MARGIN).unwrap();
+    let one = ssitrace::numeric::scalar::point(1.0);
+    let quarter = ssitrace::numeric::scalar::point(0.25);
+    let m = ssitrace::numeric::scalar::interval(-MARGIN, MARGIN).unwrap();
     for b in &c.boxes {
         // Both cylinder equations hold somewhere in every model box.
         let [x, y, z] = b.xyz;
@@ -400,7 +400,7 @@ fn widths_along_the_sphere_loop_with_and_without_contraction() {
         without.tolerance,
         without.steps()
     );
-    use ssitrace::scalar::point;
+    use ssitrace::numeric::scalar::point;
     let r2 = point(141.0) / point(1024.0);
     for c in [&with, &without] {
         assert_eq!(c.ends, [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop]);

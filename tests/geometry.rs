@@ -5,7 +5,7 @@ use proptest::prelude::*;
 use ssitrace::geometry::{
     Domain, ParametricSurface, PatchDerivs, PowerSurface, RationalBezierPatch,
 };
-use ssitrace::scalar::{interval, point};
+use ssitrace::numeric::scalar::{interval, point};
 use ssitrace::{Error, InputProblem};
 
 const W45: f64 = std::f64::consts::FRAC_1_SQRT_2;

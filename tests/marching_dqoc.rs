@@ -6,11 +6,11 @@
 use nalgebra::Vector3;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::Domain;
-use ssitrace::intersection::{BranchStatus, EndReason};
-use ssitrace::marching::circle_step::circular_step;
-use ssitrace::marching::dqoc_step::dqoc_step;
-use ssitrace::marching::tangent_step::tangent_step;
-use ssitrace::marching::{trace_branch, MarchOptions, StepMethod};
+use ssitrace::march::branch::{BranchStatus, EndReason};
+use ssitrace::march::circle_step::circular_step;
+use ssitrace::march::dqoc_step::dqoc_step;
+use ssitrace::march::tangent_step::tangent_step;
+use ssitrace::march::{trace_branch, MarchOptions, StepMethod};
 
 type V = Vector3<f64>;
 /// A curve with its derivative.
@@ -146,7 +146,7 @@ fn marching_on_the_example_surfaces_with_both_methods() {
             b3.branch.points.len(),
             b3.branch.ends
         );
-        let worst = |b: &ssitrace::marching::TracedBranch, on: &dyn Fn(&[f64; 3]) -> f64| {
+        let worst = |b: &ssitrace::march::TracedBranch, on: &dyn Fn(&[f64; 3]) -> f64| {
             b.branch
                 .points
                 .iter()
@@ -180,7 +180,7 @@ fn marching_on_the_example_surfaces_with_both_methods() {
         let sing = b1
             .events
             .iter()
-            .find(|e| e.kind == ssitrace::intersection::EventKind::Singular)
+            .find(|e| e.kind == ssitrace::march::branch::EventKind::Singular)
             .expect("singular event reported");
         println!("  ex1 singular point reported at {:?}", sing.xyz);
         assert!(V::from(sing.xyz).norm() < 0.05);

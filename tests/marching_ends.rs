@@ -4,8 +4,8 @@
 use ssitrace::error::Error;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::Domain;
-use ssitrace::intersection::{BranchStatus, EndReason, EventKind};
-use ssitrace::marching::{trace_branch, MarchOptions, StepMethod};
+use ssitrace::march::branch::{BranchStatus, EndReason, EventKind};
+use ssitrace::march::{trace_branch, MarchOptions, StepMethod};
 
 /// P: the graph z = u − 0.3 + 0.2 v² on [0,1]²; Q: the plane z = 0 on [−1,2]². The curve is
 /// u = 0.3 − 0.2 v², v ∈ [0, 1], leaving P's domain through v = 0 and v = 1.

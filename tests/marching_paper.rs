@@ -4,8 +4,8 @@
 use nalgebra::Vector3;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::{Domain, ParametricSurface};
-use ssitrace::intersection::{BranchStatus, EndReason, EventKind};
-use ssitrace::marching::{trace_branch, MarchOptions, StepMethod, TracedBranch};
+use ssitrace::march::branch::{BranchStatus, EndReason, EventKind};
+use ssitrace::march::{trace_branch, MarchOptions, StepMethod, TracedBranch};
 use std::f64::consts::PI;
 
 type V = Vector3<f64>;

@@ -7,7 +7,7 @@
 
 use nalgebra::Vector3;
 use ssitrace::geometry::analytic::Jet2;
-use ssitrace::marching::circle_step::{approximate_circle, rotate};
+use ssitrace::march::circle_step::{approximate_circle, rotate};
 
 type V = Vector3<f64>;
 

@@ -2,15 +2,15 @@
 
 use serde_json::{json, Value};
 use ssitrace::geometry::surface::Domain;
-use ssitrace::intersection::{
-    Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind, Intersection,
-};
 use ssitrace::io::result_json::{
     interval_from_json, interval_to_json, result_from_json, result_to_json, write_result,
     ResultMeta,
 };
 use ssitrace::io::svg::{branch_colour, render_svg, render_svg_with_overlay, write_svg, Overlay};
-use ssitrace::scalar::{interval, point};
+use ssitrace::march::branch::{
+    Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind, Intersection,
+};
+use ssitrace::numeric::scalar::{interval, point};
 use ssitrace::Error;
 
 /// P is the plane z = 0 over [0,1]², Q the same plane over [-1,1]² (q = 2p − 1).

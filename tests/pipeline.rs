@@ -1,8 +1,8 @@
 //! The whole marching pipeline on the example scenes, checked against closed forms: every branch
 //! found, each traced once, every point on the known curve.
 
-use ssitrace::intersection::{Branch, BranchStatus, EndReason, Intersection};
 use ssitrace::io::scene::Scene;
+use ssitrace::march::branch::{Branch, BranchStatus, EndReason, Intersection};
 use ssitrace::pipeline::{run_scene, RunOptions};
 
 fn run(file: &str) -> Intersection {
@@ -139,10 +139,10 @@ fn cylinder_lying_on_a_plane_reports_the_contact_line() {
     // the plane z = 0: they touch along x = z = 0. The middle weight is the interval around
     // √2/2, so the patch family holds the exact cylinder and the contact is real.
     use ssitrace::geometry::{Domain, RationalBezierPatch};
-    use ssitrace::marching::intersect::intersect;
-    use ssitrace::marching::start_points::SearchOptions;
-    use ssitrace::marching::MarchOptions;
-    use ssitrace::scalar::{interval, point};
+    use ssitrace::march::MarchOptions;
+    use ssitrace::numeric::scalar::{interval, point};
+    use ssitrace::search::start_points::SearchOptions;
+    use ssitrace::topology::intersect::intersect;
     let (h, c) = (
         std::f64::consts::FRAC_1_SQRT_2,
         0.5 * std::f64::consts::FRAC_1_SQRT_2,

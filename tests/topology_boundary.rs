@@ -8,16 +8,16 @@
 use ssitrace::error::Error;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::{Domain, ParametricSurface, PowerSurface, RationalBezierPatch};
-use ssitrace::intersection::{BranchStatus, EndReason};
 use ssitrace::io::scene::Scene;
-use ssitrace::marching::boundary_direction::{
+use ssitrace::march::branch::{BranchStatus, EndReason};
+use ssitrace::march::MarchOptions;
+use ssitrace::pair::boundary_direction::{
     boundary_sides, classify_boundary_point, classify_boundary_point_unproven, classify_on_faces,
     Bound, BoundaryClassification, BoundaryDirection, BoundaryOptions, BoundarySide, Contact,
     DecidedBy,
 };
-use ssitrace::marching::intersect::intersect;
-use ssitrace::marching::start_points::SearchOptions;
-use ssitrace::marching::MarchOptions;
+use ssitrace::search::start_points::SearchOptions;
+use ssitrace::topology::intersect::intersect;
 
 fn graph(d: Domain, z: Vec<(u32, u32, f64)>) -> RationalBezierPatch {
     PowerSurface::graph(d, z).to_bezier().expect("valid graph")

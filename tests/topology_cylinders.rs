@@ -17,14 +17,14 @@
 //! Seven arcs in all, four leaving each node. (Four arcs between the nodes would need each patch
 //! to cover the whole circle: the arcs with x < 0 reach x = −1 and those with x > 0 reach x = 1.)
 
-use ssitrace::certified::tangential::ContactCase;
-use ssitrace::certified::CertifiedEnd;
-use ssitrace::intersection::{Branch, BranchStatus, CurvePoint, EndReason};
+use ssitrace::certify::CertifiedEnd;
 use ssitrace::io::scene::{Method, Scene};
-use ssitrace::marching::intersect::intersect;
-use ssitrace::marching::start_points::SearchOptions;
-use ssitrace::marching::MarchOptions;
+use ssitrace::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
+use ssitrace::march::MarchOptions;
+use ssitrace::pair::contact_quadratic::ContactCase;
 use ssitrace::pipeline::{run, RunOptions};
+use ssitrace::search::start_points::SearchOptions;
+use ssitrace::topology::intersect::intersect;
 use std::f64::consts::PI;
 use std::time::Instant;
 

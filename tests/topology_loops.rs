@@ -8,14 +8,14 @@
 //! missing arc as a sample not covered.
 
 use nalgebra::Vector3;
-use ssitrace::certified::tangential::ContactCase;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::{Domain, ParametricSurface, PowerSurface};
-use ssitrace::intersection::{Branch, BranchStatus, EndReason};
-use ssitrace::marching::graph::{trace_graph, GraphOutcome};
-use ssitrace::marching::intersect::intersect;
-use ssitrace::marching::start_points::SearchOptions;
-use ssitrace::marching::{trace_branch, MarchOptions};
+use ssitrace::march::branch::{Branch, BranchStatus, EndReason};
+use ssitrace::march::{trace_branch, MarchOptions};
+use ssitrace::pair::contact_quadratic::ContactCase;
+use ssitrace::search::start_points::SearchOptions;
+use ssitrace::topology::graph::{trace_graph, GraphOutcome};
+use ssitrace::topology::intersect::intersect;
 use std::f64::consts::PI;
 
 type V = Vector3<f64>;
@@ -100,7 +100,7 @@ fn cover_count(
     branches: &[Branch],
     c: &[f64],
     tol: f64,
-    coord: &dyn Fn(&ssitrace::intersection::CurvePoint) -> Vec<f64>,
+    coord: &dyn Fn(&ssitrace::march::branch::CurvePoint) -> Vec<f64>,
 ) -> usize {
     branches
         .iter()
@@ -120,7 +120,7 @@ fn coverage(
     nodes: &[Vec<f64>],
     exclude: f64,
     tol: f64,
-    coord: &dyn Fn(&ssitrace::intersection::CurvePoint) -> Vec<f64>,
+    coord: &dyn Fn(&ssitrace::march::branch::CurvePoint) -> Vec<f64>,
 ) -> (usize, usize, usize) {
     let (mut checked, mut missing, mut double) = (0, 0, 0);
     for s in samples {
@@ -629,7 +629,7 @@ fn single_trace_with_crossing_closes_once_with_the_rotation_index() {
     });
     let u0 = 1.5f64.sqrt();
     let check = |label: &str,
-                 b: &ssitrace::marching::TracedBranch,
+                 b: &ssitrace::march::TracedBranch,
                  index: f64,
                  h: &dyn Fn(f64, f64) -> f64,
                  graph_length: f64| {

@@ -3,13 +3,13 @@
 //! boundary from inside stays one closed loop (its touching points are neither starts nor ends).
 
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
-use ssitrace::intersection::{BranchStatus, EndReason, EventKind};
 use ssitrace::io::result_json::{result_from_json, result_to_json};
 use ssitrace::io::scene::{Method, Scene};
-use ssitrace::marching::intersect::intersect;
-use ssitrace::marching::start_points::SearchOptions;
-use ssitrace::marching::MarchOptions;
+use ssitrace::march::branch::{BranchStatus, EndReason, EventKind};
+use ssitrace::march::MarchOptions;
 use ssitrace::pipeline::{run, RunOptions};
+use ssitrace::search::start_points::SearchOptions;
+use ssitrace::topology::intersect::intersect;
 use std::path::Path;
 
 fn graph(d: Domain, z: Vec<(u32, u32, f64)>) -> RationalBezierPatch {

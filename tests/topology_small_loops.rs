@@ -8,13 +8,13 @@
 //! Each case checks against closed forms: the paraboloid z = 1 − x² − y² (an exact biquadratic
 //! Bézier patch) cut by the plane z = c is the circle of radius √(1 − c) about the z axis.
 
+use ssitrace::geometry::piece::Piece;
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
-use ssitrace::intersection::{Branch, BranchStatus};
-use ssitrace::marching::intersect::intersect;
-use ssitrace::marching::loop_exclusion::prove_loop_free;
-use ssitrace::marching::piece::Piece;
-use ssitrace::marching::start_points::{find_start_points, SearchOptions, SearchReport};
-use ssitrace::marching::MarchOptions;
+use ssitrace::march::branch::{Branch, BranchStatus};
+use ssitrace::march::MarchOptions;
+use ssitrace::search::loop_exclusion::prove_loop_free;
+use ssitrace::search::start_points::{find_start_points, SearchOptions, SearchReport};
+use ssitrace::topology::intersect::intersect;
 
 fn square() -> Domain {
     Domain::new(-1.0, 1.0, -1.0, 1.0)

@@ -14,7 +14,7 @@
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
 use inari::Interval;
-use ssitrace::scalar::{interval, point};
+use ssitrace::numeric::scalar::{interval, point};
 use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem, Trajectory};
 use ssitrace::{Error, Scalar};
 

@@ -4,7 +4,7 @@
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
 use inari::Interval;
-use ssitrace::scalar::{interval, point};
+use ssitrace::numeric::scalar::{interval, point};
 use ssitrace::validated::series::naive_expand;
 use ssitrace::validated::tape::Tape;
 use ssitrace::validated::{DomainError, Expansion, OdeSystem, Series, TaylorAd};

@@ -2,7 +2,7 @@
 //! Lohner's QR method the width must stay near its initial size; with a plain interval Taylor
 //! method (the set kept as a box) it must blow up. Both numbers are printed.
 
-use ssitrace::scalar::interval;
+use ssitrace::numeric::scalar::interval;
 use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem};
 use ssitrace::{Error, Scalar};
 

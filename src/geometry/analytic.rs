@@ -7,7 +7,7 @@
 //! a closure as a [`ParametricSurface`], so tests can use the papers' trigonometric and polynomial
 //! surfaces.
 
-use super::surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};
+use crate::geometry::surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A value with its exact gradient and Hessian with respect to two variables `(x, y)`.

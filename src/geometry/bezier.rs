@@ -13,7 +13,7 @@
 
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};
-use crate::scalar::Scalar;
+use crate::numeric::scalar::Scalar;
 use inari::Interval;
 
 /// A surface point with all first and second partial derivatives, over any [`Scalar`].

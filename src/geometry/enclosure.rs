@@ -14,7 +14,7 @@
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::bezier::{PatchDerivs, RationalBezierPatch};
 use crate::geometry::surface::Domain;
-use crate::scalar::point;
+use crate::numeric::scalar::point;
 use inari::Interval;
 
 /// Control points of the polynomial curve with control points `net` (homogeneous, degree

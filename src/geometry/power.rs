@@ -14,7 +14,7 @@
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::bezier::{check_domain, RationalBezierPatch};
 use crate::geometry::surface::Domain;
-use crate::scalar::{point, Scalar};
+use crate::numeric::scalar::{point, Scalar};
 use inari::Interval;
 
 /// Largest exponent accepted in a power-basis term (keeps the dense expansion small).

@@ -6,9 +6,9 @@
 //! its half, and the two halves together cover the parent: a bound computed from a child net is
 //! as rigorous as one from [`RationalBezierPatch::enclose`].
 
-use super::enclosure::hull_of_net;
-use super::RationalBezierPatch;
-use crate::scalar::point;
+use crate::geometry::enclosure::hull_of_net;
+use crate::geometry::RationalBezierPatch;
+use crate::numeric::scalar::point;
 use inari::Interval;
 
 /// A rectangular piece of a patch (or of one of its boundary curves): its parameter ranges and
@@ -153,7 +153,7 @@ fn halve(x: Interval) -> Interval {
 mod tests {
     use super::*;
     use crate::geometry::{Domain, ParametricSurface};
-    use crate::scalar::interval;
+    use crate::numeric::scalar::interval;
 
     fn wavy() -> RationalBezierPatch {
         let mut pts = Vec::new();
@@ -206,12 +206,12 @@ mod tests {
 
     #[test]
     fn halving_is_exact_or_outward() {
-        let x = crate::scalar::interval(-3.0, 1e-310).unwrap();
+        let x = crate::numeric::scalar::interval(-3.0, 1e-310).unwrap();
         let h = halve(x);
         assert!(h.inf() <= -1.5 && h.sup() >= 0.5e-310);
         assert_eq!(
-            halve(crate::scalar::interval(2.0, 6.0).unwrap()),
-            crate::scalar::interval(1.0, 3.0).unwrap()
+            halve(crate::numeric::scalar::interval(2.0, 6.0).unwrap()),
+            crate::numeric::scalar::interval(1.0, 3.0).unwrap()
         );
     }
 

@@ -24,8 +24,8 @@ use std::path::Path;
 use inari::Interval;
 use serde_json::{json, Map, Value};
 
-use crate::certified::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
-use crate::intersection::{
+use crate::certify::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
+use crate::march::branch::{
     Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind, Intersection,
 };
 use crate::{Error, Result};
@@ -273,7 +273,7 @@ pub fn interval_to_json(x: Interval) -> Result<Value> {
 /// Reads `[lo, hi]` (two finite numbers, `lo <= hi`) back into an interval.
 pub fn interval_from_json(v: &Value) -> Result<Interval> {
     let [lo, hi] = numbers::<2>(v, "interval")?;
-    crate::scalar::interval(lo, hi)
+    crate::numeric::scalar::interval(lo, hi)
         .ok_or_else(|| bad(&format!("interval [{lo}, {hi}] is inverted")))
 }
 
@@ -606,12 +606,12 @@ fn event_from_json(v: &Value, k: usize) -> Result<Event> {
 /// `"boxes"`: kept boxes, `"resolved"`), the f64 band diagnostic and the proven statement. All
 /// bounds are the exact outward-rounded `f64` bounds, as in [`enclosure_to_json`].
 pub fn certified_contact_to_json(
-    c: &crate::certified::contact::CertifiedContact,
+    c: &crate::certify::contact::CertifiedContact,
     tubes: bool,
 ) -> Value {
-    use crate::certified::contact::ContactEnd;
+    use crate::certify::contact::ContactEnd;
     let case =
-        |k: crate::certified::contact::StepCase| serde_json::to_value(k).unwrap_or(Value::Null);
+        |k: crate::certify::contact::StepCase| serde_json::to_value(k).unwrap_or(Value::Null);
     let end = |e: &ContactEnd| match e {
         ContactEnd::Boundary { surface } => json!({"kind": "boundary", "surface": surface}),
         ContactEnd::CaseChanged { case: k, near } => {

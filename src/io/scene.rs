@@ -22,7 +22,7 @@ use crate::error::{Error, InputProblem, Result};
 use crate::geometry::bezier::RationalBezierPatch;
 use crate::geometry::power::{PowerSurface, PowerTerm};
 use crate::geometry::surface::Domain;
-use crate::scalar::{interval, point};
+use crate::numeric::scalar::{interval, point};
 use inari::Interval;
 use serde_json::{json, Map, Value};
 use std::path::Path;

@@ -17,10 +17,10 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::certified::contact::CertifiedContact;
-use crate::certified::{CertifiedBranch, CertifiedEnd, EnclosureBox};
+use crate::certify::contact::CertifiedContact;
+use crate::certify::{CertifiedBranch, CertifiedEnd, EnclosureBox};
 use crate::geometry::surface::Domain;
-use crate::intersection::{Branch, BranchStatus, EndReason, EventKind, Intersection};
+use crate::march::branch::{Branch, BranchStatus, EndReason, EventKind, Intersection};
 use crate::{Error, Result};
 
 /// Picture width in pixels.
@@ -428,7 +428,7 @@ fn draw_param_panel(
     caption: &str,
     axis_names: (&str, &str),
     points_of: &dyn Fn(&Branch) -> Vec<Pt>,
-    event_at: &dyn Fn(&crate::intersection::Event) -> Pt,
+    event_at: &dyn Fn(&crate::march::branch::Event) -> Pt,
     boxes: &[ParamBox],
 ) -> Result<()> {
     let mut chart = ChartBuilder::on(area)

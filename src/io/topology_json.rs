@@ -1,13 +1,13 @@
 //! JSON notes on the topology of a result: the boundary-direction check of each branch end
 //! (`"boundary_ends"` on a branch) and the singular nodes of the graph tracer (`"node"` on a
 //! singular event). They are written into the result document through
-//! [`ResultMeta::branch_notes`](super::result_json::ResultMeta::branch_notes) and
-//! [`ResultMeta::event_notes`](super::result_json::ResultMeta::event_notes).
+//! [`ResultMeta::branch_notes`](crate::io::result_json::ResultMeta::branch_notes) and
+//! [`ResultMeta::event_notes`](crate::io::result_json::ResultMeta::event_notes).
 
 use crate::error::Result;
-use crate::marching::boundary_direction::{Bound, BoundaryDirection, DecidedBy};
-use crate::marching::branch_ends::BranchEndCheck;
-use crate::marching::branch_point::SingularNode;
+use crate::pair::boundary_direction::{Bound, BoundaryDirection, DecidedBy};
+use crate::pair::branch_point::SingularNode;
+use crate::topology::branch_ends::BranchEndCheck;
 use serde_json::{json, Value};
 
 /// The name of a boundary direction in the result JSON.

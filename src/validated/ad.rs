@@ -21,9 +21,9 @@
 //! be ≤ 0, makes the expansion fail with [`DomainError`] instead of producing a silently restricted
 //! or empty interval (an empty interval would pass every containment test).
 
-use super::dot::{DotAcc, InariDot, IntervalDot};
-use super::tape::{Op, Tape};
-use crate::scalar::point;
+use crate::numeric::dot::{DotAcc, InariDot, IntervalDot};
+use crate::numeric::scalar::point;
+use crate::validated::tape::{Op, Tape};
 use inari::{const_interval, Interval};
 
 /// Orders computed with `inari`'s one-operation-at-a-time rounding by [`TaylorAd::expand_tight`].
@@ -31,18 +31,7 @@ pub const TIGHT_ORDERS: usize = 8;
 
 const ZERO: Interval = const_interval!(0.0, 0.0);
 
-/// The expansion hit a point where the field is not (smoothly) defined on the given box.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DomainError {
-    /// A divisor whose enclosure contains zero.
-    DivisionByZero,
-    /// A square root whose argument's enclosure reaches zero or below.
-    SqrtOfNonPositive,
-    /// An interval that is empty or unbounded (overflow).
-    Unbounded,
-    /// An initial box whose length is not the field's dimension.
-    WrongDimension,
-}
+pub use crate::error::DomainError;
 
 /// Taylor coefficients of the solution (and optionally their Jacobians) for one initial box.
 #[derive(Clone, Debug, Default)]

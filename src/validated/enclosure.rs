@@ -16,8 +16,8 @@
 //! stay in `Y ⊆ Z`). After the first-order test, whose `Y` is usually wide, the box is tightened
 //! by Taylor's theorem with the Lagrange remainder over `Y`: `y(t) ∈ P(t) + Tᵏ·y_k(Y)`, ∩ `Y`.
 
-use super::ad::{DomainError, Expansion, TaylorAd};
-use crate::scalar::interval;
+use crate::numeric::scalar::interval;
+use crate::validated::ad::{DomainError, Expansion, TaylorAd};
 use inari::Interval;
 
 /// Which validation proved the a-priori enclosure.

@@ -23,16 +23,17 @@
 //!    then computed to order `p` only (on thin sets `p` is a few units, not `k`), and so is the
 //!    expansion at the centre `x̂`.
 
-use super::ad::{DomainError, Expansion, TaylorAd};
-use super::enclosure::{
+pub use crate::error::StepFailure;
+use crate::error::{Error, Result};
+use crate::numeric::scalar::{interval, point};
+use crate::validated::ad::{Expansion, TaylorAd};
+use crate::validated::enclosure::{
     prove_apriori_with_guess, refine_remainder, remainder_ratio, taylor_poly, DEFAULT_GUESS_FACTOR,
 };
-use super::lohner::{mat_mul, mat_vec, LohnerSet};
-use super::record::StepRecord;
-use super::system::OdeSystem;
-use super::tape::Tape;
-use crate::error::{Error, Result};
-use crate::scalar::{interval, point};
+use crate::validated::lohner::{mat_mul, mat_vec, LohnerSet};
+use crate::validated::record::StepRecord;
+use crate::validated::system::OdeSystem;
+use crate::validated::tape::Tape;
 use crate::Scalar;
 use inari::Interval;
 
@@ -41,23 +42,6 @@ const MAX_REMAINDER_SHRINKS: usize = 6;
 
 /// The remainder may be this fraction of the current set's width without shrinking the step.
 const REMAINDER_FRACTION_OF_WIDTH: f64 = 1e-9;
-
-/// Why a validated step could not be proven.
-#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
-pub enum StepFailure {
-    /// Phase I failed for every step size down to `h_min`.
-    #[error("no a-priori enclosure found for any step size down to h_min = {h_min:e}")]
-    BelowMinimumStep {
-        /// The minimum step size of the options.
-        h_min: f64,
-    },
-    /// The field cannot be evaluated (smoothly) on the current set.
-    #[error("the field is not defined on the current set ({0:?})")]
-    Domain(DomainError),
-    /// The options' step budget is spent.
-    #[error("more than {0} steps")]
-    TooManySteps(usize),
-}
 
 /// Parameters of the validated integrator.
 #[derive(Clone, Copy, Debug)]
@@ -103,7 +87,7 @@ pub struct IntegratorState {
     /// the last ratio saves repeated phase-I attempts). Starts at 1.
     pub(crate) step_ratio: f64,
     /// First remainder guess of phase I, relative to the initial box's own remainder term
-    /// (learnt from the last proven step; see [`super::enclosure::prove_apriori_with_guess`]).
+    /// (learnt from the last proven step; see [`crate::validated::enclosure::prove_apriori_with_guess`]).
     pub(crate) guess_factor: f64,
 }
 
@@ -141,7 +125,7 @@ impl Trajectory {
 }
 
 /// Work done by an [`Integrator`] (for profiling): how many steps and phase-I attempts, and the
-/// Taylor recurrence cost per phase in the units of [`super::AdWork`] (coefficients plus
+/// Taylor recurrence cost per phase in the units of [`crate::validated::AdWork`] (coefficients plus
 /// Jacobians).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct IntegratorWork {
@@ -412,7 +396,7 @@ impl Integrator {
                 Ok(mut a) => {
                     // Remember what the first guess had to exceed (twice it, for the next step).
                     if self.adaptive_guess
-                        && a.method == super::enclosure::EnclosureMethod::HighOrder
+                        && a.method == crate::validated::enclosure::EnclosureMethod::HighOrder
                     {
                         if let Some(r) = remainder_ratio(&a, &self.exp_box, k) {
                             state.guess_factor = (2.0 * r).clamp(DEFAULT_GUESS_FACTOR, 1e200);
@@ -421,7 +405,7 @@ impl Integrator {
                     // Remainder control: the interval remainder over the a-priori box can be far
                     // larger than the point estimate used above; re-enclose it over pieces of the
                     // step if needed, then shrink until it meets ε.
-                    let rem_of = |a: &super::enclosure::Apriori| {
+                    let rem_of = |a: &crate::validated::enclosure::Apriori| {
                         a.remainder_coeff.iter().fold(0.0f64, |m, c| m.max(c.mag()))
                             * h_try.powi(k as i32)
                     };

@@ -13,7 +13,7 @@
 //! enclosed rigorously ([`verified_inverse`]) rather than taken as `Qᵀ`. Every product above is
 //! an interval product, so the update is a sound enclosure whatever `Q` is.
 
-use crate::scalar::point;
+use crate::numeric::scalar::point;
 use inari::{const_interval, Interval};
 use nalgebra::DMatrix;
 
@@ -76,7 +76,7 @@ pub fn verified_inverse(q: &DMatrix<f64>) -> Option<Vec<Interval>> {
     }
     let xnorm = row_norm(&x);
     let tail = (point(eta).sqr() * point(xnorm) / (point(1.0) - point(eta))).sup();
-    let pad = super::enclosure::symmetric(tail);
+    let pad = crate::validated::enclosure::symmetric(tail);
     let ex = mat_mul(&e, &x, n);
     Some((0..n * n).map(|k| x[k] + ex[k] + pad).collect())
 }
@@ -186,7 +186,7 @@ impl LohnerSet {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scalar::interval;
+    use crate::numeric::scalar::interval;
 
     #[test]
     fn verified_inverse_encloses_inverse_of_rotation_like_matrix() {

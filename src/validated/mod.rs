@@ -10,7 +10,7 @@
 //! [`crate::Error::StepFailed`], carrying the time and the enclosure reached; nothing panics.
 //!
 //! ```
-//! use ssitrace::scalar::interval;
+//! use ssitrace::numeric::scalar::interval;
 //! use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem};
 //! use ssitrace::Scalar;
 //!
@@ -83,13 +83,11 @@
 //!   often many orders of magnitude above the point estimate).
 //!
 //! Pieces, one per file: [`system`] (the trait), [`tape`] (recording the field once), [`ad`]
-//! (Taylor-mode AD over intervals with Jacobians), [`dot`] (fast rigorous dot products),
-//! [`series`] (a `Copy` truncated-series scalar, the naive alternative), [`enclosure`] (phase I),
+//! (Taylor-mode AD over intervals with Jacobians), [`series`] (a `Copy` truncated-series scalar, the naive alternative), [`enclosure`] (phase I),
 //! [`lohner`] (the QR set representation), [`record`] (step output), [`integrator`] (driver and
 //! step control).
 
 pub mod ad;
-pub mod dot;
 pub mod enclosure;
 pub mod integrator;
 pub mod lohner;

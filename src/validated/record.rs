@@ -1,9 +1,9 @@
 //! What one validated step reports, and enclosures on sub-intervals of a step.
 
-use super::enclosure::EnclosureMethod;
-use super::lohner::{mat_mul, mat_vec};
 use crate::error::{Error, InputProblem, Result};
-use crate::scalar::{interval, point};
+use crate::numeric::scalar::{interval, point};
+use crate::validated::enclosure::EnclosureMethod;
+use crate::validated::lohner::{mat_mul, mat_vec};
 use inari::Interval;
 
 /// One proven step from `t0` to `t0 + h`.

@@ -1,8 +1,8 @@
 //! A published reference problem for the engine: the planar circular restricted three-body
 //! problem (PCR3BP) run that CAPD documents, shared by the tests, the example and the benchmark.
 
-use super::OdeSystem;
-use crate::scalar::{interval, point};
+use crate::numeric::scalar::{interval, point};
+use crate::validated::OdeSystem;
 use crate::Scalar;
 use inari::Interval;
 

@@ -13,8 +13,8 @@
 //! `O(k²)` each; the engine instead uses the tape-based recurrences of [`crate::validated::ad`]
 //! (`O(k²)` in total), and the `validated` benchmark measures the difference.
 
-use super::system::OdeSystem;
-use crate::scalar::point;
+use crate::numeric::scalar::point;
+use crate::validated::system::OdeSystem;
 use crate::Scalar;
 use inari::{const_interval, Interval};
 use std::ops::{Add, Div, Mul, Neg, Sub};

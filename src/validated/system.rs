@@ -5,7 +5,7 @@ use crate::Scalar;
 /// An autonomous ODE `y' = f(y)` in `ℝⁿ` whose right-hand side is written once over [`Scalar`].
 ///
 /// The same code is evaluated in `f64` (fast, non-rigorous), in `inari::Interval` (rigorous) and
-/// on a recording scalar ([`crate::validated::tape::Var`]) from which the validated engine derives
+/// on a recording scalar (`tape::Var`) from which the validated engine derives
 /// Taylor coefficients and Jacobians. `eval` must therefore be a straight-line program of
 /// [`Scalar`] operations: the trait offers no comparisons, so it cannot branch on values.
 pub trait OdeSystem {

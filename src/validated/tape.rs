@@ -11,9 +11,9 @@
 //! operation for order `k`. Evaluating `f` on truncated series of growing length (the naive
 //! scheme, [`crate::validated::series`]) costs `O(k³)`; the benchmark `validated` measures both.
 
-use super::system::OdeSystem;
 use crate::error::{Error, Result};
-use crate::scalar::point;
+use crate::numeric::scalar::point;
+use crate::validated::system::OdeSystem;
 use crate::Scalar;
 use inari::Interval;
 use std::cell::RefCell;

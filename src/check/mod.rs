@@ -1,0 +1,3 @@
+//! Checks of the marched result against the certificates: straying and looping.
+
+pub mod straying;

@@ -1,0 +1,814 @@
+//! Branch tracing with stop rules: domain boundary, return to the start, singular point, budget.
+//!
+//! [`trace_branch`] refines the start point, marches forward along `c = N^P × N^Q` and, unless the
+//! forward march closed a loop, backward along `−c`, and joins both halves into one
+//! [`Branch`] ordered along the curve.
+//!
+//! Stop rules:
+//! - **Boundary**: a Newton point outside either domain is replaced by the point where the curve
+//!   leaves the domain, found by Newton with that boundary parameter held fixed (exactly on it).
+//! - **Closed loop**: the start point is taken as the next point (the last step is shortened or
+//!   stretched to land exactly on it) only when all of these hold: it is within 1.5 predicted steps,
+//!   it lies ahead (the chord to it is within 60° of the tangent), the tangent agrees with the
+//!   start tangent (within 60°), and the accumulated turning of the tangent in P's or in Q's
+//!   parameter domain is within `rotation_tolerance` of `2πk`, `k ≠ 0` (the rotation index of a
+//!   loop; either domain suffices, so a degenerate parametrisation of one surface does no harm). A pass near
+//!   the start on another part of the curve (close branches, a branch point) fails the tangent or
+//!   the turning test and does not stop the march. The parameters must also return (within twice
+//!   the local parameter speed times the distance), so a loop in model space that is open in a
+//!   parameter domain (a periodic surface cut at a seam) is not closed.
+//! - **Singular point**: `|N^P × N^Q| < singular_sine |N^P||N^Q|`. Below `watch_sine` the step is
+//!   limited (while the sine decreases) to half the distance at which the sine would vanish at its
+//!   current rate, so the marcher approaches a singular point geometrically instead of stepping
+//!   across it. A step that still crosses one (the orientation of `N^P × N^Q` relative to the
+//!   direction of travel flips, which on a regular arc never happens) is replaced by the singular
+//!   point itself, located by Gauss–Newton. With `cross_singular` the march continues straight
+//!   through the node's unused exit (each arc once), and the closing test then accepts rotation
+//!   index 0.
+//! - **Point limit** and **Newton failure** end the half with that reason.
+
+use crate::error::{Error, InputProblem, Result};
+use crate::geometry::surface::pair_bounds as bounds;
+use crate::geometry::{Domain, ParametricSurface, Vec3};
+use crate::march::branch::{Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind};
+use crate::march::circle_step::circular_step;
+use crate::march::crossing::{cross_node, singular_between};
+use crate::march::dqoc_step::dqoc_step;
+use crate::march::node::{inside, node_at, Node};
+use crate::march::options::{MarchOptions, StepMethod};
+use crate::march::tangent_step::tangent_step;
+use crate::march::StepPrediction;
+use crate::pair::boundary_direction::{
+    boundary_sides, classify_boundary_point_unproven, BoundaryDirection, BoundaryOptions,
+};
+use crate::pair::branch_point::SingularNode;
+use crate::pair::newton::{refine, Constraint};
+use crate::pair::tangent::{curve_frame, parameter_direction, CurveFrame};
+use std::f64::consts::PI;
+
+/// Counts describing one traced branch.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MarchStats {
+    /// Points of the branch.
+    pub points: usize,
+    /// `newton_histogram[k]` = number of points that needed `k` Newton corrections
+    /// (`k = 0` for the start and for points landed on exactly, e.g. the closing point).
+    pub newton_histogram: Vec<usize>,
+    /// Steps that were retried with a halved step after a Newton failure.
+    pub retried_steps: usize,
+}
+
+/// A traced branch with per-point Newton data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TracedBranch {
+    /// The branch (id 0; the caller renumbers). For a closed loop the last point repeats the first.
+    pub branch: Branch,
+    /// Newton corrections per point of `branch.points`.
+    pub newton_iterations: Vec<usize>,
+    /// Unit model-space tangents per point, oriented along the branch.
+    pub tangents: Vec<[f64; 3]>,
+    /// Events found (singular points, boundary ends).
+    pub events: Vec<Event>,
+    /// Total signed turning (radians) of the tangent in P's parameter domain along the branch.
+    pub turning: f64,
+    /// The same in Q's parameter domain.
+    pub turning_q: f64,
+    /// Counts.
+    pub stats: MarchStats,
+}
+
+struct Half {
+    nodes: Vec<Node>,
+    end: EndReason,
+    events: Vec<Event>,
+    /// Turning in P's and in Q's parameter domain.
+    turning: [f64; 2],
+    retried: usize,
+}
+
+fn bad(field: &str, problem: InputProblem) -> Error {
+    Error::input(field, problem)
+}
+
+fn make_event(kind: EventKind, n: &Node) -> Event {
+    Event {
+        kind,
+        p: [n.x[0], n.x[1]],
+        q: [n.x[2], n.x[3]],
+        xyz: [n.frame.xyz.x, n.frame.xyz.y, n.frame.xyz.z],
+    }
+}
+
+/// Signed angle from 2D vector `a` to `b` in `(−π, π]` (0 if either is zero).
+fn signed_angle(a: [f64; 2], b: [f64; 2]) -> f64 {
+    let cross = a[0] * b[1] - a[1] * b[0];
+    let dot = a[0] * b[0] + a[1] * b[1];
+    if cross == 0.0 && dot == 0.0 {
+        0.0
+    } else {
+        cross.atan2(dot)
+    }
+}
+
+/// Euclidean distance of two parameter 4-tuples.
+fn param_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Turning of the parameter tangents from frame `a` to frame `b`, in P's and Q's domains.
+fn turn(a: &CurveFrame, b: &CurveFrame) -> [f64; 2] {
+    [
+        signed_angle(a.tangent_p, b.tangent_p),
+        signed_angle(a.tangent_q, b.tangent_q),
+    ]
+}
+
+fn add_turn(acc: &mut [f64; 2], t: [f64; 2]) {
+    acc[0] += t[0];
+    acc[1] += t[1];
+}
+
+/// Whether `turning` is within `tol` of `2πk` for an integer `k`, `k ≠ 0` unless `zero_ok` (a
+/// curve through crossings may have rotation index 0, e.g. a figure eight).
+fn is_full_turn(turning: f64, tol: f64, zero_ok: bool) -> bool {
+    let k = (turning / (2.0 * PI)).round();
+    (k != 0.0 || zero_ok) && (turning - 2.0 * PI * k).abs() < tol
+}
+
+/// Parameter guesses for the model-space target: on each surface, the target is inverted by
+/// three Gauss–Newton steps `[S_u S_v] Δ = target − S` from the current parameters (a foot-point
+/// projection, so the guesses keep the second-order accuracy of a circular prediction instead of
+/// adding the O(h²) error of a single linearisation).
+fn predict_parameters<S1, S2>(p: &S1, q: &S2, x: &[f64; 4], target: &Vec3) -> [f64; 4]
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let invert = |s: &dyn Fn(f64, f64) -> crate::geometry::SurfaceDerivs, mut a: [f64; 2]| {
+        for _ in 0..3 {
+            let d = s(a[0], a[1]);
+            let delta = parameter_direction(&d, &(target - d.p));
+            a = [a[0] + delta[0], a[1] + delta[1]];
+        }
+        a
+    };
+    let a = invert(&|u, v| p.derivs(u, v), [x[0], x[1]]);
+    let b = invert(&|u, v| q.derivs(u, v), [x[2], x[3]]);
+    if a.iter().chain(&b).all(|c| c.is_finite()) {
+        [a[0], a[1], b[0], b[1]]
+    } else {
+        *x
+    }
+}
+
+/// Below this chord (relative to the size of the coordinates, `max(|x|, 1)`) the circle through
+/// the last two points is dominated by f64 noise (`ε|x|` on a chord of `√ε|x|`-ish), and the
+/// radius of curvature from second derivatives replaces it.
+const TINY_CHORD: f64 = 1e-5;
+
+/// The predicted next point. The step `L` is an angle on tight curves: a circular step's arc is
+/// `L` times the radius of the circle through the last two points (when below 1), so the marcher
+/// follows a loop of any size. Where that circle cannot be trusted the radius of curvature
+/// `R = 1/κ` estimated at the current point from second derivatives gives the step: the first
+/// step of a half (no circle yet) is at most `L·R` long, and on chords shorter than
+/// [`TINY_CHORD`] (a loop of radius 1e-6 at unit coordinates) a tangent step of `L·min(R, 1)`
+/// replaces the circular one — except while `approaching` a singular point (the sine of the
+/// normals' angle falling fast), where the curvature estimate diverges and the geometric
+/// approach (`step`) rules.
+fn predict(
+    prev: Option<&Node>,
+    cur: &Node,
+    opts: &MarchOptions,
+    step: f64,
+    approaching: bool,
+) -> StepPrediction {
+    let (xyz, t) = (&cur.frame.xyz, &cur.frame.tangent);
+    // Infinite on straight stretches (no cap), 0 never (κ is finite or infinite).
+    let radius = 1.0 / cur.curvature;
+    match (prev, opts.method) {
+        (_, StepMethod::Tangent) => tangent_step(xyz, t, step),
+        (None, _) => {
+            let first = step * opts.first_step_fraction;
+            tangent_step(
+                xyz,
+                t,
+                if radius > 0.0 {
+                    first.min(step * radius)
+                } else {
+                    first
+                },
+            )
+        }
+        (Some(pv), _)
+            if !approaching
+                && radius > 0.0
+                && (xyz - pv.frame.xyz).norm() < TINY_CHORD * xyz.norm().max(1.0) =>
+        {
+            tangent_step(xyz, t, step * radius.min(1.0))
+        }
+        (Some(pv), StepMethod::Circular) => circular_step(
+            &pv.frame.xyz,
+            &pv.frame.tangent,
+            xyz,
+            t,
+            step,
+            opts.parallel_tolerance,
+        ),
+        (Some(pv), StepMethod::Dqoc) => dqoc_step(
+            &pv.frame.xyz,
+            &pv.frame.tangent,
+            xyz,
+            t,
+            step,
+            opts.parallel_tolerance,
+        ),
+    }
+}
+
+/// The first parameter (index, bound, fraction along `a → b`) where the segment leaves a domain.
+fn first_exit(a: &[f64; 4], b: &[f64; 4], dp: &Domain, dq: &Domain) -> Option<(usize, f64, f64)> {
+    let mut best: Option<(usize, f64, f64)> = None;
+    for i in 0..4 {
+        let [lo, hi] = bounds(dp, dq, i);
+        let bound = if b[i] < lo {
+            lo
+        } else if b[i] > hi {
+            hi
+        } else {
+            continue;
+        };
+        let span = b[i] - a[i];
+        let s = if span != 0.0 {
+            ((bound - a[i]) / span).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        if best.is_none_or(|(_, _, sb)| s < sb) {
+            best = Some((i, bound, s));
+        }
+    }
+    best
+}
+
+/// Lands on the boundary between `cur` (inside) and `out` (outside): Newton with the exit
+/// parameter fixed at its bound. Returns the landed node and the surface whose boundary it is.
+fn land_on_boundary<S1, S2>(
+    p: &S1,
+    q: &S2,
+    cur: &Node,
+    out: [f64; 4],
+    opts: &MarchOptions,
+) -> Option<(Node, usize)>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (dp, dq) = (p.domain(), q.domain());
+    let mut target = out;
+    for _ in 0..4 {
+        let (i, bound, s) = first_exit(&cur.x, &target, &dp, &dq)?;
+        let guess: [f64; 4] = std::array::from_fn(|k| cur.x[k] + s * (target[k] - cur.x[k]));
+        let r = refine(
+            p,
+            q,
+            guess,
+            Constraint::Fixed {
+                index: i,
+                value: bound,
+            },
+            opts.tolerance,
+            opts.max_newton_iterations,
+        )
+        .ok()?;
+        if inside(&r.x, &dp, &dq, opts.domain_tolerance) {
+            let node = node_at(p, q, r.x, r.iterations, Some(cur.frame.tangent));
+            return Some((node, usize::from(i >= 2)));
+        }
+        // Left through another side first: aim again at the landed point.
+        target = r.x;
+    }
+    None
+}
+
+/// Marches from `start` (tangent oriented along the direction of travel) until a stop rule fires.
+/// `closure`: look for the return to `start` (only for a forward half from an interior start).
+fn march_half<S1, S2>(
+    p: &S1,
+    q: &S2,
+    start: &Node,
+    opts: &MarchOptions,
+    budget: usize,
+    closure: bool,
+) -> Half
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (dp, dq) = (p.domain(), q.domain());
+    let mut half = Half {
+        nodes: Vec::new(),
+        end: EndReason::PointLimit,
+        events: Vec::new(),
+        turning: [0.0, 0.0],
+        retried: 0,
+    };
+    let mut prev: Option<Node> = None;
+    let mut cur = *start;
+    let mut crossings = 0;
+    // Nodes crossed in this half, with the exits used (each arc once).
+    let mut visited: Vec<(SingularNode, Vec<bool>)> = Vec::new();
+    loop {
+        if half.nodes.len() >= budget {
+            half.end = EndReason::PointLimit;
+            return half;
+        }
+        // Near a singular point (sine small and decreasing) aim at most half way to where the
+        // sine would vanish at its current rate of decrease: a geometric approach.
+        let mut step = opts.step;
+        let mut approaching = false;
+        if let Some(pv) = prev.as_ref() {
+            let chord = (cur.frame.xyz - pv.frame.xyz).norm();
+            let rate = (pv.frame.sine - cur.frame.sine) / chord;
+            if cur.frame.sine < opts.watch_sine && rate > 0.0 {
+                step = step.min(0.5 * cur.frame.sine / rate);
+                // At this rate the sine vanishes within a hundred chords: heading into a
+                // singular point (on a tiny loop the sine is small but constant, its rate
+                // rounding noise, and the predicted zero far away).
+                approaching = cur.frame.sine < 100.0 * rate * chord;
+            }
+        }
+        let pred = predict(prev.as_ref(), &cur, opts, step, approaching);
+
+        if closure && half.nodes.len() >= 2 {
+            let to_start = start.frame.xyz - cur.frame.xyz;
+            let dist = to_start.norm();
+            let turn_to_start = turn(&cur.frame, &start.frame);
+            let total = [
+                half.turning[0] + turn_to_start[0],
+                half.turning[1] + turn_to_start[1],
+            ];
+            // The parameters must come back too (not only the model point): the start's
+            // parameters are at most twice as far as the local parameter speed allows.
+            let param_speed = prev.as_ref().map_or(f64::INFINITY, |pv| {
+                param_distance(&pv.x, &cur.x) / (pv.frame.xyz - cur.frame.xyz).norm()
+            });
+            if dist <= 1.5 * pred.arc
+                && param_distance(&start.x, &cur.x) <= 2.0 * param_speed * dist + 1e-9
+                && to_start.dot(&cur.frame.tangent) > 0.5 * dist
+                && cur.frame.tangent.dot(&start.frame.tangent) > 0.5
+                && (is_full_turn(total[0], opts.rotation_tolerance, !visited.is_empty())
+                    || is_full_turn(total[1], opts.rotation_tolerance, !visited.is_empty()))
+            {
+                half.turning = total;
+                let mut closing = *start;
+                closing.iterations = 0;
+                half.nodes.push(closing);
+                half.end = EndReason::ClosedLoop;
+                return half;
+            }
+        }
+
+        // Predict, refine; halve the step up to three times if Newton fails.
+        let mut attempt = pred;
+        let mut refined = None;
+        for tries in 0..4 {
+            if tries > 0 {
+                step *= 0.5;
+                attempt = predict(prev.as_ref(), &cur, opts, step, approaching);
+                half.retried += 1;
+            }
+            let guess = predict_parameters(p, q, &cur.x, &attempt.point);
+            let dir = attempt.point - cur.frame.xyz;
+            let len = dir.norm();
+            if len == 0.0 || !len.is_finite() {
+                break;
+            }
+            let constraint = Constraint::Plane {
+                point: attempt.point,
+                normal: dir / len,
+            };
+            if let Ok(r) = refine(
+                p,
+                q,
+                guess,
+                constraint,
+                opts.tolerance,
+                opts.max_newton_iterations,
+            ) {
+                // Reject a jump that went backwards or much farther than predicted.
+                let moved = (p.point(r.x[0], r.x[1]) - cur.frame.xyz).norm();
+                if moved <= 3.0 * len + opts.tolerance {
+                    refined = Some(r);
+                    break;
+                }
+            }
+        }
+        let Some(r) = refined else {
+            half.end = EndReason::NewtonFailed;
+            return half;
+        };
+
+        if !inside(&r.x, &dp, &dq, opts.domain_tolerance) {
+            match land_on_boundary(p, q, &cur, r.x, opts) {
+                Some((node, surface)) => {
+                    add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
+                    half.events.push(make_event(EventKind::BoundaryEnd, &node));
+                    half.nodes.push(node);
+                    half.end = EndReason::Boundary { surface };
+                }
+                None => half.end = EndReason::NewtonFailed,
+            }
+            return half;
+        }
+
+        let chord = p.point(r.x[0], r.x[1]) - cur.frame.xyz;
+        let mut node = node_at(p, q, r.x, r.iterations, Some(chord));
+        if node.flipped != cur.flipped && node.frame.sine >= opts.singular_sine {
+            // Stepped across a singular point: stop on it instead.
+            if let Some(at) = singular_between(p, q, &cur, &node, opts) {
+                node = at;
+            }
+        }
+        add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
+        half.nodes.push(node);
+        if node.frame.sine < opts.singular_sine {
+            half.events.push(make_event(EventKind::Singular, &node));
+            let crossed = (crossings < opts.cross_singular)
+                .then(|| cross_node(p, q, start, &half.nodes, &mut visited, opts))
+                .flatten();
+            match crossed {
+                Some((at, beyond)) => {
+                    crossings += 1;
+                    // The tangent at the reached point (normals parallel) is noise: replace the
+                    // turning to it by the turning from the last regular point to the exit.
+                    let noise = turn(&cur.frame, &node.frame);
+                    add_turn(&mut half.turning, [-noise[0], -noise[1]]);
+                    add_turn(&mut half.turning, turn(&cur.frame, &beyond.frame));
+                    half.nodes.pop();
+                    half.nodes.push(at);
+                    half.nodes.push(beyond);
+                    prev = None;
+                    cur = beyond;
+                    continue;
+                }
+                None => {
+                    half.end = EndReason::Singular;
+                    return half;
+                }
+            }
+        }
+        prev = Some(cur);
+        cur = node;
+    }
+}
+
+fn check_options(opts: &MarchOptions) -> Result<()> {
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    if !positive(opts.step) {
+        return Err(bad("step", InputProblem::NonFinite));
+    }
+    if !positive(opts.tolerance) {
+        return Err(bad("tolerance", InputProblem::NonFinite));
+    }
+    if !positive(opts.first_step_fraction) || !positive(opts.watch_sine) {
+        return Err(bad(
+            "first_step_fraction/watch_sine",
+            InputProblem::NonFinite,
+        ));
+    }
+    if opts.max_points < 2 {
+        return Err(bad(
+            "max_points",
+            InputProblem::WrongCount {
+                expected: 2,
+                found: opts.max_points,
+            },
+        ));
+    }
+    Ok(())
+}
+
+/// Refines a start guess onto the curve: a parameter already on a domain boundary is held there,
+/// otherwise the point moves orthogonally to the (approximate) tangent.
+pub(crate) fn refine_start<S1, S2>(
+    p: &S1,
+    q: &S2,
+    guess: [f64; 4],
+    opts: &MarchOptions,
+) -> Result<Node>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (dp, dq) = (p.domain(), q.domain());
+    let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
+    let on_edge = (0..4).find_map(|i| {
+        let [lo, hi] = bounds(&dp, &dq, i);
+        if (guess[i] - lo).abs() <= edge_tol {
+            Some((i, lo))
+        } else if (guess[i] - hi).abs() <= edge_tol {
+            Some((i, hi))
+        } else {
+            None
+        }
+    });
+    let frame = curve_frame(p, q, guess);
+    let constraint = match on_edge {
+        Some((index, value)) => Constraint::Fixed { index, value },
+        None if frame.tangent != Vec3::zeros() => Constraint::Plane {
+            point: p.point(guess[0], guess[1]),
+            normal: frame.tangent,
+        },
+        None => Constraint::Fixed {
+            index: 0,
+            value: guess[0],
+        },
+    };
+    let r = refine(
+        p,
+        q,
+        guess,
+        constraint,
+        opts.tolerance,
+        opts.max_newton_iterations,
+    )?;
+    Ok(node_at(p, q, r.x, 0, None))
+}
+
+/// Whether moving along `sign · tangent` from the start enters both domains (false when the start
+/// sits on a boundary and that direction leaves it).
+fn enters<S1, S2>(p: &S1, q: &S2, n: &Node, sign: f64) -> bool
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (dp, dq) = (p.domain(), q.domain());
+    let d = [
+        n.frame.tangent_p[0],
+        n.frame.tangent_p[1],
+        n.frame.tangent_q[0],
+        n.frame.tangent_q[1],
+    ];
+    let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
+    (0..4).all(|i| {
+        let [lo, hi] = bounds(&dp, &dq, i);
+        let di = sign * d[i];
+        !((n.x[i] - lo).abs() <= edge_tol && di < 0.0
+            || (hi - n.x[i]).abs() <= edge_tol && di > 0.0)
+    })
+}
+
+/// Whether the curve through the boundary node `n` only touches the faces `n` lies on
+/// (Grandine's test to second order, see [`classify_boundary_point_unproven`]): `Some(true)`
+/// when it is tangent to every such face and stays inside the domains, `Some(false)` when it
+/// touches a face from outside (or the surfaces touch at this point only), `None` otherwise.
+fn touching<S1, S2>(p: &S1, q: &S2, n: &Node) -> Option<bool>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let opts = BoundaryOptions::default();
+    let sides = boundary_sides(p, q, &n.x, 1e-7);
+    let mut inside = !sides.is_empty();
+    for side in sides {
+        match classify_boundary_point_unproven(p, q, n.x, side, &opts).map(|c| c.direction) {
+            Ok(BoundaryDirection::Touches { inside: false } | BoundaryDirection::Isolated) => {
+                return Some(false)
+            }
+            Ok(BoundaryDirection::Touches { inside: true }) => {}
+            _ => inside = false,
+        }
+    }
+    inside.then_some(true)
+}
+
+fn boundary_surface_of<S1, S2>(p: &S1, q: &S2, n: &Node) -> Option<usize>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (dp, dq) = (p.domain(), q.domain());
+    let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
+    (0..4).find_map(|i| {
+        let [lo, hi] = bounds(&dp, &dq, i);
+        ((n.x[i] - lo).abs() <= edge_tol || (hi - n.x[i]).abs() <= edge_tol)
+            .then_some(usize::from(i >= 2))
+    })
+}
+
+fn to_curve_point(n: &Node) -> CurvePoint {
+    CurvePoint {
+        p: [n.x[0], n.x[1]],
+        q: [n.x[2], n.x[3]],
+        xyz: [n.frame.xyz.x, n.frame.xyz.y, n.frame.xyz.z],
+    }
+}
+
+/// Traces the arc leaving the singular point `node` through its exit point `exit` (a curve point
+/// near it, see [`analyse_node`](crate::pair::branch_point::analyse_node)): the march starts at the exit,
+/// heading away from the node, and runs until a stop rule fires (no loop closure: an arc from a
+/// node ends at a node, a boundary, or the budget). The branch starts with the node itself, then
+/// the exit. Errors: invalid options or a non-finite point ([`Error::InvalidInput`]).
+pub fn trace_from_node<S1, S2>(
+    p: &S1,
+    q: &S2,
+    node: [f64; 4],
+    exit: [f64; 4],
+    opts: &MarchOptions,
+) -> Result<TracedBranch>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    check_options(opts)?;
+    if let Some(i) = node.iter().chain(&exit).position(|c| !c.is_finite()) {
+        return Err(bad(&format!("node/exit[{i}]"), InputProblem::NonFinite));
+    }
+    let n0 = node_at(p, q, node, 0, None);
+    let away = p.point(exit[0], exit[1]) - n0.frame.xyz;
+    let st = node_at(p, q, exit, 0, Some(away));
+    let opts_arc = MarchOptions {
+        cross_singular: 0,
+        ..*opts
+    };
+    let half = march_half(
+        p,
+        q,
+        &st,
+        &opts_arc,
+        opts.max_points.saturating_sub(2),
+        false,
+    );
+    let mut nodes = vec![n0, st];
+    nodes.extend(half.nodes.iter().copied());
+    let mut events = half.events.clone();
+    events.insert(0, make_event(EventKind::Singular, &n0));
+    Ok(assemble(
+        nodes,
+        [EndReason::Singular, half.end],
+        events,
+        half.turning,
+        half.retried,
+    ))
+}
+
+/// Traces the branch of `P ∩ Q` through `start = (σ, t, u, v)` (a guess close to the curve).
+///
+/// The start is refined by Newton first; if it lies on a domain boundary it stays there and the
+/// march goes one way only (into the domains), that end being `Boundary`. Otherwise the march goes
+/// forward along `N^P × N^Q`, and backward too unless the forward march closed a loop.
+///
+/// Guarantees: every point satisfies `|P − Q| ≤ opts.tolerance` (except points of a closed loop's
+/// closing copy, which is the start itself); both ends carry their [`EndReason`]; singular and
+/// boundary ends are also reported as [`Event`]s. Errors: invalid options or a non-finite start
+/// ([`Error::InvalidInput`]); a start Newton cannot refine ([`Error::NewtonFailed`]).
+pub fn trace_branch<S1, S2>(
+    p: &S1,
+    q: &S2,
+    start: [f64; 4],
+    opts: &MarchOptions,
+) -> Result<TracedBranch>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    check_options(opts)?;
+    if let Some(i) = start.iter().position(|c| !c.is_finite()) {
+        return Err(bad(&format!("start[{i}]"), InputProblem::NonFinite));
+    }
+    let s = refine_start(p, q, start, opts)?;
+    let mut events = Vec::new();
+
+    let (back, fwd, first_end) = if s.frame.sine < opts.singular_sine {
+        events.push(make_event(EventKind::Singular, &s));
+        (None, None, EndReason::Singular)
+    } else {
+        let on_edge = boundary_surface_of(p, q, &s);
+        // Where the curve only touches a face, the start is no end: from inside it lies within
+        // a branch (a closed loop may pass through it), traced as an interior start with
+        // closing allowed; from outside it is all the domain holds of the curve (one point).
+        let touch = on_edge.and_then(|_| touching(p, q, &s));
+        let on_edge = on_edge.filter(|_| touch != Some(true));
+        let (fwd_ok, back_ok) = (enters(p, q, &s, 1.0), enters(p, q, &s, -1.0));
+        let budget = opts.max_points - 1;
+        match on_edge {
+            Some(surface) if touch == Some(false) => {
+                events.push(make_event(EventKind::BoundaryEnd, &s));
+                (None, None, EndReason::Boundary { surface })
+            }
+            Some(surface) if fwd_ok != back_ok => {
+                // One way only; orient the start so that forward is inward.
+                let st = if fwd_ok {
+                    s
+                } else {
+                    node_at(p, q, s.x, 0, Some(-s.frame.tangent))
+                };
+                events.push(make_event(EventKind::BoundaryEnd, &st));
+                let f = march_half(p, q, &st, opts, budget, false);
+                (None, Some((st, f)), EndReason::Boundary { surface })
+            }
+            _ => {
+                let f = march_half(p, q, &s, opts, budget, on_edge.is_none());
+                if f.end == EndReason::ClosedLoop {
+                    (None, Some((s, f)), EndReason::ClosedLoop)
+                } else {
+                    let rev = s.frame.tangent;
+                    let sb = node_at(p, q, s.x, 0, Some(-rev));
+                    let left = budget.saturating_sub(f.nodes.len());
+                    let b = march_half(p, q, &sb, opts, left, false);
+                    let end = b.end;
+                    (Some(b), Some((s, f)), end)
+                }
+            }
+        }
+    };
+
+    // Join: reversed backward half, start, forward half.
+    let mut nodes: Vec<Node> = Vec::new();
+    let mut turning = [0.0, 0.0];
+    let mut retried = 0;
+    if let Some(b) = &back {
+        for n in b.nodes.iter().rev() {
+            nodes.push(Node {
+                frame: n.frame.reversed(),
+                ..*n
+            });
+        }
+        turning = [turning[0] - b.turning[0], turning[1] - b.turning[1]];
+        retried += b.retried;
+        events.extend(b.events.iter().copied());
+    }
+    let last_end = match &fwd {
+        Some((st, f)) => {
+            nodes.push(*st);
+            nodes.extend(f.nodes.iter().copied());
+            add_turn(&mut turning, f.turning);
+            retried += f.retried;
+            events.extend(f.events.iter().copied());
+            f.end
+        }
+        None => {
+            nodes.push(s);
+            first_end
+        }
+    };
+    Ok(assemble(
+        nodes,
+        [first_end, last_end],
+        events,
+        turning,
+        retried,
+    ))
+}
+
+/// The traced branch from its points, ends, events, turning (in P's and Q's domains) and retry
+/// count: closed when the last end closes a loop, open when both ends are regular (boundary or
+/// singular point), incomplete otherwise; with the Newton-iteration histogram.
+fn assemble(
+    nodes: Vec<Node>,
+    ends: [EndReason; 2],
+    events: Vec<Event>,
+    turning: [f64; 2],
+    retried: usize,
+) -> TracedBranch {
+    let regular = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
+    let status = if ends[1] == EndReason::ClosedLoop {
+        BranchStatus::Closed
+    } else if regular(&ends[0]) && regular(&ends[1]) {
+        BranchStatus::Open
+    } else {
+        BranchStatus::Incomplete
+    };
+    let mut histogram = Vec::new();
+    for n in &nodes {
+        if histogram.len() <= n.iterations {
+            histogram.resize(n.iterations + 1, 0);
+        }
+        histogram[n.iterations] += 1;
+    }
+    TracedBranch {
+        branch: Branch {
+            id: 0,
+            status,
+            ends,
+            points: nodes.iter().map(to_curve_point).collect(),
+        },
+        newton_iterations: nodes.iter().map(|n| n.iterations).collect(),
+        tangents: nodes
+            .iter()
+            .map(|n| [n.frame.tangent.x, n.frame.tangent.y, n.frame.tangent.z])
+            .collect(),
+        events,
+        turning: turning[0],
+        turning_q: turning[1],
+        stats: MarchStats {
+            points: nodes.len(),
+            newton_histogram: histogram,
+            retried_steps: retried,
+        },
+    }
+}

@@ -1,0 +1,787 @@
+//! Start points for every branch of the intersection of two patches, with a proof of
+//! completeness or an explicit list of the regions left undecided.
+//!
+//! Two searches, both subdivision with rigorous exclusion:
+//! - **boundary points**: each of the four boundary curves of each patch against the other patch
+//!   (a curve/surface problem: 3 equations in 3 unknowns), which gives both ends of every open
+//!   branch. A leaf box of this search is settled by one parametric Krawczyk step
+//!   ([`settle_box`], Jacobian enclosed from the pieces' Bernstein nets over the leaf widened by
+//!   1/32): either its image is disjoint from the box (no curve point) or it proves a unique
+//!   curve point, which Newton then polishes; a leaf still open at 1/1024 of the leaf size is
+//!   an undecided region (a Newton point from it is still offered);
+//! - **interior pairs**: pairs of sub-patches, subdivided level by level until each pair is
+//!   (a) *disjoint* (interval bounding boxes do not meet), or (b) *loop-free*
+//!   ([`prove_loop_free`](crate::search::loop_exclusion::prove_loop_free): every intersection
+//!   component inside the pair reaches the pair's
+//!   boundary), in which case the (upper) faces of both sub-patches that lie inside the domains are
+//!   searched like the patch boundaries above, which yields a point on every component crossing
+//!   the pair; or (c) too small, or too many pairs at one level (tangential contact), in which
+//!   case the pair is an [`UndecidedRegion`], reported with its parameter boxes (and Newton
+//!   projections from its centre and corners are still offered as start points).
+//!
+//! Only the *upper* faces (`s = s₁`, `r = r₁` of the normalised box) of each loop-free pair's
+//! pieces are searched, each once per partner piece. That suffices: the leaf pairs of the
+//! subdivision tile the product of the two domains, and a pair holding an intersection point in
+//! its closed boxes is never proven disjoint. A closed loop meets the boundary of a loop-free
+//! pair it passes through; if it meets it on an upper face, that pair's search finds the point;
+//! if on a lower face inside the domain, the leaf pair on the other side of that face holding
+//! the point (not disjoint, so loop-free or undecided) has it on an upper face; on the domain
+//! boundary the boundary search finds it.
+//!
+//! Every closed loop inside the domains either lies in an undecided region or crosses a face of a
+//! loop-free pair; every open branch reaches a patch boundary. So when no region is undecided and
+//! no budget ran out ([`SearchReport::complete`]), every branch has a start point.
+
+use crate::geometry::enclosure::boxes_disjoint;
+use crate::geometry::piece::Piece;
+use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
+use crate::pair::curve_surface::{settle_box, BoxVerdict};
+use crate::pair::newton::{refine, Constraint};
+use crate::search::loop_exclusion::loop_test;
+use inari::Interval;
+use nalgebra::{Matrix3x4, Vector3};
+use std::collections::HashMap;
+
+/// Tuning of the start-point search.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SearchOptions {
+    /// Leaf size of the curve/surface (boundary and face) searches, as a fraction of the larger
+    /// model extent of the two patches.
+    pub leaf_fraction: f64,
+    /// Upper bound on leaf boxes plus sub-patch pairs examined per search (protects against
+    /// tangential surfaces, where exclusion never succeeds); hitting it is reported in
+    /// [`SearchReport::truncated`] and the unexamined pairs become undecided regions.
+    pub max_leaves: usize,
+    /// Newton converges when the model-space residual is below this (relative to model size).
+    pub residual_tol: f64,
+    /// Sub-patch pairs are subdivided until both pieces are smaller than this fraction of the
+    /// model extent; a pair still neither disjoint nor loop-free then is undecided.
+    pub min_pair_fraction: f64,
+    /// Most unsettled pairs carried from one subdivision level to the next; beyond it (a
+    /// tangential contact along a curve makes the count double every level) all of them are
+    /// reported as undecided regions.
+    pub max_frontier: usize,
+}
+
+impl Default for SearchOptions {
+    fn default() -> Self {
+        SearchOptions {
+            leaf_fraction: 1.0 / 64.0,
+            max_leaves: 200_000,
+            residual_tol: 1e-12,
+            min_pair_fraction: 1e-9,
+            max_frontier: 1024,
+        }
+    }
+}
+
+/// Where a start point came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StartKind {
+    /// On the boundary of surface `surface` (0 = P, 1 = Q).
+    Boundary {
+        /// 0 for P, 1 for Q.
+        surface: usize,
+    },
+    /// Inside both domains (on a face of a loop-free pair, or from an undecided region).
+    Interior,
+}
+
+/// A point on the intersection: parameters `(σ, t, u, v)`, refined by Newton.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StartPoint {
+    /// `(σ, t)` on P then `(u, v)` on Q.
+    pub params: [f64; 4],
+    /// Where it came from.
+    pub kind: StartKind,
+}
+
+/// A pair of parameter boxes where the search could not decide whether (further) intersection
+/// components exist. The boxes are rounded outward: they contain the region examined.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UndecidedRegion {
+    /// `[[σ0, σ1], [t0, t1]]` on P.
+    pub p: [[f64; 2]; 2],
+    /// `[[u0, u1], [v0, v1]]` on Q.
+    pub q: [[f64; 2]; 2],
+}
+
+/// Result of the start-point search.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SearchReport {
+    /// Points on a boundary of either patch, deduplicated.
+    pub boundary: Vec<StartPoint>,
+    /// Interior points: where branches cross faces of loop-free pairs (deduplicated), and Newton
+    /// projections from the centres of undecided regions.
+    pub interior: Vec<StartPoint>,
+    /// Leaf boxes of the curve/surface searches examined.
+    pub leaves: usize,
+    /// Curve/surface leaf boxes of the boundary search that were neither excluded nor proven to
+    /// hold one point, down to 1/1024 of the leaf size (each also makes an undecided region).
+    pub undecided: usize,
+    /// The leaf budget ran out: some regions were not examined (they are undecided regions).
+    pub truncated: bool,
+    /// Sub-patch pairs examined by the interior search.
+    pub pairs: usize,
+    /// Pairs proven to hold no intersection (disjoint interval bounding boxes).
+    pub disjoint_pairs: usize,
+    /// Pairs proven loop-free (every component inside reaches the pair's boundary) whose faces
+    /// were then searched.
+    pub loop_free_pairs: usize,
+    /// Regions not settled: neither proven free of further branches nor searched completely.
+    pub undecided_regions: Vec<UndecidedRegion>,
+    /// True only when every pair was settled (disjoint, or loop-free with all its faces
+    /// searched to proven leaves), every boundary leaf was settled and no budget ran out: then
+    /// every branch inside the domains has a start point in `boundary` or `interior`.
+    pub complete: bool,
+}
+
+/// Finds start points on every branch of the intersection of `p` and `q` (see the module
+/// documentation for what is proven and what is reported as undecided).
+pub fn find_start_points(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    opts: &SearchOptions,
+) -> SearchReport {
+    let (dp, dq) = (p.domain(), q.domain());
+    let size = diameter(&p.bounding_box())
+        .max(diameter(&q.bounding_box()))
+        .max(f64::MIN_POSITIVE);
+    let ctx = Ctx {
+        leaf: size * opts.leaf_fraction,
+        min_pair: size * opts.min_pair_fraction,
+        tol: opts.residual_tol * size.max(1.0),
+        budget: opts.max_leaves,
+        max_frontier: opts.max_frontier,
+    };
+    let mut report = SearchReport::default();
+    for (a, b, swapped) in [(p, q, false), (q, p, true)] {
+        for (fixed_index, upper) in [(0, false), (0, true), (1, false), (1, true)] {
+            let edge = Piece::whole(a).face(fixed_index, upper);
+            let problem = EdgeProblem {
+                a,
+                b,
+                swapped,
+                kind: StartKind::Boundary {
+                    surface: usize::from(swapped),
+                },
+            };
+            let mut found = Vec::new();
+            let undecided = edge_search(
+                &ctx,
+                &problem,
+                edge,
+                Piece::whole(b),
+                ctx.leaf,
+                ctx.leaf * REFINE_FAILED_LEAF,
+                &mut report,
+                &mut found,
+            );
+            report.boundary.extend(found);
+            report.undecided += undecided.len();
+            report.undecided_regions.extend(undecided);
+        }
+    }
+    dedup(&mut report.boundary, dp, dq);
+    pair_search(&ctx, p, q, &mut report);
+    dedup(&mut report.interior, dp, dq);
+    report.complete = !report.truncated && report.undecided_regions.is_empty();
+    report
+}
+
+struct Ctx {
+    leaf: f64,
+    min_pair: f64,
+    tol: f64,
+    budget: usize,
+    max_frontier: usize,
+}
+
+impl Ctx {
+    /// Counts one unit of work; false once the budget is spent.
+    fn spend(&self, report: &mut SearchReport) -> bool {
+        if report.leaves + report.pairs >= self.budget {
+            report.truncated = true;
+            return false;
+        }
+        true
+    }
+}
+
+/// A leaf where the Krawczyk test decides nothing is subdivided further, down to this fraction
+/// of the leaf size, before it is reported as undecided (only undecided leaves are refined, so
+/// a deep limit costs nothing where everything is settled).
+const REFINE_FAILED_LEAF: f64 = 1.0 / 1024.0;
+
+fn diameter(b: &[Interval; 3]) -> f64 {
+    b.iter().map(|x| x.wid()).fold(0.0, f64::max)
+}
+
+/// Identifies a face search: which surface, the face (direction, value, free range) and the
+/// partner piece (its ranges), all exact.
+type FaceKey = [u64; 9];
+
+/// `[[lo, hi]; 2]` of two intervals.
+fn bounds2(x: &[Interval; 2]) -> [[f64; 2]; 2] {
+    [[x[0].inf(), x[0].sup()], [x[1].inf(), x[1].sup()]]
+}
+
+/// The interior search: level by level, every pair of pieces is proven disjoint, proven
+/// loop-free (then its inner faces are searched), or split; what is left is undecided.
+fn pair_search(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    report: &mut SearchReport,
+) {
+    let mut frontier = vec![(Piece::whole(p), Piece::whole(q))];
+    let mut searched = HashMap::new();
+    while !frontier.is_empty() {
+        let mut next = Vec::new();
+        let mut rest = frontier.into_iter();
+        for (a, b) in rest.by_ref() {
+            if !ctx.spend(report) {
+                undecided_pair(ctx, p, q, &a, &b, report);
+                break;
+            }
+            report.pairs += 1;
+            let (ea, eb) = (a.bounds(), b.bounds());
+            if boxes_disjoint(&ea, &eb) {
+                report.disjoint_pairs += 1;
+                continue;
+            }
+            let test = loop_test(p, &a, q, &b);
+            if test.proof.is_some() {
+                report.loop_free_pairs += 1;
+                if !face_search(ctx, p, q, &a, &b, &mut searched, report) {
+                    undecided_pair(ctx, p, q, &a, &b, report);
+                }
+                continue;
+            }
+            let (wa, wb) = (diameter(&ea), diameter(&eb));
+            if wa <= ctx.min_pair && wb <= ctx.min_pair {
+                undecided_pair(ctx, p, q, &a, &b, report);
+                continue;
+            }
+            // Split the piece whose size times normal spread is larger (the one that keeps the
+            // test from succeeding): a flat piece is never split for the loop test's sake.
+            let [sa, sb] = test.spread;
+            let (ka, kb) = (wa * sa.min(1e300), wb * sb.min(1e300));
+            let split_a = if ka == kb || !(ka.is_finite() && kb.is_finite()) {
+                wa >= wb
+            } else {
+                ka > kb
+            };
+            let split_a = if wa <= ctx.min_pair {
+                false
+            } else if wb <= ctx.min_pair {
+                true
+            } else {
+                split_a
+            };
+            if split_a {
+                for half in a.split(a.split_direction()) {
+                    next.push((half, b.clone()));
+                }
+            } else {
+                for half in b.split(b.split_direction()) {
+                    next.push((a.clone(), half));
+                }
+            }
+        }
+        // Budget spent: everything not examined is undecided.
+        for (a, b) in rest.chain(if report.truncated {
+            std::mem::take(&mut next)
+        } else {
+            Vec::new()
+        }) {
+            undecided_pair(ctx, p, q, &a, &b, report);
+        }
+        if next.len() > ctx.max_frontier {
+            for (a, b) in next.drain(..) {
+                undecided_pair(ctx, p, q, &a, &b, report);
+            }
+        }
+        frontier = next;
+    }
+}
+
+/// Records an undecided pair, and offers Newton projections from its centre and from the
+/// corners of its P box as start points (they find tangential contacts and singular points,
+/// which no exclusion test can settle, along the whole undecided region).
+fn undecided_pair(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    a: &Piece,
+    b: &Piece,
+    report: &mut SearchReport,
+) {
+    let (dp, dq) = (p.domain(), q.domain());
+    let (bp, bq) = (a.declared(&dp, 0.0), b.declared(&dq, 0.0));
+    report.undecided_regions.push(UndecidedRegion {
+        p: bounds2(&bp),
+        q: bounds2(&bq),
+    });
+    let (qu, qv) = (bq[0].mid(), bq[1].mid());
+    let guesses = [
+        [bp[0].mid(), bp[1].mid()],
+        [bp[0].inf(), bp[1].inf()],
+        [bp[0].inf(), bp[1].sup()],
+        [bp[0].sup(), bp[1].inf()],
+        [bp[0].sup(), bp[1].sup()],
+    ];
+    for [pu, pv] in guesses {
+        if let Some(x) = project_onto_intersection(p, q, [pu, pv, qu, qv], ctx.tol) {
+            if dp.contains(x[0], x[1], 1e-12) && dq.contains(x[2], x[3], 1e-12) {
+                report.interior.push(StartPoint {
+                    params: x,
+                    kind: StartKind::Interior,
+                });
+            }
+        }
+    }
+}
+
+/// Searches the faces of a loop-free pair that lie inside the domains (faces on a domain
+/// boundary are covered by the boundary search): each face of the P piece against the Q piece
+/// and each face of the Q piece against the P piece. True when every leaf was settled.
+fn face_search(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    pp: &Piece,
+    pq: &Piece,
+    searched: &mut HashMap<FaceKey, bool>,
+    report: &mut SearchReport,
+) -> bool {
+    // Leaves a quarter of the smaller piece: the faces are that small anyway, a large partner
+    // piece (a plane against a small curved piece) is cut down to them, and Krawczyk settles
+    // most such leaves at the first try (measured: fewer leaves than at the piece size).
+    let size = diameter(&pp.bounds()).min(diameter(&pq.bounds()));
+    let leaf = ctx.leaf.min(size * 0.25);
+    let min_leaf = leaf * REFINE_FAILED_LEAF;
+    let mut settled = true;
+    for (a, b, piece_a, piece_b, swapped) in [(p, q, pp, pq, false), (q, p, pq, pp, true)] {
+        // Upper faces only: see the module documentation for why they suffice.
+        for (fixed_index, upper) in [(0, true), (1, true)] {
+            let range = if fixed_index == 0 {
+                piece_a.s
+            } else {
+                piece_a.r
+            };
+            let value = range[usize::from(upper)];
+            if value == 0.0 || value == 1.0 {
+                continue;
+            }
+            // A face shared with a neighbouring pair against the same partner piece is
+            // searched once; its outcome is reused.
+            let free = if fixed_index == 0 {
+                piece_a.r
+            } else {
+                piece_a.s
+            };
+            let key = [
+                u64::from(swapped),
+                fixed_index as u64,
+                value.to_bits(),
+                free[0].to_bits(),
+                free[1].to_bits(),
+                piece_b.s[0].to_bits(),
+                piece_b.s[1].to_bits(),
+                piece_b.r[0].to_bits(),
+                piece_b.r[1].to_bits(),
+            ];
+            if let Some(&done) = searched.get(&key) {
+                settled &= done;
+                continue;
+            }
+            let problem = EdgeProblem {
+                a,
+                b,
+                swapped,
+                kind: StartKind::Interior,
+            };
+            let mut found = Vec::new();
+            let undecided = edge_search(
+                ctx,
+                &problem,
+                piece_a.face(fixed_index, upper),
+                piece_b.clone(),
+                leaf,
+                min_leaf,
+                report,
+                &mut found,
+            );
+            report.interior.extend(found);
+            let done = undecided.is_empty() && !report.truncated;
+            searched.insert(key, done);
+            settled &= done;
+        }
+    }
+    settled
+}
+
+/// A curve/surface problem: a boundary curve (or face) of `a` against a piece of `b`.
+struct EdgeProblem<'a> {
+    a: &'a RationalBezierPatch,
+    b: &'a RationalBezierPatch,
+    /// `a` is Q (the found parameters are swapped back to `(P, Q)` order).
+    swapped: bool,
+    kind: StartKind,
+}
+
+/// Outcome of one leaf of a curve/surface search.
+enum Leaf {
+    /// Proven: exactly one curve point in (an inflation of) the leaf, here.
+    Root([f64; 4]),
+    /// Proven: no curve point in the leaf (or the one point lies outside the domains).
+    Empty,
+    /// Not decided.
+    Unknown,
+}
+
+/// Pair subdivision of the edge piece `a0` of `problem.a` against the piece `b0` of `problem.b`,
+/// pruned where bounding boxes are disjoint; every leaf is settled by Krawczyk ([`settle_leaf`]).
+/// Found points go to `out` in `(P, Q)` order; returns the leaves left undecided (or not
+/// examined when the budget ran out).
+#[allow(clippy::too_many_arguments)]
+fn edge_search(
+    ctx: &Ctx,
+    problem: &EdgeProblem,
+    a0: Piece,
+    b0: Piece,
+    leaf0: f64,
+    min_leaf: f64,
+    report: &mut SearchReport,
+    out: &mut Vec<StartPoint>,
+) -> Vec<UndecidedRegion> {
+    let (a, b) = (problem.a, problem.b);
+    let (da, db) = (a.domain(), b.domain());
+    let mut undecided = Vec::new();
+    let region = |pa: &Piece, pb: &Piece| {
+        let (ra, rb) = (
+            bounds2(&pa.declared(&da, 0.0)),
+            bounds2(&pb.declared(&db, 0.0)),
+        );
+        if problem.swapped {
+            UndecidedRegion { p: rb, q: ra }
+        } else {
+            UndecidedRegion { p: ra, q: rb }
+        }
+    };
+    let mut stack = vec![(a0, b0, leaf0)];
+    while let Some((pa, pb, mut leaf)) = stack.pop() {
+        let (ea, eb) = (pa.bounds(), pb.bounds());
+        if boxes_disjoint(&ea, &eb) {
+            continue;
+        }
+        let (wa, wb) = (diameter(&ea), diameter(&eb));
+        if wa <= leaf && wb <= leaf {
+            if !ctx.spend(report) {
+                undecided.push(region(&pa, &pb));
+                undecided.extend(stack.drain(..).map(|(x, y, _)| region(&x, &y)));
+                return undecided;
+            }
+            report.leaves += 1;
+            match settle_leaf(a, b, &pa, &pb, ctx.tol) {
+                Leaf::Root(x) => {
+                    if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) {
+                        let params = if problem.swapped {
+                            [x[2], x[3], x[0], x[1]]
+                        } else {
+                            x
+                        };
+                        out.push(StartPoint {
+                            params,
+                            kind: problem.kind,
+                        });
+                    }
+                    continue;
+                }
+                Leaf::Empty => continue,
+                Leaf::Unknown if leaf > min_leaf => leaf *= 0.5,
+                Leaf::Unknown => {
+                    undecided.push(region(&pa, &pb));
+                    // Still offer a Newton point (not proven unique): at a tangential contact
+                    // or a singular point it is where the marcher reports the event.
+                    if let Some(x) = leaf_newton(a, b, &pa, &pb, ctx.tol) {
+                        if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) {
+                            let params = if problem.swapped {
+                                [x[2], x[3], x[0], x[1]]
+                            } else {
+                                x
+                            };
+                            out.push(StartPoint {
+                                params,
+                                kind: problem.kind,
+                            });
+                        }
+                    }
+                    continue;
+                }
+            }
+        }
+        // Split the piece with the larger box, across its longer parameter direction (a
+        // boundary curve only along its free direction).
+        if wa >= wb {
+            for half in pa.split(pa.split_direction()) {
+                stack.push((half, pb.clone(), leaf));
+            }
+        } else {
+            for half in pb.split(pb.split_direction()) {
+                stack.push((pa.clone(), half, leaf));
+            }
+        }
+    }
+    undecided
+}
+
+/// Widening of a leaf box, as a fraction of its width on each side, for the Krawczyk test: a
+/// curve point on the leaf's boundary (e.g. on a subdivision line) is then interior to the
+/// tested box.
+const LEAF_GROWTH: f64 = 1.0 / 32.0;
+
+/// Settles one leaf of a curve/surface search with one Krawczyk step ([`settle_box`]) on
+/// `A(edge) − B(u, v) = 0`: the edge's fixed parameter held in its (outward-rounded) value, the
+/// three free parameters over the leaf box widened by [`LEAF_GROWTH`], the Jacobian enclosed from
+/// the pieces' nets over that widened box. A proven point is polished by Newton.
+fn settle_leaf(
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    edge: &Piece,
+    other: &Piece,
+    tol: f64,
+) -> Leaf {
+    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let (da, db) = (a.domain(), b.domain());
+    let [xa, ya] = edge.declared(&da, LEAF_GROWTH);
+    let [xb, yb] = other.declared(&db, LEAF_GROWTH);
+    let y = [xa, ya, xb, yb];
+    // The centre of the box: exact piece centres, evaluated on the nets.
+    let ([ca0, ca1], pa) = edge.centre(&da);
+    let ([cb0, cb1], pb) = other.centre(&db);
+    let mut xm = [ca0, ca1, cb0, cb1];
+    xm[index] = y[index];
+    let f: [Interval; 3] = std::array::from_fn(|c| pa[c] - pb[c]);
+    let oa = pa.map(|x| x.mid());
+    let ob = pb.map(|x| x.mid());
+    let (Some(ja), Some(jb)) = (
+        edge.partials(&da, None, &oa, LEAF_GROWTH),
+        other.partials(&db, None, &ob, LEAF_GROWTH),
+    ) else {
+        return Leaf::Unknown;
+    };
+    let (Some(a_free), Some(bu), Some(bv)) = (ja[1 - index], jb[0], jb[1]) else {
+        return Leaf::Unknown;
+    };
+    match settle_box(y, xm, f, index, [a_free, bu, bv]) {
+        BoxVerdict::One(enclosure) => {
+            let centre = enclosure.map(|x| x.mid());
+            let constraint = Constraint::Fixed {
+                index,
+                value: centre[index],
+            };
+            let polished = refine(a, b, centre, constraint, tol, 40)
+                .ok()
+                .map(|r| r.x)
+                .filter(|x| {
+                    (0..4).all(|k| {
+                        let e = enclosure[k];
+                        let pad = 1e-9 * (1.0 + e.mag());
+                        x[k] >= e.inf() - pad && x[k] <= e.sup() + pad
+                    })
+                });
+            Leaf::Root(polished.unwrap_or(centre))
+        }
+        BoxVerdict::None => Leaf::Empty,
+        BoxVerdict::Unknown => Leaf::Unknown,
+    }
+}
+
+/// Newton on `A(edge) − B(u, v) = 0` from the centre of a leaf, the edge parameter held fixed.
+fn leaf_newton(
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    edge: &Piece,
+    other: &Piece,
+    tol: f64,
+) -> Option<[f64; 4]> {
+    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let [xa, ya] = edge.declared(&a.domain(), 0.0);
+    let [xb, yb] = other.declared(&b.domain(), 0.0);
+    let x = [xa.mid(), ya.mid(), xb.mid(), yb.mid()];
+    let constraint = Constraint::Fixed {
+        index,
+        value: x[index],
+    };
+    refine(a, b, x, constraint, tol, 40).ok().map(|r| r.x)
+}
+
+/// Gauss–Newton (minimum-norm steps) from `x` onto `P(σ,t) = Q(u,v)`; `None` if it does not
+/// converge to a residual below `tol`.
+pub fn project_onto_intersection<P, Q>(p: &P, q: &Q, mut x: [f64; 4], tol: f64) -> Option<[f64; 4]>
+where
+    P: ParametricSurface + ?Sized,
+    Q: ParametricSurface + ?Sized,
+{
+    for _ in 0..40 {
+        let a = p.derivs(x[0], x[1]);
+        let b = q.derivs(x[2], x[3]);
+        let f: Vector3<f64> = a.p - b.p;
+        let j = Matrix3x4::from_columns(&[a.su, a.sv, -b.su, -b.sv]);
+        let jjt = j * j.transpose();
+        let y = jjt.lu().solve(&f)?;
+        let step = j.transpose() * y;
+        for (xi, si) in x.iter_mut().zip(step.iter()) {
+            *xi -= si;
+        }
+        if !x.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        if f.norm() <= tol && step.norm() <= 1e-10 {
+            return Some(x);
+        }
+        if step.norm() <= 1e-15 * (1.0 + x.iter().map(|v| v.abs()).fold(0.0, f64::max)) {
+            let r = (p.point(x[0], x[1]) - q.point(x[2], x[3])).norm();
+            return (r <= tol).then_some(x);
+        }
+    }
+    None
+}
+
+/// Removes boundary points that are the same point found twice (e.g. at a corner, or from two
+/// neighbouring leaves), comparing parameters relative to the domain sizes.
+fn dedup(points: &mut Vec<StartPoint>, dp: Domain, dq: Domain) {
+    let scale = [
+        dp.u[1] - dp.u[0],
+        dp.v[1] - dp.v[0],
+        dq.u[1] - dq.u[0],
+        dq.v[1] - dq.v[0],
+    ];
+    let mut kept: Vec<StartPoint> = Vec::with_capacity(points.len());
+    for pt in points.drain(..) {
+        let dup = kept
+            .iter()
+            .any(|k| (0..4).all(|i| (k.params[i] - pt.params[i]).abs() <= 1e-7 * scale[i]));
+        if !dup {
+            kept.push(pt);
+        }
+    }
+    *points = kept;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::PowerSurface;
+
+    /// The graph z = a·(u² + v²) + c·u + d over [−1, 1]², as a Bézier patch.
+    fn graph(a: f64, c: f64, d: f64) -> RationalBezierPatch {
+        PowerSurface::graph(
+            Domain::new(-1.0, 1.0, -1.0, 1.0),
+            vec![(2, 0, a), (0, 2, a), (1, 0, c), (0, 0, d), (1, 1, 0.0)],
+        )
+        .to_bezier()
+        .unwrap()
+    }
+
+    #[test]
+    fn interior_loop_is_found_and_lies_on_the_circle() {
+        // Paraboloid z = u² + v² − 0.25 against the plane z = 0: the circle of radius 0.5.
+        let r = find_start_points(
+            &graph(1.0, 0.0, -0.25),
+            &graph(0.0, 0.0, 0.0),
+            &SearchOptions::default(),
+        );
+        assert!(r.boundary.is_empty(), "{:?}", r.boundary);
+        assert!(!r.interior.is_empty());
+        assert!(!r.truncated && r.undecided == 0);
+        for s in &r.interior {
+            let [x, y, ..] = s.params;
+            assert!((x.hypot(y) - 0.5).abs() < 1e-10, "{:?}", s.params);
+        }
+    }
+
+    #[test]
+    fn loops_on_subdivision_lines_are_found() {
+        // Circles of radius ρ about (a, b) (graph z = (x−a)² + (y−b)² − ρ² against z = 0) whose
+        // centres sit on or near the dyadic subdivision lines, small and large: each is found,
+        // on the circle, and the search is complete. (A circle *tangent* to subdivision lines,
+        // e.g. radius 0.125 about (0.75, 0.25), leaves its tangent faces undecided: a double
+        // root no Krawczyk step settles.)
+        let plane = graph(0.0, 0.0, 0.0);
+        for (a, b, rho) in [
+            (0.0, 0.0, 0.3),
+            (0.5, 0.0, 1e-2),
+            (0.5, 0.5, 0.2),
+            (-0.25, 0.5, 1e-4),
+            (0.501, -0.499, 0.05),
+            (0.75, 0.25, 0.1),
+        ] {
+            let bump = PowerSurface::graph(
+                Domain::new(-1.0, 1.0, -1.0, 1.0),
+                vec![
+                    (2, 0, 1.0),
+                    (0, 2, 1.0),
+                    (1, 0, -2.0 * a),
+                    (0, 1, -2.0 * b),
+                    (0, 0, a * a + b * b - rho * rho),
+                ],
+            )
+            .to_bezier()
+            .unwrap();
+            let r = find_start_points(&bump, &plane, &SearchOptions::default());
+            assert!(
+                r.complete,
+                "({a}, {b}, {rho}) {:?}",
+                (
+                    r.undecided_regions.len(),
+                    r.truncated,
+                    r.pairs,
+                    r.interior.len()
+                )
+            );
+            assert!(!r.interior.is_empty(), "({a}, {b}, {rho})");
+            for s in &r.interior {
+                let [x, y, ..] = s.params;
+                let off = ((x - a).hypot(y - b) - rho).abs();
+                assert!(off < 1e-9 * (1.0 + rho.recip()), "({a}, {b}, {rho}) {s:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn tiny_loop_is_found() {
+        // Circle of radius 1e-3: far below the leaf size, still found.
+        let r = find_start_points(
+            &graph(1.0, 0.0, -1e-6),
+            &graph(0.0, 0.0, 0.0),
+            &SearchOptions::default(),
+        );
+        assert!(r
+            .interior
+            .iter()
+            .any(|s| (s.params[0].hypot(s.params[1]) - 1e-3).abs() < 1e-9));
+    }
+
+    #[test]
+    fn open_branch_ends_are_found_on_the_boundaries() {
+        // Tilted plane z = 0.5·u + 0.1 against z = 0: the line u = −0.2 crossing v = ±1, found
+        // once each (on P's and on Q's boundary at the same place, deduplicated).
+        let q = graph(0.0, 0.0, 0.0);
+        let r = find_start_points(&graph(0.0, 0.5, 0.1), &q, &SearchOptions::default());
+        assert_eq!(r.boundary.len(), 2, "{:?}", r.boundary);
+        for s in &r.boundary {
+            assert!((s.params[0] + 0.2).abs() < 1e-12);
+            assert!((s.params[1].abs() - 1.0).abs() < 1e-12);
+            assert!(
+                (s.params[2] - s.params[0]).abs() < 1e-12
+                    && (s.params[3] - s.params[1]).abs() < 1e-12
+            );
+        }
+        // Disjoint surfaces: nothing, and no leaf is even reached.
+        let r = find_start_points(&graph(0.0, 0.0, 5.0), &q, &SearchOptions::default());
+        assert!(r.boundary.is_empty() && r.interior.is_empty() && r.leaves == 0);
+    }
+}
