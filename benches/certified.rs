@@ -5,6 +5,9 @@
 //! intersection ODE (order 20, with and without Jacobians) over a small box. Under load from
 //! other processes prefer `tests/certified_perf_compare.rs` (thread CPU time).
 
+// criterion_group!/criterion_main! generate undocumented functions.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use ssitrace::certify::ode::TransversalOde;
 use ssitrace::certify::{certify_branch, CertifyOptions};

@@ -1,5 +1,8 @@
 //! Evaluation and enclosure costs of rational Bézier patches.
 
+// criterion_group!/criterion_main! generate undocumented functions.
+#![allow(missing_docs)]
+
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use ssitrace::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use ssitrace::numeric::scalar::{interval, point};

@@ -2,6 +2,9 @@
 //! analytic closures and on the same surfaces as rational Bézier patches; and the time of the
 //! start-point search against the marching time on the same pair (ratios in one process).
 
+// criterion_group!/criterion_main! generate undocumented functions.
+#![allow(missing_docs)]
+
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};

@@ -2,6 +2,9 @@
 //! radius 1e-6, and, on the bicubic pair, the search time against the marching time of the same
 //! scene's branches measured in the same process (printed as a ratio).
 
+// criterion_group!/criterion_main! generate undocumented functions.
+#![allow(missing_docs)]
+
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
 use ssitrace::io::scene::Scene;

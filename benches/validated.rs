@@ -2,6 +2,9 @@
 //! 10, 20 and 30 (throughput in steps per second, final width printed), and one expansion to
 //! order 30 by the tape recurrences versus the naive series evaluation.
 
+// criterion_group!/criterion_main! generate undocumented functions.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use ssitrace::validated::reference::{Pcr3bp, PCR3BP_T_END};
 use ssitrace::validated::series::naive_expand;

@@ -1,11 +1,11 @@
 //! Certified curves: the intersection ODE on the validated engine, gap-free boxes, tight tubes.
 //!
-//! [`field`] writes the intersection ODE once over [`crate::Scalar`]; [`ode`] hands it to the
-//! validated engine; [`krawczyk`] proves curve points and contracts boxes onto `P = Q`;
-//! [`tangential`] classifies tangential contacts; [`trace`] certifies a branch; [`curve`] is what
-//! a certified branch reports. Tangential contacts: [`tangential_ode`] (the tangential field),
-//! [`centred_second_order`] (tight second derivatives for it), [`contact_cover`] (proven covers)
-//! and [`contact`] (the entry point [`certify_contact`]).
+//! [`ode`] hands the intersection field ([`crate::pair::field`]) to the validated engine;
+//! [`trace`] certifies a branch (its start and re-anchoring proven by
+//! [`crate::pair::krawczyk`]); [`curve`] is what a certified branch reports. Tangential
+//! contacts: [`tangential_ode`] (the tangential field, classified by
+//! [`crate::pair::contact_quadratic`]), [`contact_cover`] (proven covers) and [`contact`] (the
+//! entry point [`certify_contact`]).
 
 mod anchor;
 pub mod contact;

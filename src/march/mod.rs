@@ -3,7 +3,7 @@
 //! [`trace_branch`] marches from a start point both ways along the intersection curve of two
 //! [`ParametricSurface`](crate::geometry::ParametricSurface)s, predicting each next point with a
 //! circular ([`circle_step`]), dual-quaternion ([`dqoc_step`]) or tangent ([`tangent_step`]) step
-//! and correcting it with Newton ([`newton`]); it stops exactly on domain boundaries, closes loops
+//! and correcting it with Newton ([`crate::pair::newton`]); it stops exactly on domain boundaries, closes loops
 //! exactly once and stops at singular points.
 
 pub mod branch;

@@ -4,14 +4,14 @@ use crate::pair::field::ScalarSurface;
 use crate::Scalar;
 
 /// The graph z = a·(u² + v²) + b·u·v + d (exact in every scalar type).
-pub struct Bowl {
+pub(crate) struct Bowl {
     pub a: f64,
     pub b: f64,
     pub d: f64,
 }
 
 impl Bowl {
-    pub fn new(a: f64, d: f64) -> Self {
+    pub(crate) fn new(a: f64, d: f64) -> Self {
         Bowl { a, b: 0.0, d }
     }
 }

@@ -6,7 +6,7 @@
 //! coefficients with their remainder, so callers can enclose the solution on any sub-interval of a
 //! step far tighter than `[ỹ_j]` ([`StepRecord::enclose_on`]). Every claimed bound is computed in
 //! `inari` interval arithmetic (or with an a-posteriori rounding-error bound finished in `inari`,
-//! [`dot`]). A step that cannot be proven ends the integration with
+//! [`dot`](crate::numeric::dot)). A step that cannot be proven ends the integration with
 //! [`crate::Error::StepFailed`], carrying the time and the enclosure reached; nothing panics.
 //!
 //! ```
@@ -39,7 +39,7 @@
 //!   evaluating generic code along a series.
 //! * **Jacobians `∂yᵢ/∂y₀` by forward-mode differentiation of the same recurrences** ([`ad`]),
 //!   `n` derivative series per tape operation, in the same pass over the tape.
-//! * **Convolutions with an a-posteriori error bound** ([`dot`]) instead of switching the rounding
+//! * **Convolutions with an a-posteriori error bound** ([`dot`](crate::numeric::dot)) instead of switching the rounding
 //!   mode per operation: ≈ 3× faster expansions on sign-straddling data and ≈ 2.5× faster
 //!   integration of the PCR3BP run; the expansion at the set's centre, whose rounding widths feed
 //!   the set directly, keeps operation-by-operation rounding for its first orders (all-fast widened the PCR3BP result

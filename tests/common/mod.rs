@@ -3,7 +3,7 @@
 /// CPU time of this thread in seconds (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)` on Linux, wall
 /// time elsewhere). Under load from other processes wall time is meaningless; thread CPU time
 /// still is (up to cache effects).
-pub fn cpu_seconds() -> f64 {
+pub(crate) fn cpu_seconds() -> f64 {
     #[cfg(target_os = "linux")]
     {
         #[repr(C)]
