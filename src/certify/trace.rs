@@ -34,6 +34,7 @@ use crate::geometry::{Domain, RationalBezierPatch};
 use crate::numeric::scalar::{interval, point};
 use crate::pair::field::{norm_sqr, transversal_field, ScalarSurface};
 use crate::pair::krawczyk::{best_fixed_coordinate, krawczyk, KrawczykResult};
+use crate::pair::newton::{refine, Constraint};
 use crate::validated::{Integrator, IntegratorOptions, IntegratorWork, StepFailure, StepRecord};
 use inari::Interval;
 use std::time::Instant;
@@ -231,11 +232,75 @@ fn prove_start(
             };
         }
         if let KrawczykResult::Proven { enclosure, .. } = krawczyk(p, q, y, fixed, 30) {
-            return Some((enclosure, y));
+            return Some((tighten_start(p, q, enclosure, &y, fixed, scales), y));
         }
         rho *= 0.125;
     }
     None
+}
+
+/// A tight box of the start point proven in the wide box `uniq`. Krawczyk on a wide box may stop
+/// contracting while its enclosure is still about as wide as the box (its image shrinks by less
+/// than 10 % per iteration there), and a trace started from such a box carries that width along
+/// the whole branch. So the point is refined by f64 Newton (fixed coordinate kept) and proven
+/// again in a box of rounding size around it; that box lies in `uniq`, whose curve point is
+/// unique, so both proofs enclose the same point and their intersection is returned. If no tight
+/// proof succeeds, the wide `enclosure` is returned unchanged (still proven).
+fn tighten_start(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    enclosure: [Interval; 4],
+    uniq: &[Interval; 4],
+    fixed: usize,
+    scales: &[f64; 4],
+) -> [Interval; 4] {
+    let wide = (0..4).any(|k| k != fixed && enclosure[k].wid() > 1e-12 * scales[k]);
+    if !wide {
+        return enclosure;
+    }
+    let guess = enclosure.map(|c| c.mid());
+    let value = enclosure[fixed].mid();
+    let Ok(refined) = refine(
+        p,
+        q,
+        guess,
+        Constraint::Fixed {
+            index: fixed,
+            value,
+        },
+        1e-13,
+        12,
+    ) else {
+        return enclosure;
+    };
+    for rho in [1e-13, 1e-11, 1e-9] {
+        let mut y = enclosure;
+        for k in 0..4 {
+            if k == fixed {
+                continue;
+            }
+            let Some(c) = interval(
+                refined.x[k] - rho * scales[k],
+                refined.x[k] + rho * scales[k],
+            ) else {
+                return enclosure;
+            };
+            if !c.subset(uniq[k]) {
+                return enclosure;
+            }
+            y[k] = c;
+        }
+        if let KrawczykResult::Proven {
+            enclosure: tight, ..
+        } = krawczyk(p, q, y, fixed, 30)
+        {
+            let both: [Interval; 4] = std::array::from_fn(|k| tight[k].intersection(enclosure[k]));
+            if both.iter().all(|c| !c.is_empty()) {
+                return both;
+            }
+        }
+    }
+    enclosure
 }
 
 struct Half {
