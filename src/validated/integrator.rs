@@ -28,7 +28,8 @@ use crate::error::{Error, Result};
 use crate::numeric::scalar::{interval, point};
 use crate::validated::ad::{Expansion, TaylorAd};
 use crate::validated::enclosure::{
-    prove_apriori_with_guess, refine_remainder, remainder_ratio, taylor_poly, DEFAULT_GUESS_FACTOR,
+    prove_apriori_with_guess, refine_remainder, remainder_ratio, taylor_poly, Apriori,
+    EnclosureMethod, DEFAULT_GUESS_FACTOR,
 };
 use crate::validated::lohner::{mat_mul, mat_vec, LohnerSet};
 use crate::validated::record::StepRecord;
@@ -308,6 +309,11 @@ impl Integrator {
     }
 
     /// One proven step from `state.t` towards (never past) `t_limit`; advances `state`.
+    ///
+    /// The phases, each its own method: the expansion over the initial box and the step-size
+    /// prediction ([`Self::predict_step`]), phase I with remainder control
+    /// ([`Self::phase_one`]), phase II ([`Self::phase_two`], or [`Self::direct_form`] without the
+    /// mean-value form), and the record with the state update ([`Self::advance_state`]).
     pub fn step(&mut self, state: &mut IntegratorState, t_limit: f64) -> Result<StepRecord> {
         let n = self.ad.dim();
         if state.boxed.len() != n {
@@ -323,12 +329,6 @@ impl Integrator {
             )));
         }
         let k = self.options.order;
-        let fail = |state: &IntegratorState, h: f64, reason| Error::StepFailed {
-            time: state.t,
-            step: h,
-            state: state.boxed.clone(),
-            reason,
-        };
         let center: Vec<Interval> = state.set.center.iter().map(|c| point(*c)).collect();
         let range: Vec<Interval> = state
             .boxed
@@ -336,21 +336,40 @@ impl Integrator {
             .zip(&center)
             .map(|(b, c)| b.convex_hull(*c))
             .collect();
-        let units = |ad: &TaylorAd| {
-            let w = ad.work();
-            w.coefficient_units + w.jacobian_units
-        };
-        let u0 = units(&self.ad);
+        let u0 = work_units(&self.ad);
         self.ad
             .expand(&range, k, false, &mut self.exp_box)
-            .map_err(|e| fail(state, 0.0, StepFailure::Domain(e)))?;
-        let u1 = units(&self.ad);
+            .map_err(|e| step_failed(state, 0.0, StepFailure::Domain(e)))?;
+        let u1 = work_units(&self.ad);
         self.work.box_units += u1 - u0;
 
-        // Step size from the last two terms, estimated at the centre by the midpoints of their
-        // ranges over B (the expansion at the centre itself is needed to order p only, below).
+        // Step control: the predicted step, scaled by the ratio learnt at the last step.
         let scale = state.set.center.iter().fold(1.0f64, |m, c| m.max(c.abs()));
         let eps = self.options.tolerance * scale;
+        let h_predicted = self.predict_step(k, eps);
+        let h = (h_predicted * (state.step_ratio * 1.05).min(1.0)).min(self.options.h_max);
+        // The remainder target: ε, or a tiny fraction of the set's width when that is larger
+        // (shrinking h cannot make a wide set tighter; it only multiplies the steps).
+        let width = state.boxed.iter().fold(0.0f64, |m, v| m.max(v.wid()));
+        let rem_target = eps.max(REMAINDER_FRACTION_OF_WIDTH * width);
+
+        let proven = self.phase_one(state, &range, h, t_limit, rem_target)?;
+        let u2 = work_units(&self.ad);
+        self.work.phase1_units += u2 - u1;
+
+        let (record, next) = if self.mean_value {
+            self.phase_two(state, proven, &center, &range, rem_target, u2)?
+        } else {
+            self.direct_form(state, proven)
+        };
+        self.advance_state(state, &record, next, h_predicted, t_limit);
+        Ok(record)
+    }
+
+    /// Step control: the step size predicted from the last two terms of the expansion over the
+    /// initial box (their midpoints estimate the coefficients at the centre; the expansion at the
+    /// centre itself is needed to order `p` only, in phase II), capped by `h_max`.
+    fn predict_step(&self, k: usize, eps: f64) -> f64 {
         let mut h = self.options.h_max;
         // (The first-order term is skipped for k ≥ 2: (ε/‖y₁‖)¹ would force h ≈ ε.)
         for i in [k.saturating_sub(1).max(2).min(k), k] {
@@ -363,19 +382,27 @@ impl Integrator {
                 h = h.min((eps / norm).powf(1.0 / i as f64));
             }
         }
-        let h_predicted = h;
-        h = (h_predicted * (state.step_ratio * 1.05).min(1.0)).min(self.options.h_max);
-        // Phase I, shrinking h on failure.
-        // The remainder target: ε, or a tiny fraction of the set's width when that is larger
-        // (shrinking h cannot make a wide set tighter; it only multiplies the steps).
-        let width = state.boxed.iter().fold(0.0f64, |m, v| m.max(v.wid()));
-        let rem_target = eps.max(REMAINDER_FRACTION_OF_WIDTH * width);
+        h
+    }
+
+    /// Phase I from the step size `h`: proves an a-priori box over the step, shrinking `h` by 0.7
+    /// on failure, and controls the validated remainder against `rem_target` (re-enclosed over
+    /// pieces, then the step cut or phase I repeated with a shorter step).
+    fn phase_one(
+        &mut self,
+        state: &mut IntegratorState,
+        range: &[Interval],
+        mut h: f64,
+        t_limit: f64,
+        rem_target: f64,
+    ) -> Result<ProvenStep> {
+        let k = self.options.order;
         let mut shrinks = 0;
-        let (t1, h_iv, apriori) = loop {
+        loop {
             let (t1, h_iv) = next_time(state.t, h, t_limit);
             let h_try = h_iv.sup();
             if h_try < self.options.h_min && h_try < t_limit - state.t {
-                return Err(fail(
+                return Err(step_failed(
                     state,
                     h_try,
                     StepFailure::BelowMinimumStep {
@@ -386,7 +413,7 @@ impl Integrator {
             self.work.phase1_attempts += 1;
             match prove_apriori_with_guess(
                 &mut self.ad,
-                &range,
+                range,
                 &self.exp_box,
                 k,
                 h_try,
@@ -395,9 +422,7 @@ impl Integrator {
             ) {
                 Ok(mut a) => {
                     // Remember what the first guess had to exceed (twice it, for the next step).
-                    if self.adaptive_guess
-                        && a.method == crate::validated::enclosure::EnclosureMethod::HighOrder
-                    {
+                    if self.adaptive_guess && a.method == EnclosureMethod::HighOrder {
                         if let Some(r) = remainder_ratio(&a, &self.exp_box, k) {
                             state.guess_factor = (2.0 * r).clamp(DEFAULT_GUESS_FACTOR, 1e200);
                         }
@@ -405,7 +430,7 @@ impl Integrator {
                     // Remainder control: the interval remainder over the a-priori box can be far
                     // larger than the point estimate used above; re-enclose it over pieces of the
                     // step if needed, then shrink until it meets ε.
-                    let rem_of = |a: &crate::validated::enclosure::Apriori| {
+                    let rem_of = |a: &Apriori| {
                         a.remainder_coeff.iter().fold(0.0f64, |m, c| m.max(c.mag()))
                             * h_try.powi(k as i32)
                     };
@@ -426,7 +451,11 @@ impl Integrator {
                         || shrinks >= MAX_REMAINDER_SHRINKS
                         || h_try <= self.options.h_min
                     {
-                        break (t1, h_iv, a);
+                        return Ok(ProvenStep {
+                            t1,
+                            h: h_iv,
+                            apriori: a,
+                        });
                     }
                     // A shorter step needs no new phase I: the a-priori box and the remainder
                     // coefficient proven over [0, h_try] hold over every [0, h'] ⊂ [0, h_try],
@@ -446,7 +475,11 @@ impl Integrator {
                                 *b = c;
                             }
                         }
-                        break (t1c, h_ivc, a);
+                        return Ok(ProvenStep {
+                            t1: t1c,
+                            h: h_ivc,
+                            apriori: a,
+                        });
                     }
                     shrinks += 1;
                     self.work.remainder_shrinks += 1;
@@ -455,7 +488,7 @@ impl Integrator {
                 Err(_) => {
                     self.work.phase1_failures += 1;
                     if h_try <= self.options.h_min {
-                        return Err(fail(
+                        return Err(step_failed(
                             state,
                             h_try,
                             StepFailure::BelowMinimumStep {
@@ -466,66 +499,82 @@ impl Integrator {
                     h = h_try * 0.7;
                 }
             }
-        };
+        }
+    }
 
-        // Phase II.
-        let u2 = units(&self.ad);
-        self.work.phase1_units += u2 - u1;
-        let hp = h_iv;
-        let h = h_iv.sup();
+    /// The end of a step without the mean-value form: every solution at `t + h` lies in the
+    /// direct Taylor form `Σ_{i<k} yᵢ([y]) hⁱ + hᵏ·y_k([ỹ])` (a box: it wraps, which a caller that
+    /// restarts from a thin box every step does not mind). Returns the record and the next set.
+    fn direct_form(
+        &mut self,
+        state: &IntegratorState,
+        proven: ProvenStep,
+    ) -> (StepRecord, LohnerSet) {
+        let k = self.options.order;
+        let ProvenStep { t1, h: hp, apriori } = proven;
+        let direct = taylor_poly(&self.exp_box, k, hp, Some(&apriori.remainder_coeff));
+        let end: Vec<Interval> = direct
+            .iter()
+            .zip(&apriori.boxed)
+            .map(|(d, a)| {
+                let e = d.intersection(*a);
+                if e.is_empty() {
+                    *d
+                } else {
+                    e
+                }
+            })
+            .collect();
+        self.work.steps += 1;
+        let coeffs: Vec<Vec<Interval>> = (0..k).map(|i| self.exp_box.coeff(i).to_vec()).collect();
+        let next = LohnerSet::from_box(&end);
+        let record = StepRecord {
+            t0: state.t,
+            t1,
+            h: hp.sup(),
+            start: state.boxed.clone(),
+            apriori: apriori.boxed,
+            end,
+            center_coeffs: coeffs.clone(),
+            coeffs,
+            remainder_coeff: apriori.remainder_coeff,
+            method: apriori.method,
+            jacobians: Vec::new(),
+            basis: Vec::new(),
+            r: Vec::new(),
+        };
+        (record, next)
+    }
+
+    /// Phase II: the mean-value form over the initial box for the orders below `p`
+    /// ([`Self::jacobian_order`]), the range over it for the others, and the Lagrange remainder
+    /// over the a-priori box; the Lohner set update re-encloses the result. `units_before` is
+    /// the AD work count when phase II starts. Returns the record and the next set.
+    fn phase_two(
+        &mut self,
+        state: &IntegratorState,
+        proven: ProvenStep,
+        center: &[Interval],
+        range: &[Interval],
+        rem_target: f64,
+        units_before: f64,
+    ) -> Result<(StepRecord, LohnerSet)> {
+        let n = self.ad.dim();
+        let k = self.options.order;
+        let ProvenStep { t1, h: hp, apriori } = proven;
+        let h = hp.sup();
         let hk = hp.powi(k as i32);
         // Mean-value form for the orders below p only: for i ≥ p the range yᵢ([y]) itself
         // enters u (a box, so it wraps, but its width times hⁱ is below a tenth of the
         // remainder target), which saves the Jacobians' O(n·k²) recurrences above order p.
-        if !self.mean_value {
-            // Direct Taylor form only: every solution at t + h lies in
-            // Σ_{i<k} yᵢ([y]) hⁱ + hᵏ·y_k([ỹ]) (a box: it wraps, which a caller that restarts
-            // from a thin box every step does not mind).
-            let direct = taylor_poly(&self.exp_box, k, hp, Some(&apriori.remainder_coeff));
-            let end: Vec<Interval> = (0..n)
-                .map(|j| {
-                    let e = direct[j].intersection(apriori.boxed[j]);
-                    if e.is_empty() {
-                        direct[j]
-                    } else {
-                        e
-                    }
-                })
-                .collect();
-            self.work.steps += 1;
-            let coeffs: Vec<Vec<Interval>> =
-                (0..k).map(|i| self.exp_box.coeff(i).to_vec()).collect();
-            let record = StepRecord {
-                t0: state.t,
-                t1,
-                h,
-                start: state.boxed.clone(),
-                apriori: apriori.boxed,
-                end: end.clone(),
-                center_coeffs: coeffs.clone(),
-                coeffs,
-                remainder_coeff: apriori.remainder_coeff,
-                method: apriori.method,
-                jacobians: Vec::new(),
-                basis: Vec::new(),
-                r: Vec::new(),
-            };
-            if t1 < t_limit && h_predicted.is_finite() && h_predicted > 0.0 {
-                state.step_ratio = (h / h_predicted).clamp(1e-6, 1.0);
-            }
-            state.t = t1;
-            state.set = LohnerSet::from_box(&end);
-            state.boxed = end;
-            return Ok(record);
-        }
         let p = self.jacobian_order(k, h, rem_target);
         self.ad
-            .expand(&range, p, true, &mut self.exp_jac)
-            .map_err(|e| fail(state, h, StepFailure::Domain(e)))?;
+            .expand(range, p, true, &mut self.exp_jac)
+            .map_err(|e| step_failed(state, h, StepFailure::Domain(e)))?;
         self.ad
-            .expand_tight(&center, p, false, &mut self.exp_center)
-            .map_err(|e| fail(state, h, StepFailure::Domain(e)))?;
-        self.work.phase2_units += units(&self.ad) - u2;
+            .expand_tight(center, p, false, &mut self.exp_center)
+            .map_err(|e| step_failed(state, h, StepFailure::Domain(e)))?;
+        self.work.phase2_units += work_units(&self.ad) - units_before;
         self.work.steps += 1;
         let low_high: Vec<&[Interval]> = (0..k)
             .map(|i| {
@@ -557,7 +606,7 @@ impl Integrator {
         let dev: Vec<Interval> = state
             .boxed
             .iter()
-            .zip(&center)
+            .zip(center)
             .map(|(b, c)| *b - *c)
             .collect();
         let direct = mat_vec(&s, &dev, n);
@@ -581,7 +630,7 @@ impl Integrator {
             h,
             start: state.boxed.clone(),
             apriori: apriori.boxed,
-            end: end.clone(),
+            end,
             coeffs: (0..k).map(|i| self.exp_box.coeff(i).to_vec()).collect(),
             remainder_coeff: apriori.remainder_coeff,
             method: apriori.method,
@@ -590,13 +639,49 @@ impl Integrator {
             basis,
             r: state.set.r.clone(),
         };
-        if t1 < t_limit && h_predicted.is_finite() && h_predicted > 0.0 {
-            state.step_ratio = (h / h_predicted).clamp(1e-6, 1.0);
+        Ok((record, next))
+    }
+
+    /// Record: moves `state` to the end of the step `record` with the set `next`, and learns the
+    /// ratio of the accepted step to the predicted one (unless the step was cut by `t_limit`).
+    fn advance_state(
+        &self,
+        state: &mut IntegratorState,
+        record: &StepRecord,
+        next: LohnerSet,
+        h_predicted: f64,
+        t_limit: f64,
+    ) {
+        if record.t1 < t_limit && h_predicted.is_finite() && h_predicted > 0.0 {
+            state.step_ratio = (record.h / h_predicted).clamp(1e-6, 1.0);
         }
-        state.t = t1;
+        state.t = record.t1;
         state.set = next;
-        state.boxed = end;
-        Ok(record)
+        state.boxed.clone_from(&record.end);
+    }
+}
+
+/// What phase I proved for one step: its end time, an enclosure of its length `t1 − t`, and the
+/// a-priori box with the remainder coefficient over it.
+struct ProvenStep {
+    t1: f64,
+    h: Interval,
+    apriori: Apriori,
+}
+
+/// The AD work so far in the units of the profile (coefficients plus Jacobians).
+fn work_units(ad: &TaylorAd) -> f64 {
+    let w = ad.work();
+    w.coefficient_units + w.jacobian_units
+}
+
+/// The error of a step from `state` that failed at step size `h`.
+fn step_failed(state: &IntegratorState, h: f64, reason: StepFailure) -> Error {
+    Error::StepFailed {
+        time: state.t,
+        step: h,
+        state: state.boxed.clone(),
+        reason,
     }
 }
 
