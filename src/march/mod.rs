@@ -6,8 +6,10 @@
 //! and correcting it with Newton ([`crate::pair::newton`]); it stops exactly on domain boundaries, closes loops
 //! exactly once and stops at singular points.
 
+mod boundary;
 pub mod branch;
 pub mod circle_step;
+mod closing;
 pub(crate) mod covers;
 mod crossing;
 pub mod dqoc_step;

@@ -29,22 +29,20 @@
 
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::pair_bounds as bounds;
-use crate::geometry::{Domain, ParametricSurface, Vec3};
+use crate::geometry::{ParametricSurface, Vec3};
+use crate::march::boundary::{boundary_surface_of, enters, land_on_boundary, touching};
 use crate::march::branch::{Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind};
 use crate::march::circle_step::circular_step;
+use crate::march::closing::{add_turn, closing_turning, turn};
 use crate::march::crossing::{cross_node, singular_between};
 use crate::march::dqoc_step::dqoc_step;
 use crate::march::node::{inside, node_at, Node};
 use crate::march::options::{MarchOptions, StepMethod};
 use crate::march::tangent_step::tangent_step;
 use crate::march::StepPrediction;
-use crate::pair::boundary_direction::{
-    boundary_sides, classify_boundary_point_unproven, BoundaryDirection, BoundaryOptions,
-};
 use crate::pair::branch_point::SingularNode;
-use crate::pair::newton::{refine, Constraint};
-use crate::pair::tangent::{curve_frame, parameter_direction, CurveFrame};
-use std::f64::consts::PI;
+use crate::pair::newton::{refine, Constraint, Refined};
+use crate::pair::tangent::{curve_frame, parameter_direction};
 
 /// Counts describing one traced branch.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -97,46 +95,6 @@ fn make_event(kind: EventKind, n: &Node) -> Event {
         q: [n.x[2], n.x[3]],
         xyz: [n.frame.xyz.x, n.frame.xyz.y, n.frame.xyz.z],
     }
-}
-
-/// Signed angle from 2D vector `a` to `b` in `(−π, π]` (0 if either is zero).
-fn signed_angle(a: [f64; 2], b: [f64; 2]) -> f64 {
-    let cross = a[0] * b[1] - a[1] * b[0];
-    let dot = a[0] * b[0] + a[1] * b[1];
-    if cross == 0.0 && dot == 0.0 {
-        0.0
-    } else {
-        cross.atan2(dot)
-    }
-}
-
-/// Euclidean distance of two parameter 4-tuples.
-fn param_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum::<f64>()
-        .sqrt()
-}
-
-/// Turning of the parameter tangents from frame `a` to frame `b`, in P's and Q's domains.
-fn turn(a: &CurveFrame, b: &CurveFrame) -> [f64; 2] {
-    [
-        signed_angle(a.tangent_p, b.tangent_p),
-        signed_angle(a.tangent_q, b.tangent_q),
-    ]
-}
-
-fn add_turn(acc: &mut [f64; 2], t: [f64; 2]) {
-    acc[0] += t[0];
-    acc[1] += t[1];
-}
-
-/// Whether `turning` is within `tol` of `2πk` for an integer `k`, `k ≠ 0` unless `zero_ok` (a
-/// curve through crossings may have rotation index 0, e.g. a figure eight).
-fn is_full_turn(turning: f64, tol: f64, zero_ok: bool) -> bool {
-    let k = (turning / (2.0 * PI)).round();
-    (k != 0.0 || zero_ok) && (turning - 2.0 * PI * k).abs() < tol
 }
 
 /// Parameter guesses for the model-space target: on each surface, the target is inverted by
@@ -229,73 +187,84 @@ fn predict(
     }
 }
 
-/// The first parameter (index, bound, fraction along `a → b`) where the segment leaves a domain.
-fn first_exit(a: &[f64; 4], b: &[f64; 4], dp: &Domain, dq: &Domain) -> Option<(usize, f64, f64)> {
-    let mut best: Option<(usize, f64, f64)> = None;
-    for i in 0..4 {
-        let [lo, hi] = bounds(dp, dq, i);
-        let bound = if b[i] < lo {
-            lo
-        } else if b[i] > hi {
-            hi
-        } else {
-            continue;
-        };
-        let span = b[i] - a[i];
-        let s = if span != 0.0 {
-            ((bound - a[i]) / span).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        if best.is_none_or(|(_, _, sb)| s < sb) {
-            best = Some((i, bound, s));
+/// The step length `L` for the next prediction, and whether the march is heading into a
+/// singular point. Near one (sine small and decreasing) the step aims at most half way to where
+/// the sine would vanish at its current rate of decrease: a geometric approach.
+fn step_limit(prev: Option<&Node>, cur: &Node, opts: &MarchOptions) -> (f64, bool) {
+    let mut step = opts.step;
+    let mut approaching = false;
+    if let Some(pv) = prev {
+        let chord = (cur.frame.xyz - pv.frame.xyz).norm();
+        let rate = (pv.frame.sine - cur.frame.sine) / chord;
+        if cur.frame.sine < opts.watch_sine && rate > 0.0 {
+            step = step.min(0.5 * cur.frame.sine / rate);
+            // At this rate the sine vanishes within a hundred chords: heading into a
+            // singular point (on a tiny loop the sine is small but constant, its rate
+            // rounding noise, and the predicted zero far away).
+            approaching = cur.frame.sine < 100.0 * rate * chord;
         }
     }
-    best
+    (step, approaching)
 }
 
-/// Lands on the boundary between `cur` (inside) and `out` (outside): Newton with the exit
-/// parameter fixed at its bound. Returns the landed node and the surface whose boundary it is.
-fn land_on_boundary<S1, S2>(
+/// Corrects the prediction `first` (made with the step `step`) onto the curve by Newton in the
+/// plane through the predicted point, halving the step up to three times if Newton fails or
+/// jumps too far. Returns the refined point, if any, and the number of retries.
+fn correct<S1, S2>(
     p: &S1,
     q: &S2,
-    cur: &Node,
-    out: [f64; 4],
     opts: &MarchOptions,
-) -> Option<(Node, usize)>
+    prev: Option<&Node>,
+    cur: &Node,
+    first: StepPrediction,
+    (mut step, approaching): (f64, bool),
+) -> (Option<Refined>, usize)
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
-    let (dp, dq) = (p.domain(), q.domain());
-    let mut target = out;
-    for _ in 0..4 {
-        let (i, bound, s) = first_exit(&cur.x, &target, &dp, &dq)?;
-        let guess: [f64; 4] = std::array::from_fn(|k| cur.x[k] + s * (target[k] - cur.x[k]));
-        let r = refine(
+    let mut attempt = first;
+    let mut retried = 0;
+    for tries in 0..4 {
+        if tries > 0 {
+            step *= 0.5;
+            attempt = predict(prev, cur, opts, step, approaching);
+            retried += 1;
+        }
+        let guess = predict_parameters(p, q, &cur.x, &attempt.point);
+        let dir = attempt.point - cur.frame.xyz;
+        let len = dir.norm();
+        if len == 0.0 || !len.is_finite() {
+            break;
+        }
+        let constraint = Constraint::Plane {
+            point: attempt.point,
+            normal: dir / len,
+        };
+        if let Ok(r) = refine(
             p,
             q,
             guess,
-            Constraint::Fixed {
-                index: i,
-                value: bound,
-            },
+            constraint,
             opts.tolerance,
             opts.max_newton_iterations,
-        )
-        .ok()?;
-        if inside(&r.x, &dp, &dq, opts.domain_tolerance) {
-            let node = node_at(p, q, r.x, r.iterations, Some(cur.frame.tangent));
-            return Some((node, usize::from(i >= 2)));
+        ) {
+            // Reject a jump that went backwards or much farther than predicted.
+            let moved = (p.point(r.x[0], r.x[1]) - cur.frame.xyz).norm();
+            if moved <= 3.0 * len + opts.tolerance {
+                return (Some(r), retried);
+            }
         }
-        // Left through another side first: aim again at the landed point.
-        target = r.x;
     }
-    None
+    (None, retried)
 }
 
 /// Marches from `start` (tangent oriented along the direction of travel) until a stop rule fires.
 /// `closure`: look for the return to `start` (only for a forward half from an interior start).
+///
+/// Each step: the step limit near singular points ([`step_limit`]), the prediction, the closing
+/// test ([`closing_turning`]), the Newton correction ([`correct`]), then the boundary
+/// ([`land_on_boundary`]) and singular-point rules.
 fn march_half<S1, S2>(
     p: &S1,
     q: &S2,
@@ -326,43 +295,20 @@ where
             half.end = EndReason::PointLimit;
             return half;
         }
-        // Near a singular point (sine small and decreasing) aim at most half way to where the
-        // sine would vanish at its current rate of decrease: a geometric approach.
-        let mut step = opts.step;
-        let mut approaching = false;
-        if let Some(pv) = prev.as_ref() {
-            let chord = (cur.frame.xyz - pv.frame.xyz).norm();
-            let rate = (pv.frame.sine - cur.frame.sine) / chord;
-            if cur.frame.sine < opts.watch_sine && rate > 0.0 {
-                step = step.min(0.5 * cur.frame.sine / rate);
-                // At this rate the sine vanishes within a hundred chords: heading into a
-                // singular point (on a tiny loop the sine is small but constant, its rate
-                // rounding noise, and the predicted zero far away).
-                approaching = cur.frame.sine < 100.0 * rate * chord;
-            }
-        }
-        let pred = predict(prev.as_ref(), &cur, opts, step, approaching);
+        let limit = step_limit(prev.as_ref(), &cur, opts);
+        let pred = predict(prev.as_ref(), &cur, opts, limit.0, limit.1);
 
         if closure && half.nodes.len() >= 2 {
-            let to_start = start.frame.xyz - cur.frame.xyz;
-            let dist = to_start.norm();
-            let turn_to_start = turn(&cur.frame, &start.frame);
-            let total = [
-                half.turning[0] + turn_to_start[0],
-                half.turning[1] + turn_to_start[1],
-            ];
-            // The parameters must come back too (not only the model point): the start's
-            // parameters are at most twice as far as the local parameter speed allows.
-            let param_speed = prev.as_ref().map_or(f64::INFINITY, |pv| {
-                param_distance(&pv.x, &cur.x) / (pv.frame.xyz - cur.frame.xyz).norm()
-            });
-            if dist <= 1.5 * pred.arc
-                && param_distance(&start.x, &cur.x) <= 2.0 * param_speed * dist + 1e-9
-                && to_start.dot(&cur.frame.tangent) > 0.5 * dist
-                && cur.frame.tangent.dot(&start.frame.tangent) > 0.5
-                && (is_full_turn(total[0], opts.rotation_tolerance, !visited.is_empty())
-                    || is_full_turn(total[1], opts.rotation_tolerance, !visited.is_empty()))
-            {
+            let closed = closing_turning(
+                start,
+                prev.as_ref(),
+                &cur,
+                half.turning,
+                pred.arc,
+                opts,
+                !visited.is_empty(),
+            );
+            if let Some(total) = closed {
                 half.turning = total;
                 let mut closing = *start;
                 closing.iterations = 0;
@@ -372,41 +318,8 @@ where
             }
         }
 
-        // Predict, refine; halve the step up to three times if Newton fails.
-        let mut attempt = pred;
-        let mut refined = None;
-        for tries in 0..4 {
-            if tries > 0 {
-                step *= 0.5;
-                attempt = predict(prev.as_ref(), &cur, opts, step, approaching);
-                half.retried += 1;
-            }
-            let guess = predict_parameters(p, q, &cur.x, &attempt.point);
-            let dir = attempt.point - cur.frame.xyz;
-            let len = dir.norm();
-            if len == 0.0 || !len.is_finite() {
-                break;
-            }
-            let constraint = Constraint::Plane {
-                point: attempt.point,
-                normal: dir / len,
-            };
-            if let Ok(r) = refine(
-                p,
-                q,
-                guess,
-                constraint,
-                opts.tolerance,
-                opts.max_newton_iterations,
-            ) {
-                // Reject a jump that went backwards or much farther than predicted.
-                let moved = (p.point(r.x[0], r.x[1]) - cur.frame.xyz).norm();
-                if moved <= 3.0 * len + opts.tolerance {
-                    refined = Some(r);
-                    break;
-                }
-            }
-        }
+        let (refined, retried) = correct(p, q, opts, prev.as_ref(), &cur, pred, limit);
+        half.retried += retried;
         let Some(r) = refined else {
             half.end = EndReason::NewtonFailed;
             return half;
@@ -537,67 +450,6 @@ where
         opts.max_newton_iterations,
     )?;
     Ok(node_at(p, q, r.x, 0, None))
-}
-
-/// Whether moving along `sign · tangent` from the start enters both domains (false when the start
-/// sits on a boundary and that direction leaves it).
-fn enters<S1, S2>(p: &S1, q: &S2, n: &Node, sign: f64) -> bool
-where
-    S1: ParametricSurface + ?Sized,
-    S2: ParametricSurface + ?Sized,
-{
-    let (dp, dq) = (p.domain(), q.domain());
-    let d = [
-        n.frame.tangent_p[0],
-        n.frame.tangent_p[1],
-        n.frame.tangent_q[0],
-        n.frame.tangent_q[1],
-    ];
-    let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
-    (0..4).all(|i| {
-        let [lo, hi] = bounds(&dp, &dq, i);
-        let di = sign * d[i];
-        !((n.x[i] - lo).abs() <= edge_tol && di < 0.0
-            || (hi - n.x[i]).abs() <= edge_tol && di > 0.0)
-    })
-}
-
-/// Whether the curve through the boundary node `n` only touches the faces `n` lies on
-/// (Grandine's test to second order, see [`classify_boundary_point_unproven`]): `Some(true)`
-/// when it is tangent to every such face and stays inside the domains, `Some(false)` when it
-/// touches a face from outside (or the surfaces touch at this point only), `None` otherwise.
-fn touching<S1, S2>(p: &S1, q: &S2, n: &Node) -> Option<bool>
-where
-    S1: ParametricSurface + ?Sized,
-    S2: ParametricSurface + ?Sized,
-{
-    let opts = BoundaryOptions::default();
-    let sides = boundary_sides(p, q, &n.x, 1e-7);
-    let mut inside = !sides.is_empty();
-    for side in sides {
-        match classify_boundary_point_unproven(p, q, n.x, side, &opts).map(|c| c.direction) {
-            Ok(BoundaryDirection::Touches { inside: false } | BoundaryDirection::Isolated) => {
-                return Some(false)
-            }
-            Ok(BoundaryDirection::Touches { inside: true }) => {}
-            _ => inside = false,
-        }
-    }
-    inside.then_some(true)
-}
-
-fn boundary_surface_of<S1, S2>(p: &S1, q: &S2, n: &Node) -> Option<usize>
-where
-    S1: ParametricSurface + ?Sized,
-    S2: ParametricSurface + ?Sized,
-{
-    let (dp, dq) = (p.domain(), q.domain());
-    let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
-    (0..4).find_map(|i| {
-        let [lo, hi] = bounds(&dp, &dq, i);
-        ((n.x[i] - lo).abs() <= edge_tol || (hi - n.x[i]).abs() <= edge_tol)
-            .then_some(usize::from(i >= 2))
-    })
 }
 
 fn to_curve_point(n: &Node) -> CurvePoint {

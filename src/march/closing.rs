@@ -1,0 +1,83 @@
+//! The turning of the tangent along a march and the test that closes a loop at its start.
+//!
+//! The march accumulates the signed turning of the parameter tangents in P's and in Q's domain;
+//! [`closing_turning`] accepts the start as the next point only when it is near, ahead, with an
+//! agreeing tangent, reached in the parameters too, and after a full turn (see the module docs of
+//! [`crate::march::trace`]).
+
+use crate::march::node::Node;
+use crate::march::options::MarchOptions;
+use crate::pair::tangent::CurveFrame;
+use std::f64::consts::PI;
+
+/// Signed angle from 2D vector `a` to `b` in `(−π, π]` (0 if either is zero).
+fn signed_angle(a: [f64; 2], b: [f64; 2]) -> f64 {
+    let cross = a[0] * b[1] - a[1] * b[0];
+    let dot = a[0] * b[0] + a[1] * b[1];
+    if cross == 0.0 && dot == 0.0 {
+        0.0
+    } else {
+        cross.atan2(dot)
+    }
+}
+
+/// Euclidean distance of two parameter 4-tuples.
+fn param_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Turning of the parameter tangents from frame `a` to frame `b`, in P's and Q's domains.
+pub(crate) fn turn(a: &CurveFrame, b: &CurveFrame) -> [f64; 2] {
+    [
+        signed_angle(a.tangent_p, b.tangent_p),
+        signed_angle(a.tangent_q, b.tangent_q),
+    ]
+}
+
+/// Adds the turning `t` to `acc`.
+pub(crate) fn add_turn(acc: &mut [f64; 2], t: [f64; 2]) {
+    acc[0] += t[0];
+    acc[1] += t[1];
+}
+
+/// Whether `turning` is within `tol` of `2πk` for an integer `k`, `k ≠ 0` unless `zero_ok` (a
+/// curve through crossings may have rotation index 0, e.g. a figure eight).
+fn is_full_turn(turning: f64, tol: f64, zero_ok: bool) -> bool {
+    let k = (turning / (2.0 * PI)).round();
+    (k != 0.0 || zero_ok) && (turning - 2.0 * PI * k).abs() < tol
+}
+
+/// The closing test of a forward half at `cur` (after `prev`), whose tangent turned by
+/// `turning` since `start`: the total turning including the last turn to `start` when `start`
+/// is to be the next point, `None` otherwise. `arc` is the predicted step; `crossed` says the
+/// half went through a singular point (then rotation index 0 closes too).
+pub(crate) fn closing_turning(
+    start: &Node,
+    prev: Option<&Node>,
+    cur: &Node,
+    turning: [f64; 2],
+    arc: f64,
+    opts: &MarchOptions,
+    crossed: bool,
+) -> Option<[f64; 2]> {
+    let to_start = start.frame.xyz - cur.frame.xyz;
+    let dist = to_start.norm();
+    let turn_to_start = turn(&cur.frame, &start.frame);
+    let total = [turning[0] + turn_to_start[0], turning[1] + turn_to_start[1]];
+    // The parameters must come back too (not only the model point): the start's
+    // parameters are at most twice as far as the local parameter speed allows.
+    let param_speed = prev.map_or(f64::INFINITY, |pv| {
+        param_distance(&pv.x, &cur.x) / (pv.frame.xyz - cur.frame.xyz).norm()
+    });
+    (dist <= 1.5 * arc
+        && param_distance(&start.x, &cur.x) <= 2.0 * param_speed * dist + 1e-9
+        && to_start.dot(&cur.frame.tangent) > 0.5 * dist
+        && cur.frame.tangent.dot(&start.frame.tangent) > 0.5
+        && (is_full_turn(total[0], opts.rotation_tolerance, crossed)
+            || is_full_turn(total[1], opts.rotation_tolerance, crossed)))
+    .then_some(total)
+}
