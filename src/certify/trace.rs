@@ -316,6 +316,75 @@ struct Half {
     end: CertifiedEnd,
 }
 
+impl Half {
+    /// Enclosure phase, the box of one step: the link (the a-priori box, and the curve pieces
+    /// within the arc-length errors `errs` of both starts, held by their `covers`, which also
+    /// join the flow's end to the re-anchored start), its model-space box and its arc-length
+    /// range. Returns the link.
+    fn push_box(
+        &mut self,
+        p: &RationalBezierPatch,
+        q: &RationalBezierPatch,
+        rec: &StepRecord,
+        dir: f64,
+        [cover, next_cover]: [&[Interval; 4]; 2],
+        [s_err, next_err]: [f64; 2],
+    ) -> Result<[Interval; 4]> {
+        let apriori = to4(&rec.apriori);
+        let link: [Interval; 4] =
+            std::array::from_fn(|i| apriori[i].convex_hull(cover[i]).convex_hull(next_cover[i]));
+        let xyz = model_box(p, q, &link).ok_or_else(|| Error::Certification {
+            reason: "the model-space boxes of P and Q over the a-priori box are disjoint".into(),
+            near: mids(&link),
+        })?;
+        // The arc-length range: the link holds the curve from (true) arc length t0 − s_err to
+        // t1 + next_err (the covers hold the curve within 2·err of either start); publish the part
+        // [t0 − s_err, t1 − next_err], so consecutive ranges touch. A last step that could not be
+        // re-anchored holds it up to t1 − s_err (next_err = s_err then).
+        let s = if dir > 0.0 {
+            let s0 = rec.t0 - s_err;
+            [s0, (rec.t1 - next_err).max(s0)]
+        } else {
+            let s1 = -rec.t0 + s_err;
+            [(-rec.t1 + next_err).min(s1), s1]
+        };
+        self.boxes.push(EnclosureBox {
+            s,
+            p: [link[0], link[1]],
+            q: [link[2], link[3]],
+            xyz,
+        });
+        Ok(link)
+    }
+
+    /// Enclosure phase, the tube of one step and the half's tolerance: the tube's model-space
+    /// radius, and the joins before and after the step (`bridge`: the arc-length bound of the
+    /// piece joining its end to the re-anchored start, 0 if none).
+    fn push_tube(
+        &mut self,
+        p: &RationalBezierPatch,
+        rec: &StepRecord,
+        dir: f64,
+        s_err: f64,
+        bridge: f64,
+    ) -> Result<()> {
+        // The radius enters the tolerance alone and in the joins before and after this step.
+        let join = self.pending_join.map_or(0.0, |(_, b)| b).max(bridge);
+        let tube = tube_piece(p, rec, dir, s_err, self.tolerance - 0.5 * join)?;
+        // Every true point of this step is within radius_xyz of the reported curve; the piece
+        // joining the last step's end to this start is accounted for by join_tolerance.
+        self.tolerance = self.tolerance.max(tube.radius_xyz);
+        if let Some((r, b)) = self.pending_join.take() {
+            self.tolerance = self
+                .tolerance
+                .max(join_tolerance(r, b, Some(tube.radius_xyz)));
+        }
+        self.pending_join = (bridge > 0.0).then_some((tube.radius_xyz, bridge));
+        self.tubes.push(tube);
+        Ok(())
+    }
+}
+
 /// Data of the loop-closing test: the start's fixed coordinate, its value, the uniqueness box
 /// and the fixed coordinate's velocity at the start (its sign says on which side the curve
 /// comes back from).
@@ -442,45 +511,8 @@ fn trace_half_with(
             Some(a) => (a.s_err, a.cover, a.bridge),
             None => (s_err, end, 0.0),
         };
-        // The link: the a-priori box, and the curve pieces within the arc-length errors of both
-        // starts (which also join the flow's end to the re-anchored start).
-        let apriori = to4(&rec.apriori);
-        let link: [Interval; 4] =
-            std::array::from_fn(|i| apriori[i].convex_hull(cover[i]).convex_hull(next_cover[i]));
-        let xyz = model_box(p, q, &link).ok_or_else(|| Error::Certification {
-            reason: "the model-space boxes of P and Q over the a-priori box are disjoint".into(),
-            near: mids(&link),
-        })?;
-        // The arc-length range: the link holds the curve from (true) arc length t0 − s_err to
-        // t1 + next_err (the covers hold the curve within 2·err of either start); publish the part
-        // [t0 − s_err, t1 − next_err], so consecutive ranges touch. A last step that could not be
-        // re-anchored holds it up to t1 − s_err (next_err = s_err then).
-        let s = if dir > 0.0 {
-            let s0 = rec.t0 - s_err;
-            [s0, (rec.t1 - next_err).max(s0)]
-        } else {
-            let s1 = -rec.t0 + s_err;
-            [(-rec.t1 + next_err).min(s1), s1]
-        };
-        half.boxes.push(EnclosureBox {
-            s,
-            p: [link[0], link[1]],
-            q: [link[2], link[3]],
-            xyz,
-        });
-        // The radius enters the tolerance alone and in the joins before and after this step.
-        let join = half.pending_join.map_or(0.0, |(_, b)| b).max(bridge);
-        let tube = tube_piece(p, &rec, dir, s_err, half.tolerance - 0.5 * join)?;
-        // Every true point of this step is within radius_xyz of the reported curve; the piece
-        // joining the last step's end to this start is accounted for by join_tolerance.
-        half.tolerance = half.tolerance.max(tube.radius_xyz);
-        if let Some((r, b)) = half.pending_join.take() {
-            half.tolerance = half
-                .tolerance
-                .max(join_tolerance(r, b, Some(tube.radius_xyz)));
-        }
-        half.pending_join = (bridge > 0.0).then_some((tube.radius_xyz, bridge));
-        half.tubes.push(tube);
+        let link = half.push_box(p, q, &rec, dir, [&cover, &next_cover], [s_err, next_err])?;
+        half.push_tube(p, &rec, dir, s_err, bridge)?;
         profile.enclosure_seconds += clock.elapsed().as_secs_f64();
         let previous_cover = cover;
         match anchor {
@@ -499,16 +531,7 @@ fn trace_half_with(
                 cover = end;
             }
             None => {
-                let h = rec.h.max(opts.h_min);
-                half.end = match (outside(&end, &dp, &dq), singular_near(p, q, &end, h)) {
-                    (Some(surface), _) => CertifiedEnd::Boundary { surface },
-                    (None, Some(near)) => CertifiedEnd::Singular { near },
-                    (None, None) => CertifiedEnd::Unproven {
-                        reason: "the end box of a step could not be re-anchored on the curve"
-                            .into(),
-                        near: end,
-                    },
-                };
+                half.end = unanchored_end(p, q, &end, rec.h.max(opts.h_min), &dp, &dq);
                 return Ok(half);
             }
         }
@@ -526,6 +549,26 @@ fn trace_half_with(
                 return Ok(half);
             }
         }
+    }
+}
+
+/// The end of a half whose last end box `end` (step `h`) could not be re-anchored: a boundary
+/// or singular end when proven, unproven otherwise.
+fn unanchored_end(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    end: &[Interval; 4],
+    h: f64,
+    dp: &Domain,
+    dq: &Domain,
+) -> CertifiedEnd {
+    match (outside(end, dp, dq), singular_near(p, q, end, h)) {
+        (Some(surface), _) => CertifiedEnd::Boundary { surface },
+        (None, Some(near)) => CertifiedEnd::Singular { near },
+        (None, None) => CertifiedEnd::Unproven {
+            reason: "the end box of a step could not be re-anchored on the curve".into(),
+            near: *end,
+        },
     }
 }
 

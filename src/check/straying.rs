@@ -152,9 +152,12 @@ pub fn check_branch(
     let n = pts.len();
     let marched_length = marched.length();
     let [s_min, s_max] = certified_span(p, q, own);
-    let certified_length = if s_max > s_min { s_max - s_min } else { 0.0 };
-    let max_h = own.tubes.iter().map(|t| t.h).fold(0.0, f64::max);
-    let proven_loop = own.ends == [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop];
+    let chain = Chain {
+        span: [s_min, s_max],
+        length: if s_max > s_min { s_max - s_min } else { 0.0 },
+        max_h: own.tubes.iter().map(|t| t.h).fold(0.0, f64::max),
+        proven_loop: own.ends == [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop],
+    };
 
     // Per point: proven far (with bounds), or near with its arc length on the certified chain.
     let slacks: Vec<f64> = pts.iter().map(|c| slack(p, q, c, tolerance)).collect();
@@ -163,123 +166,20 @@ pub fn check_branch(
         .zip(&slacks)
         .map(|(c, &sl)| locate(own, &params(c), sl))
         .collect();
-
     // The marched polyline of a closed loop repeats its first point at the end: cyclic.
     let cyclic = n > 2
         && marched.ends == [EndReason::ClosedLoop; 2]
         && pts[0].p == pts[n - 1].p
         && pts[0].q == pts[n - 1].q;
-    let m = if cyclic { n - 1 } else { n };
-
-    let mut straying = Vec::new();
-    let mut unchecked = Vec::new();
-    let is_far = |i: usize| matches!(verdicts[i], Verdict::Far { .. });
-    let near_s = |i: usize| match verdicts[i] {
-        Verdict::Near { s, .. } => Some(s),
-        Verdict::Far { .. } => None,
+    let located = Located {
+        pts,
+        slacks,
+        verdicts,
+        cyclic,
     };
-    // Runs of far points (cyclic when the marched branch is a loop).
-    for run in far_runs(m, cyclic, &is_far) {
-        let neighbours = [run.before, run.after];
-        let at_uncovered_end = |nb: Option<usize>, inner: usize| -> bool {
-            let Some(i) = nb else { return true };
-            let Some(s) = near_s(i) else { return false };
-            let chord = dist3(&pts[i].xyz, &pts[inner].xyz);
-            let reach = chord + max_h + slacks[i];
-            let end0 = !covers(&own.ends[0]) && (s - s_min).abs() <= reach;
-            let end1 = !covers(&own.ends[1]) && (s_max - s).abs() <= reach;
-            end0 || end1
-        };
-        let first = run.indices[0];
-        let last = *run.indices.last().unwrap_or(&first);
-        let whole = neighbours == [None, None];
-        let tail =
-            !whole && at_uncovered_end(run.before, first) && at_uncovered_end(run.after, last);
-        for &i in &run.indices {
-            if tail {
-                unchecked.push(i);
-                continue;
-            }
-            if let Verdict::Far {
-                distance, estimate, ..
-            } = verdicts[i]
-            {
-                let y = params(&pts[i]);
-                let onto = others
-                    .iter()
-                    .find(|(_, c)| on_curve(c, &y, slacks[i]))
-                    .map(|(id, _)| *id);
-                straying.push(StrayingPoint {
-                    index: i,
-                    distance,
-                    estimate,
-                    slack: slacks[i],
-                    onto,
-                });
-            }
-        }
-    }
-    straying.sort_by_key(|s| s.index);
-    if cyclic && straying.iter().any(|s| s.index == 0) && n > 0 {
-        // The repeated last point is the first point again.
-        if let Some(first) = straying.iter().find(|s| s.index == 0).copied() {
-            straying.push(StrayingPoint {
-                index: n - 1,
-                ..first
-            });
-        }
-    }
-    if cyclic && unchecked.contains(&0) {
-        unchecked.push(n - 1);
-    }
-    unchecked.sort_unstable();
 
-    // Progress along the chain between consecutive near points.
-    let mut spans: Vec<[f64; 2]> = Vec::new();
-    let mut progress = 0.0;
-    let mut jumps = false;
-    let mut near_chords = 0.0;
-    for i in 0..n.saturating_sub(1) {
-        let (a, b) = match (near_s(i), near_s(i + 1)) {
-            (Some(a), Some(b)) => (a, b),
-            // The march leaves the certified arc through an end that does not cover the rest:
-            // it covers the arc up to that end.
-            (Some(a), None) if unchecked.binary_search(&(i + 1)).is_ok() => {
-                spans.push(nearest_end(a, s_min, s_max));
-                continue;
-            }
-            (None, Some(b)) if unchecked.binary_search(&i).is_ok() => {
-                spans.push(nearest_end(b, s_min, s_max));
-                continue;
-            }
-            _ => continue,
-        };
-        let mut d = b - a;
-        if proven_loop && certified_length > 0.0 {
-            d -= certified_length * (d / certified_length).round();
-            // A jump of more than a quarter of the loop has no clear direction.
-            jumps |= d.abs() > 0.25 * certified_length;
-        }
-        progress += d;
-        near_chords += dist3(&pts[i].xyz, &pts[i + 1].xyz);
-        let (lo, hi) = if d >= 0.0 { (a, a + d) } else { (a + d, a) };
-        if proven_loop {
-            push_wrapped(&mut spans, lo, hi, s_min, certified_length);
-        } else {
-            spans.push([lo.max(s_min), hi.min(s_max)]);
-        }
-    }
-    let covered_fraction = if certified_length > 0.0 {
-        (union_length(&mut spans) / certified_length).min(1.0)
-    } else {
-        0.0
-    };
-    let margin = 0.01 * certified_length + 2.0 * max_h;
-    let looping = proven_loop
-        && certified_length > 0.0
-        && ((!jumps && progress.abs() > certified_length + margin)
-            || near_chords > certified_length + margin);
-
+    let (straying, unchecked) = located.straying(own, &chain, others);
+    let (covered_fraction, looping) = located.progress(&chain, &unchecked);
     StrayReport {
         branch: marched.id,
         straying,
@@ -287,7 +187,169 @@ pub fn check_branch(
         looping,
         covered_fraction,
         marched_length,
-        certified_length,
+        certified_length: chain.length,
+    }
+}
+
+/// The certified chain as the check sees it.
+struct Chain {
+    /// Its arc-length range `[s_min, s_max]` ([`certified_span`]).
+    span: [f64; 2],
+    /// `s_max − s_min` (0 if empty).
+    length: f64,
+    /// The longest step.
+    max_h: f64,
+    /// Both ends are a proven closed loop.
+    proven_loop: bool,
+}
+
+/// The marched points located on the chain, with their slacks.
+struct Located<'a> {
+    pts: &'a [CurvePoint],
+    slacks: Vec<f64>,
+    verdicts: Vec<Verdict>,
+    /// The last point repeats the first (a marched closed loop).
+    cyclic: bool,
+}
+
+impl Located<'_> {
+    /// The arc length of point `i` on the chain, unless it is proven far.
+    fn near_s(&self, i: usize) -> Option<f64> {
+        match self.verdicts[i] {
+            Verdict::Near { s, .. } => Some(s),
+            Verdict::Far { .. } => None,
+        }
+    }
+
+    /// The straying points (in order, each with the branch it strayed onto, if any) and the
+    /// unchecked ones (sorted): runs of far points, cyclic on a marched loop, are unchecked when
+    /// they continue the march past a certified end that does not cover the rest.
+    fn straying(
+        &self,
+        own: &CertifiedBranch,
+        chain: &Chain,
+        others: &[(usize, &CertifiedBranch)],
+    ) -> (Vec<StrayingPoint>, Vec<usize>) {
+        let (pts, slacks, verdicts) = (self.pts, &self.slacks, &self.verdicts);
+        let n = pts.len();
+        let [s_min, s_max] = chain.span;
+        let m = if self.cyclic { n - 1 } else { n };
+        let mut straying = Vec::new();
+        let mut unchecked = Vec::new();
+        let is_far = |i: usize| matches!(verdicts[i], Verdict::Far { .. });
+        // Runs of far points (cyclic when the marched branch is a loop).
+        for run in far_runs(m, self.cyclic, &is_far) {
+            let neighbours = [run.before, run.after];
+            let at_uncovered_end = |nb: Option<usize>, inner: usize| -> bool {
+                let Some(i) = nb else { return true };
+                let Some(s) = self.near_s(i) else {
+                    return false;
+                };
+                let chord = dist3(&pts[i].xyz, &pts[inner].xyz);
+                let reach = chord + chain.max_h + slacks[i];
+                let end0 = !covers(&own.ends[0]) && (s - s_min).abs() <= reach;
+                let end1 = !covers(&own.ends[1]) && (s_max - s).abs() <= reach;
+                end0 || end1
+            };
+            let first = run.indices[0];
+            let last = *run.indices.last().unwrap_or(&first);
+            let whole = neighbours == [None, None];
+            let tail =
+                !whole && at_uncovered_end(run.before, first) && at_uncovered_end(run.after, last);
+            for &i in &run.indices {
+                if tail {
+                    unchecked.push(i);
+                    continue;
+                }
+                if let Verdict::Far {
+                    distance, estimate, ..
+                } = verdicts[i]
+                {
+                    let y = params(&pts[i]);
+                    let onto = others
+                        .iter()
+                        .find(|(_, c)| on_curve(c, &y, slacks[i]))
+                        .map(|(id, _)| *id);
+                    straying.push(StrayingPoint {
+                        index: i,
+                        distance,
+                        estimate,
+                        slack: slacks[i],
+                        onto,
+                    });
+                }
+            }
+        }
+        straying.sort_by_key(|s| s.index);
+        if self.cyclic && straying.iter().any(|s| s.index == 0) && n > 0 {
+            // The repeated last point is the first point again.
+            if let Some(first) = straying.iter().find(|s| s.index == 0).copied() {
+                straying.push(StrayingPoint {
+                    index: n - 1,
+                    ..first
+                });
+            }
+        }
+        if self.cyclic && unchecked.contains(&0) {
+            unchecked.push(n - 1);
+        }
+        unchecked.sort_unstable();
+        (straying, unchecked)
+    }
+
+    /// Progress along the chain between consecutive near points: the covered fraction of the
+    /// certified arc length, and whether the marcher went round a proven loop more than once.
+    /// `unchecked` (sorted) are the points beyond uncovered certified ends.
+    fn progress(&self, chain: &Chain, unchecked: &[usize]) -> (f64, bool) {
+        let pts = self.pts;
+        let n = pts.len();
+        let [s_min, s_max] = chain.span;
+        let (certified_length, proven_loop) = (chain.length, chain.proven_loop);
+        let mut spans: Vec<[f64; 2]> = Vec::new();
+        let mut progress = 0.0;
+        let mut jumps = false;
+        let mut near_chords = 0.0;
+        for i in 0..n.saturating_sub(1) {
+            let (a, b) = match (self.near_s(i), self.near_s(i + 1)) {
+                (Some(a), Some(b)) => (a, b),
+                // The march leaves the certified arc through an end that does not cover the
+                // rest: it covers the arc up to that end.
+                (Some(a), None) if unchecked.binary_search(&(i + 1)).is_ok() => {
+                    spans.push(nearest_end(a, s_min, s_max));
+                    continue;
+                }
+                (None, Some(b)) if unchecked.binary_search(&i).is_ok() => {
+                    spans.push(nearest_end(b, s_min, s_max));
+                    continue;
+                }
+                _ => continue,
+            };
+            let mut d = b - a;
+            if proven_loop && certified_length > 0.0 {
+                d -= certified_length * (d / certified_length).round();
+                // A jump of more than a quarter of the loop has no clear direction.
+                jumps |= d.abs() > 0.25 * certified_length;
+            }
+            progress += d;
+            near_chords += dist3(&pts[i].xyz, &pts[i + 1].xyz);
+            let (lo, hi) = if d >= 0.0 { (a, a + d) } else { (a + d, a) };
+            if proven_loop {
+                push_wrapped(&mut spans, lo, hi, s_min, certified_length);
+            } else {
+                spans.push([lo.max(s_min), hi.min(s_max)]);
+            }
+        }
+        let covered_fraction = if certified_length > 0.0 {
+            (union_length(&mut spans) / certified_length).min(1.0)
+        } else {
+            0.0
+        };
+        let margin = 0.01 * certified_length + 2.0 * chain.max_h;
+        let looping = proven_loop
+            && certified_length > 0.0
+            && ((!jumps && progress.abs() > certified_length + margin)
+                || near_chords > certified_length + margin);
+        (covered_fraction, looping)
     }
 }
 
