@@ -10,7 +10,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use ssitrace::certify::ode::TransversalOde;
-use ssitrace::certify::{certify_branch, CertifyOptions};
+use ssitrace::certify::{certify_branch, CertifyOptions, StepBudget};
 use ssitrace::io::scene::Scene;
 use ssitrace::march::{trace_branch, MarchOptions};
 use ssitrace::numeric::scalar::interval;
@@ -53,7 +53,10 @@ fn bench_certify(c: &mut Criterion) {
         let (scene, start) = scene_and_start(file);
         let [p, q] = &scene.surfaces;
         let opts = CertifyOptions {
-            max_length,
+            steps: StepBudget {
+                max_length,
+                ..StepBudget::CERTIFY
+            },
             ..CertifyOptions::default()
         };
         let steps = certify_branch(p, q, start, &opts)

@@ -13,7 +13,7 @@ fn main() {
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(30);
-    let tolerance: f64 = std::env::args()
+    let term_target: f64 = std::env::args()
         .nth(2)
         .and_then(|a| a.parse().ok())
         .unwrap_or(1e-16);
@@ -22,7 +22,7 @@ fn main() {
     let t_end = PCR3BP_T_END;
     let options = IntegratorOptions {
         order,
-        tolerance,
+        term_target,
         ..IntegratorOptions::default()
     };
     let mut integrator = match Integrator::new(&sys, options) {

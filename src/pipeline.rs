@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use crate::certify::contact::{certify_contact_events, CertifiedContact, ContactOptions};
 use crate::certify::contact_cover::CoverOptions;
-use crate::certify::{certify_branch, CertifiedBranch, CertifyOptions};
+use crate::certify::{certify_branch, CertifiedBranch, CertifyOptions, StepBudget};
 use crate::check::straying::{check_branches, StrayReport};
 use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
@@ -386,8 +386,11 @@ pub fn certify_marched_branch(
         opts.step
     };
     let certify = CertifyOptions {
-        max_steps: opts.max_steps,
-        max_length,
+        steps: StepBudget {
+            max_steps: opts.max_steps,
+            max_length,
+            ..StepBudget::CERTIFY
+        },
         ..CertifyOptions::default()
     };
     let (start, result) = match choose_start(p, q, b) {

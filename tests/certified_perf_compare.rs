@@ -7,7 +7,7 @@
 //! Uses only `certify_branch` and `trace_branch`, so the same file (with `tests/common/`)
 //! measures older versions.
 
-use ssitrace::certify::{certify_branch, CertifyOptions};
+use ssitrace::certify::{certify_branch, CertifyOptions, StepBudget};
 use ssitrace::io::scene::Scene;
 use ssitrace::march::{trace_branch, MarchOptions};
 use ssitrace::pipeline::{run_scene, RunOptions};
@@ -53,7 +53,10 @@ fn certified_against_marching_cpu_time() {
             let pt = b.points[b.points.len() / 2];
             let start = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
             let opts = CertifyOptions {
-                max_length,
+                steps: StepBudget {
+                    max_length,
+                    ..StepBudget::CERTIFY
+                },
                 ..CertifyOptions::default()
             };
             let (c, cert) = best_of(reps, || {

@@ -218,7 +218,7 @@ fn remainder_over_pieces_is_sound() {
     for pieces in [1, 4] {
         let opts = IntegratorOptions {
             order: 12,
-            tolerance: 1e-14,
+            term_target: 1e-14,
             ..Default::default()
         };
         let mut integ = Integrator::new(&PlainSquare, opts).unwrap();
@@ -265,7 +265,7 @@ fn remainder_over_pieces_lengthens_steps_of_the_intersection_ode() {
     for pieces in [1, 4] {
         let opts = IntegratorOptions {
             order: 20,
-            tolerance: 1e-13,
+            term_target: 1e-13,
             h_max: 0.25,
             ..Default::default()
         };

@@ -5,7 +5,9 @@
 //! phase-I attempts and the Taylor recurrence work per phase; then the same for several orders.
 //! The checks are soundness checks on closed forms that hold at every order.
 
-use ssitrace::certify::{certify_branch_profiled, CertifiedEnd, CertifyOptions, TraceProfile};
+use ssitrace::certify::{
+    certify_branch_profiled, CertifiedEnd, CertifyOptions, StepBudget, TraceProfile,
+};
 use ssitrace::io::scene::Scene;
 use ssitrace::numeric::scalar::point;
 use ssitrace::pipeline::{run_scene, RunOptions};
@@ -69,8 +71,11 @@ fn run(name: &str, file: &str, max_length: f64, order: usize) -> String {
     let (scene, starts) = starts(file);
     let [p, q] = &scene.surfaces;
     let opts = CertifyOptions {
-        order,
-        max_length,
+        steps: StepBudget {
+            order,
+            max_length,
+            ..StepBudget::CERTIFY
+        },
         ..CertifyOptions::default()
     };
     let mut best: Option<(f64, String)> = None;
@@ -114,7 +119,7 @@ fn run(name: &str, file: &str, max_length: f64, order: usize) -> String {
 
 #[test]
 fn profile_at_the_default_order() {
-    let order = CertifyOptions::default().order;
+    let order = CertifyOptions::default().steps.order;
     for (name, file, len) in [
         (
             "sphere_patch_plane",

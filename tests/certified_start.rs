@@ -8,7 +8,7 @@
 //! as a start here, each with a budget of a few steps (only the start proof is under test).
 
 use inari::{interval, Interval};
-use ssitrace::certify::{certify_branch, CertifyOptions};
+use ssitrace::certify::{certify_branch, CertifyOptions, StepBudget};
 use ssitrace::geometry::{Domain, RationalBezierPatch};
 use ssitrace::march::MarchOptions;
 use ssitrace::search::start_points::SearchOptions;
@@ -46,7 +46,10 @@ fn height_field(rng: &mut Rng) -> RationalBezierPatch {
 #[test]
 fn start_box_is_tight_from_every_marched_point() {
     let opts = CertifyOptions {
-        max_steps: 3,
+        steps: StepBudget {
+            max_steps: 3,
+            ..StepBudget::CERTIFY
+        },
         ..CertifyOptions::default()
     };
     let (mut starts, mut wide) = (0, Vec::new());

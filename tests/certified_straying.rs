@@ -4,7 +4,9 @@
 //! unchecked; and `both` is the command line's default method.
 
 use serde_json::Value;
-use ssitrace::certify::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
+use ssitrace::certify::{
+    certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions, StepBudget,
+};
 use ssitrace::check::straying::{check_branch, check_branches, StrayReport};
 use ssitrace::io::scene::Scene;
 use ssitrace::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
@@ -40,7 +42,10 @@ fn params(c: &CurvePoint) -> [f64; 4] {
 
 fn certify(s: &Scene, start: &CurvePoint, max_steps: usize) -> CertifiedBranch {
     let opts = CertifyOptions {
-        max_steps,
+        steps: StepBudget {
+            max_steps,
+            ..StepBudget::CERTIFY
+        },
         ..CertifyOptions::default()
     };
     let [p, q] = &s.surfaces;

@@ -6,7 +6,7 @@ use ssitrace::certify::contact::{
     certify_contact, classify_box, CertifiedContact, ContactEnd, ContactOptions, StepCase,
 };
 use ssitrace::certify::contact_cover::CoverOptions;
-use ssitrace::certify::{certify_branch, CertifyOptions};
+use ssitrace::certify::{certify_branch, CertifyOptions, StepBudget};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
 use ssitrace::numeric::scalar::{interval, point};
 use std::time::Instant;
@@ -427,9 +427,13 @@ fn scene_contact_events_off_the_line_feed_the_contact_certifier() {
         xyz: [x, 0.5 * x, 0.9 * x * x],
     };
     let t = Instant::now();
+    let base = opts(1.0 / 16.0);
     let o = ContactOptions {
-        max_steps: 60,
-        ..opts(1.0 / 16.0)
+        steps: StepBudget {
+            max_steps: 60,
+            ..base.steps
+        },
+        ..base
     };
     let r = certify_contact_events(p, q, &[event(0.3), event(0.31)], &o).unwrap();
     // The second event lies in the first result's searched region: one result.

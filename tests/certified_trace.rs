@@ -6,7 +6,9 @@
 //! below the box widths along the curve (so a box that misses the curve cannot pass).
 
 use inari::Interval;
-use ssitrace::certify::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
+use ssitrace::certify::{
+    certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions, StepBudget,
+};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
 use ssitrace::io::scene::Scene;
 use ssitrace::pipeline::{run_scene, RunOptions};
@@ -206,7 +208,10 @@ fn rational_sphere_patch_against_plane_arc_is_enclosed() {
     let pts = &marched.intersection.branches[0].points;
     let pt = pts[pts.len() / 3];
     let opts = CertifyOptions {
-        max_length: 0.25,
+        steps: StepBudget {
+            max_length: 0.25,
+            ..StepBudget::CERTIFY
+        },
         ..CertifyOptions::default()
     };
     let c = certify_branch(p, q, [pt.p[0], pt.p[1], pt.q[0], pt.q[1]], &opts).expect("certified");

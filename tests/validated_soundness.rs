@@ -367,7 +367,7 @@ fn bad_inputs_give_typed_errors() {
         Integrator::new(
             &Square,
             IntegratorOptions {
-                tolerance: -1.0,
+                term_target: -1.0,
                 ..Default::default()
             }
         ),
@@ -463,7 +463,7 @@ fn low_orders_with_loose_tolerance_are_sound() {
     for order in [2, 3, 4] {
         let options = IntegratorOptions {
             order,
-            tolerance: 1e-6,
+            term_target: 1e-6,
             h_min: 1e-12,
             ..Default::default()
         };

@@ -20,10 +20,11 @@
 //!    [`ContactOptions::cover_margin`]: every intersection point of that region lies in a kept
 //!    box.
 
+use crate::certify::budget::{h_max_for, StepBudget};
 use crate::certify::contact_cover::{contact_cover, ContactCover, CoverOptions};
 use crate::certify::curve::TubePiece;
 use crate::certify::tangential_ode::{ScaledContact, TangentialOde};
-use crate::certify::trace::{h_max_for, tube_piece};
+use crate::certify::trace::tube_piece;
 use crate::error::{Error, Result};
 use crate::geometry::surface::{pair_bounds, pair_widths};
 use crate::geometry::RationalBezierPatch;
@@ -33,7 +34,7 @@ use crate::pair::centred_second_order::CentredSecondOrder;
 use crate::pair::contact_quadratic::{
     contact_quadratic, tangential_velocity, ContactCase, TangentialFormula,
 };
-use crate::validated::{Integrator, IntegratorOptions, IntegratorState};
+use crate::validated::{Integrator, IntegratorState};
 use inari::Interval;
 
 /// What one parameter box is, decided in interval arithmetic.
@@ -149,18 +150,9 @@ where
 /// Parameters of [`certify_contact`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactOptions {
-    /// Taylor order of the validated steps.
-    pub order: usize,
-    /// Per-step size target of the last Taylor terms (the engine's tolerance).
-    pub step_tolerance: f64,
-    /// Smallest step before a half ends as [`ContactEnd::StepFailed`].
-    pub h_min: f64,
-    /// Largest step (arc length); also capped at 1/8 of the smaller patch's model size.
-    pub h_max: f64,
-    /// Step budget per half.
-    pub max_steps: usize,
-    /// Arc-length budget per half.
-    pub max_length: f64,
+    /// The validated steps and the budget of each half (default [`StepBudget::CONTACT`]; below
+    /// the smallest step a half ends as [`ContactEnd::StepFailed`]).
+    pub steps: StepBudget,
     /// Half-width of the start box around the given start (parameter units; 0: a point).
     pub start_radius: f64,
     /// Each a-priori box is widened by this (parameter units) before it is classified, so a
@@ -175,12 +167,7 @@ pub struct ContactOptions {
 impl Default for ContactOptions {
     fn default() -> Self {
         ContactOptions {
-            order: 16,
-            step_tolerance: 1e-14,
-            h_min: 1e-8,
-            h_max: 0.125,
-            max_steps: 1000,
-            max_length: f64::INFINITY,
+            steps: StepBudget::CONTACT,
             start_radius: 0.0,
             classify_radius: 1e-7,
             cover_margin: 1.0 / 64.0,
@@ -506,7 +493,7 @@ fn trace_half(
     opts: &ContactOptions,
 ) -> Result<HalfTrace> {
     let (dp, dq) = (p.domain(), q.domain());
-    let h_max = h_max_for(p, q, opts.h_max);
+    let h_max = h_max_for(p, q, opts.steps.h_max);
     let mut half = HalfTrace {
         steps: Vec::new(),
         tubes: Vec::new(),
@@ -517,7 +504,7 @@ fn trace_half(
     let mut heading = heading;
     let mut active: Option<Active> = None;
     loop {
-        if half.steps.len() >= opts.max_steps || t >= opts.max_length {
+        if opts.steps.spent(half.steps.len(), t) {
             half.end = ContactEnd::Budget { length: t };
             return Ok(half);
         }
@@ -542,17 +529,7 @@ fn trace_half(
                 formula,
                 orientation,
             };
-            let integ = Integrator::new(
-                &ode,
-                IntegratorOptions {
-                    order: opts.order,
-                    tolerance: opts.step_tolerance,
-                    h_min: opts.h_min,
-                    h_max,
-                    qr: true,
-                    max_steps: usize::MAX,
-                },
-            )?;
+            let integ = Integrator::new(&ode, opts.steps.integrator_options(p, q))?;
             let state = integ.start(&current, t)?;
             active = Some(Active {
                 formula,

@@ -8,6 +8,7 @@
 //! entry point [`certify_contact`]).
 
 mod anchor;
+pub mod budget;
 pub mod contact;
 pub mod contact_cover;
 pub mod curve;
@@ -15,6 +16,7 @@ pub mod ode;
 pub mod tangential_ode;
 pub mod trace;
 
+pub use budget::StepBudget;
 pub use contact::{certify_contact, certify_contact_events, CertifiedContact, ContactOptions};
 pub use curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 pub use trace::{certify_branch, certify_branch_profiled, CertifyOptions, TraceProfile};

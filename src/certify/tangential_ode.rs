@@ -212,7 +212,7 @@ mod tests {
             &ode,
             IntegratorOptions {
                 order: 12,
-                tolerance: 1e-14,
+                term_target: 1e-14,
                 ..Default::default()
             },
         )

@@ -26,6 +26,7 @@
 //!    [`CertifiedEnd::Unproven`].
 
 use crate::certify::anchor::{join_tolerance, reanchor};
+use crate::certify::budget::StepBudget;
 use crate::certify::curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 use crate::certify::ode::TransversalOde;
 use crate::error::{Error, Result};
@@ -35,30 +36,16 @@ use crate::numeric::scalar::{interval, point};
 use crate::pair::field::{norm_sqr, transversal_field, ScalarSurface};
 use crate::pair::krawczyk::{best_fixed_coordinate, krawczyk, KrawczykResult};
 use crate::pair::newton::{refine, Constraint};
-use crate::validated::{Integrator, IntegratorOptions, IntegratorWork, StepFailure, StepRecord};
+use crate::validated::{Integrator, IntegratorWork, StepFailure, StepRecord};
 use inari::Interval;
 use std::time::Instant;
 
 /// Parameters of [`certify_branch`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CertifyOptions {
-    /// Taylor order of the validated steps (default 20). Measured with re-anchored thin boxes
-    /// (`tests/certified_perf_profile.rs`, thread CPU time): orders 14–20 cost within ≈ 5–8% of
-    /// each other on the sphere, bicubic, S31/S32 and Fig. 7 scenes (16–18 marginally fastest,
-    /// 12 and 24 slower); 20 keeps the longest steps at that cost.
-    pub order: usize,
-    /// Per-step size target of the last Taylor terms (the engine's tolerance).
-    pub step_tolerance: f64,
-    /// Smallest step before the tracer reports branches closer than can be resolved.
-    pub h_min: f64,
-    /// Largest step (arc length). The tracer also caps it at 1/8 of the smaller patch's model
-    /// size, so a step never reaches far outside the domains (where interval bounds of the patch
-    /// extension are loose).
-    pub h_max: f64,
-    /// Step budget per half branch.
-    pub max_steps: usize,
-    /// Arc-length budget per half branch (e.g. 1.5 × the marcher's loop length).
-    pub max_length: f64,
+    /// The validated steps and the budget of each half (default [`StepBudget::CERTIFY`]; the
+    /// smallest step is where the tracer reports branches closer than can be resolved).
+    pub steps: StepBudget,
     /// Pull every end box back onto `P = Q` (Krawczyk) before the next step.
     pub contract: bool,
 }
@@ -66,12 +53,7 @@ pub struct CertifyOptions {
 impl Default for CertifyOptions {
     fn default() -> Self {
         CertifyOptions {
-            order: 20,
-            step_tolerance: 1e-15,
-            h_min: 1e-9,
-            h_max: 0.25,
-            max_steps: 200_000,
-            max_length: f64::INFINITY,
+            steps: StepBudget::CERTIFY,
             contract: true,
         }
     }
@@ -426,17 +408,7 @@ fn make_integrator(
         q,
         orientation: dir,
     };
-    Integrator::new(
-        &ode,
-        IntegratorOptions {
-            order: opts.order,
-            tolerance: opts.step_tolerance,
-            h_min: opts.h_min,
-            h_max: h_max_for(p, q, opts.h_max),
-            qr: true,
-            max_steps: usize::MAX,
-        },
-    )
+    Integrator::new(&ode, opts.steps.integrator_options(p, q))
 }
 
 /// The loop of [`trace_half`] on a given integrator.
@@ -469,7 +441,7 @@ fn trace_half_with(
     let mut s_err = 0.0f64;
     let mut cover = *y0;
     loop {
-        if half.boxes.len() >= opts.max_steps || state.t >= opts.max_length {
+        if opts.steps.spent(half.boxes.len(), state.t) {
             half.end = CertifiedEnd::Unproven {
                 reason: format!(
                     "budget spent ({} steps, arc length {})",
@@ -487,7 +459,8 @@ fn trace_half_with(
         let rec = match stepped {
             Ok(r) => r,
             Err(Error::StepFailed { step, reason, .. }) => {
-                half.end = classify_failure(p, q, &current, step.max(opts.h_min), reason, &dp, &dq);
+                half.end =
+                    classify_failure(p, q, &current, step.max(opts.steps.h_min), reason, &dp, &dq);
                 return Ok(half);
             }
             Err(e) => return Err(e),
@@ -531,7 +504,7 @@ fn trace_half_with(
                 cover = end;
             }
             None => {
-                half.end = unanchored_end(p, q, &end, rec.h.max(opts.h_min), &dp, &dq);
+                half.end = unanchored_end(p, q, &end, rec.h.max(opts.steps.h_min), &dp, &dq);
                 return Ok(half);
             }
         }
@@ -569,18 +542,6 @@ fn unanchored_end(
             reason: "the end box of a step could not be re-anchored on the curve".into(),
             near: *end,
         },
-    }
-}
-
-/// The largest step: `h_max`, at most 1/8 of the smaller model-space diameter of the two
-/// patches.
-pub(crate) fn h_max_for(p: &RationalBezierPatch, q: &RationalBezierPatch, h_max: f64) -> f64 {
-    let diameter = |b: [Interval; 3]| b.iter().map(|x| x.wid()).fold(0.0, f64::max);
-    let size = diameter(p.bounding_box()).min(diameter(q.bounding_box()));
-    if size.is_finite() && size > 0.0 {
-        h_max.min(0.125 * size)
-    } else {
-        h_max
     }
 }
 

@@ -3,7 +3,7 @@
 //! One step from `t` with initial set `x̂ + A·[r]` (interval hull `[y]`):
 //! 1. expand over `B = hull([y], x̂)` (coefficients to order `k`);
 //! 2. step size `h = min_{i ∈ {k−1, k}, i ≥ 2} (ε/‖mid yᵢ(B)‖∞)^{1/i}` (the midpoints estimate
-//!    the coefficients at the centre), `ε = tol·max(1, ‖x̂‖∞)`, then
+//!    the coefficients at the centre), `ε = term_target·max(1, ‖x̂‖∞)`, then
 //!    scaled by the ratio accepted at the previous step, capped by `h_max` and the time left;
 //! 3. phase I ([`prove_apriori_with_guess`]) proves `[ỹ]` over `[t, t + h]`; on failure `h`
 //!    shrinks by 0.7 until `h_min`, below which the integrator stops with [`Error::StepFailed`];
@@ -49,8 +49,9 @@ const REMAINDER_FRACTION_OF_WIDTH: f64 = 1e-9;
 pub struct IntegratorOptions {
     /// Taylor order `k` (1..=60; orders up to 30 are the intended range).
     pub order: usize,
-    /// Target size of the last Taylor terms per step (absolute, scaled by `max(1, ‖x̂‖∞)`).
-    pub tolerance: f64,
+    /// Target size of the last Taylor terms per step, `ε` in the module docs (absolute, scaled
+    /// by `max(1, ‖x̂‖∞)`); it also sets the target of the validated remainder.
+    pub term_target: f64,
     /// Smallest step size phase I may try before giving up.
     pub h_min: f64,
     /// Largest step size.
@@ -65,7 +66,7 @@ impl Default for IntegratorOptions {
     fn default() -> Self {
         IntegratorOptions {
             order: 20,
-            tolerance: 1e-16,
+            term_target: 1e-16,
             h_min: 1e-10,
             h_max: f64::INFINITY,
             qr: true,
@@ -187,10 +188,10 @@ impl Integrator {
                 o.order
             )));
         }
-        if !(o.tolerance > 0.0 && o.tolerance.is_finite()) {
+        if !(o.term_target > 0.0 && o.term_target.is_finite()) {
             return Err(Error::BadIntegratorSetup(format!(
-                "tolerance {} is not positive",
-                o.tolerance
+                "term target {} is not positive",
+                o.term_target
             )));
         }
         if !(o.h_min > 0.0 && o.h_min.is_finite() && o.h_max >= o.h_min) {
@@ -345,7 +346,7 @@ impl Integrator {
 
         // Step control: the predicted step, scaled by the ratio learnt at the last step.
         let scale = state.set.center.iter().fold(1.0f64, |m, c| m.max(c.abs()));
-        let eps = self.options.tolerance * scale;
+        let eps = self.options.term_target * scale;
         let h_predicted = self.predict_step(k, eps);
         let h = (h_predicted * (state.step_ratio * 1.05).min(1.0)).min(self.options.h_max);
         // The remainder target: ε, or a tiny fraction of the set's width when that is larger
