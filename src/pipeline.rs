@@ -187,7 +187,7 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
             q,
             &outcome.intersection.branches,
             &certified,
-            march.tolerance,
+            march.newton_tolerance,
         );
         meta.stats.insert(
             "straying_seconds".into(),

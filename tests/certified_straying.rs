@@ -27,7 +27,7 @@ fn scene(file: &str) -> Scene {
 fn march(s: &Scene) -> Vec<Branch> {
     let opts = MarchOptions {
         step: s.options.step,
-        tolerance: TOL,
+        newton_tolerance: TOL,
         ..MarchOptions::default()
     };
     let [p, q] = &s.surfaces;

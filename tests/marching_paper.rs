@@ -14,11 +14,11 @@ fn opts(step: f64, method: StepMethod) -> MarchOptions {
     opts_tol(step, method, 1e-8)
 }
 
-fn opts_tol(step: f64, method: StepMethod, tolerance: f64) -> MarchOptions {
+fn opts_tol(step: f64, method: StepMethod, newton_tolerance: f64) -> MarchOptions {
     MarchOptions {
         step,
         method,
-        tolerance,
+        newton_tolerance,
         ..MarchOptions::default()
     }
 }

@@ -7,7 +7,7 @@
 //! A certified branch proves that its true curve lies, at every arc length of a tube piece,
 //! within `radius_param` (max norm) of the piece's reported polynomial, and inside the piece's
 //! enclosure box. A marched point `y` carries Newton's guarantee `|P(σ,t) − Q(u,v)| ≤ tol`
-//! (`MarchOptions::tolerance`, model units). To first order such a point lies within
+//! (`MarchOptions::newton_tolerance`, model units). To first order such a point lies within
 //! `slack = tol / s₃` of the curve in parameters, `s₃` being the smallest singular value of the
 //! 3×4 Jacobian `[P_σ P_t −Q_u −Q_v]` at `y` (a floating-point estimate: it only sets the
 //! threshold, it is not part of any bound).
@@ -106,13 +106,13 @@ impl StrayReport {
 
 /// Checks every marched branch against its own certificate (`certificates[k]` belongs to
 /// `branches[k]`; `None` = not certified) and the others (for strays onto another branch).
-/// `tolerance` is the marcher's Newton tolerance (model units).
+/// `newton_tolerance` is the marcher's Newton tolerance (model units).
 pub fn check_branches(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     branches: &[Branch],
     certificates: &[Option<&CertifiedBranch>],
-    tolerance: f64,
+    newton_tolerance: f64,
 ) -> Vec<StrayReport> {
     branches
         .iter()
@@ -126,7 +126,7 @@ pub fn check_branches(
                     .filter(|(j, _)| *j != k)
                     .filter_map(|(_, (ob, oc))| oc.map(|c| (ob.id, c)))
                     .collect();
-                check_branch(p, q, b, own, &others, tolerance)
+                check_branch(p, q, b, own, &others, newton_tolerance)
             }
             None => StrayReport::uncertified(b),
         })
@@ -135,15 +135,15 @@ pub fn check_branches(
 
 /// Checks one marched branch against its certificate `own` (see the module docs for the
 /// test; a certificate without boxes gives [`StrayReport::uncertified`]); `others` are the
-/// certified branches a straying point may have strayed onto, with their ids. `tolerance` is
-/// the marcher's Newton tolerance (model units).
+/// certified branches a straying point may have strayed onto, with their ids.
+/// `newton_tolerance` is the marcher's Newton tolerance (model units).
 pub fn check_branch(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     marched: &Branch,
     own: &CertifiedBranch,
     others: &[(usize, &CertifiedBranch)],
-    tolerance: f64,
+    newton_tolerance: f64,
 ) -> StrayReport {
     if own.boxes.is_empty() || own.boxes.len() != own.tubes.len() {
         return StrayReport::uncertified(marched);
@@ -160,7 +160,10 @@ pub fn check_branch(
     };
 
     // Per point: proven far (with bounds), or near with its arc length on the certified chain.
-    let slacks: Vec<f64> = pts.iter().map(|c| slack(p, q, c, tolerance)).collect();
+    let slacks: Vec<f64> = pts
+        .iter()
+        .map(|c| slack(p, q, c, newton_tolerance))
+        .collect();
     let verdicts: Vec<Verdict> = pts
         .iter()
         .zip(&slacks)

@@ -62,7 +62,7 @@ where
                 index: i,
                 value: bound,
             },
-            opts.tolerance,
+            opts.newton_tolerance,
             opts.max_newton_iterations,
         )
         .ok()?;

@@ -27,7 +27,7 @@ where
             .total_cmp(&curve_frame(p, q, *y).sine)
     })?;
     let scale = 1.0 + a.frame.xyz.norm();
-    let tol = (100.0 * opts.tolerance).max(1e-9 * scale);
+    let tol = (100.0 * opts.newton_tolerance).max(1e-9 * scale);
     let x = locate_singular_point(p, q, best, tol, opts.singular_sine)?;
     if !inside(&x, &p.domain(), &q.domain(), opts.domain_tolerance) {
         return None;
@@ -60,7 +60,7 @@ where
 {
     let reached = path.last()?;
     let scale = 1.0 + reached.frame.xyz.norm();
-    let tol = (100.0 * opts.tolerance).max(1e-9 * scale);
+    let tol = (100.0 * opts.newton_tolerance).max(1e-9 * scale);
     let located = locate_singular_point(p, q, reached.x, tol, opts.singular_sine);
     let x = located.unwrap_or(reached.x);
     let centre = p.point(x[0], x[1]);
@@ -77,7 +77,7 @@ where
                 x,
                 located.is_some(),
                 r,
-                opts.tolerance,
+                opts.newton_tolerance,
                 opts.max_newton_iterations,
             );
             let k = n.exits.len();

@@ -21,9 +21,9 @@ pub struct MarchOptions {
     pub method: StepMethod,
     /// At most this many points per branch (the start counts); reaching it ends with `PointLimit`.
     pub max_points: usize,
-    /// Newton stops when a correction moves the point by at most this and `|P − Q|` and the
-    /// constraint residual are below it (model units).
-    pub tolerance: f64,
+    /// Newton's tolerance: Newton stops when a correction moves the point by at most this and
+    /// `|P − Q|` and the constraint residual are below it (model units).
+    pub newton_tolerance: f64,
     /// Newton gives up after this many corrections.
     pub max_newton_iterations: usize,
     /// A point is singular when `|N^P × N^Q| < singular_sine · |N^P| |N^Q|`.
@@ -64,7 +64,7 @@ impl Default for MarchOptions {
             step: 0.05,
             method: StepMethod::Circular,
             max_points: 20_000,
-            tolerance: 1e-10,
+            newton_tolerance: 1e-10,
             max_newton_iterations: 12,
             singular_sine: 1e-6,
             watch_sine: 0.05,

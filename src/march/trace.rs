@@ -246,12 +246,12 @@ where
             q,
             guess,
             constraint,
-            opts.tolerance,
+            opts.newton_tolerance,
             opts.max_newton_iterations,
         ) {
             // Reject a jump that went backwards or much farther than predicted.
             let moved = (p.point(r.x[0], r.x[1]) - cur.frame.xyz).norm();
-            if moved <= 3.0 * len + opts.tolerance {
+            if moved <= 3.0 * len + opts.newton_tolerance {
                 return (Some(r), retried);
             }
         }
@@ -384,8 +384,8 @@ fn check_options(opts: &MarchOptions) -> Result<()> {
     if !positive(opts.step) {
         return Err(bad("step", InputProblem::NonFinite));
     }
-    if !positive(opts.tolerance) {
-        return Err(bad("tolerance", InputProblem::NonFinite));
+    if !positive(opts.newton_tolerance) {
+        return Err(bad("newton_tolerance", InputProblem::NonFinite));
     }
     if !positive(opts.first_step_fraction) || !positive(opts.watch_sine) {
         return Err(bad(
@@ -446,7 +446,7 @@ where
         q,
         guess,
         constraint,
-        opts.tolerance,
+        opts.newton_tolerance,
         opts.max_newton_iterations,
     )?;
     Ok(node_at(p, q, r.x, 0, None))
@@ -514,9 +514,9 @@ where
 /// march goes one way only (into the domains), that end being `Boundary`. Otherwise the march goes
 /// forward along `N^P × N^Q`, and backward too unless the forward march closed a loop.
 ///
-/// Guarantees: every point satisfies `|P − Q| ≤ opts.tolerance` (except points of a closed loop's
-/// closing copy, which is the start itself); both ends carry their [`EndReason`]; singular and
-/// boundary ends are also reported as [`Event`]s. Errors: invalid options or a non-finite start
+/// Guarantees: every point satisfies `|P − Q| ≤ opts.newton_tolerance` (except points of a
+/// closed loop's closing copy, which is the start itself); both ends carry their [`EndReason`];
+/// singular and boundary ends are also reported as [`Event`]s. Errors: invalid options or a non-finite start
 /// ([`Error::InvalidInput`]); a start Newton cannot refine ([`Error::NewtonFailed`]).
 pub fn trace_branch<S1, S2>(
     p: &S1,

@@ -72,7 +72,7 @@ impl Graph<'_> {
         S2: ParametricSurface + ?Sized,
     {
         let scale = 1.0 + p.point(x[0], x[1]).norm();
-        let tol = (100.0 * self.opts.tolerance).max(1e-9 * scale);
+        let tol = (100.0 * self.opts.newton_tolerance).max(1e-9 * scale);
         let located = locate_singular_point(p, q, x, tol, self.opts.singular_sine);
         let at = located.unwrap_or(x);
         let here = p.point(at[0], at[1]);
@@ -92,7 +92,7 @@ impl Graph<'_> {
             at,
             located.is_some(),
             r,
-            self.opts.tolerance,
+            self.opts.newton_tolerance,
             self.opts.max_newton_iterations,
         );
         self.out.events.push(Event {
@@ -225,7 +225,7 @@ where
     let scales = pair_widths(&p.domain(), &q.domain());
     // Points are accurate to the Newton tolerance (a hundredfold margin for the start's own
     // refinement and the chords' end points).
-    let floor = 100.0 * opts.tolerance;
+    let floor = 100.0 * opts.newton_tolerance;
     for start in starts {
         // Tested on the curve: the start refined by Newton (the raw guess if that fails).
         let on_curve = refine_start(p, q, *start, &opts).map_or(*start, |n| n.x);
