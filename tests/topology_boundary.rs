@@ -798,7 +798,7 @@ fn bad_inputs_are_typed_errors() {
     assert!(matches!(r, Err(Error::NotOnIntersection { .. })), "{r:?}");
     // Bad options.
     let bad = BoundaryOptions {
-        tolerance: -1.0,
+        residual_admission: -1.0,
         ..o
     };
     let r = classify_boundary_point(&p, &q, on, side, &bad);

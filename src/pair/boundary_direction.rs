@@ -235,8 +235,9 @@ impl BoundaryClassification {
 /// Tolerances of [`classify_boundary_point`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BoundaryOptions {
-    /// The point must satisfy `|P − Q| ≤ tolerance` (model units).
-    pub tolerance: f64,
+    /// The residual admission: the point must satisfy `|P − Q| ≤ residual_admission` (model
+    /// units).
+    pub residual_admission: f64,
     /// It must be within `boundary_tolerance` times the range's width of the face.
     pub boundary_tolerance: f64,
     /// The surfaces count as tangent (critical case) where the sine of the normals' angle is
@@ -252,7 +253,7 @@ pub struct BoundaryOptions {
 impl Default for BoundaryOptions {
     fn default() -> Self {
         BoundaryOptions {
-            tolerance: 1e-8,
+            residual_admission: 1e-8,
             boundary_tolerance: 1e-9,
             critical_sine: 1e-8,
             touch_ratio: 1e-7,
@@ -390,7 +391,7 @@ where
     }
     let finite_pos = |x: f64| x.is_finite() && x > 0.0;
     let o = opts;
-    if !(finite_pos(o.tolerance)
+    if !(finite_pos(o.residual_admission)
         && finite_pos(o.boundary_tolerance)
         && finite_pos(o.critical_sine)
         && finite_pos(o.touch_ratio)
@@ -418,7 +419,7 @@ where
     let mut x = *y;
     x[k] = bound;
     let residual = (p.point(x[0], x[1]) - q.point(x[2], x[3])).norm();
-    if residual.is_nan() || residual > opts.tolerance {
+    if residual.is_nan() || residual > opts.residual_admission {
         return Err(Error::NotOnIntersection { residual, near: *y });
     }
     Ok(x)
@@ -501,7 +502,7 @@ where
             index: k,
             value: x[k],
         },
-        opts.tolerance.min(1e-13),
+        opts.residual_admission.min(1e-13),
         20,
     ) {
         if (0..4).all(|i| (r.x[i] - x[i]).abs() <= 1e-3 * widths[i]) {
