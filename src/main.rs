@@ -196,7 +196,7 @@ fn certificate_line(c: &BranchCertificate, tolerance: f64) -> String {
                 .copied()
                 .chain(b.start.iter().map(|x| x.wid()))
                 .fold(0.0, f64::max);
-            let meets = if b.tolerance <= tolerance {
+            let meets = if b.certified_tolerance <= tolerance {
                 "meets"
             } else {
                 "does NOT meet"
@@ -204,7 +204,7 @@ fn certificate_line(c: &BranchCertificate, tolerance: f64) -> String {
             format!(
                 "    certified: {} steps, tolerance {:.3e} ({meets} {:.1e}), ends {} / {}, max width {:.3e}, {:.1} ms",
                 b.steps(),
-                b.tolerance,
+                b.certified_tolerance,
                 tolerance,
                 certified_end_name(&b.ends[0]),
                 certified_end_name(&b.ends[1]),

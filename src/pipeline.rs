@@ -83,7 +83,10 @@ pub struct BranchCertificate {
 impl BranchCertificate {
     /// Whether the certified tolerance is at most `tolerance`; `None` when certification failed.
     pub fn meets(&self, tolerance: f64) -> Option<bool> {
-        self.result.as_ref().ok().map(|c| c.tolerance <= tolerance)
+        self.result
+            .as_ref()
+            .ok()
+            .map(|c| c.certified_tolerance <= tolerance)
     }
 }
 

@@ -169,7 +169,7 @@ fn parabola_arc_is_certified_end_to_end_and_every_box_holds_the_arc() {
     println!(
         "parabola arc: {} steps, covered s ∈ [{s0:.6}, {s1:.6}] (arc length {length:.6}), tolerance {:.3e}, {:.0} ms",
         cb.steps(),
-        cb.tolerance,
+        cb.certified_tolerance,
         report.certify_seconds * 1e3
     );
     assert!(s1 - s0 >= length * (1.0 - 1e-12));
@@ -299,7 +299,7 @@ fn singular_and_close_branch_ends_become_box_events() {
         start_uniqueness: link.params(),
         boxes: vec![link],
         tubes: Vec::new(),
-        tolerance: 1e-12,
+        certified_tolerance: 1e-12,
         ends: [
             CertifiedEnd::Singular { near },
             CertifiedEnd::CloseBranches { h: 1e-9, near },

@@ -44,7 +44,7 @@ fn certify_scene(file: &str, opts: &CertifyOptions) -> Vec<Run> {
             hs[0],
             1e3 * seconds / steps as f64,
             1e3 * seconds,
-            branch.tolerance,
+            branch.certified_tolerance,
             branch.ends.clone().map(|e| match e {
                 CertifiedEnd::Unproven { .. } => "unproven".to_string(),
                 e => format!("{e:?}").chars().take(24).collect(),

@@ -87,7 +87,7 @@ fn run(name: &str, file: &str, max_length: f64, order: usize) -> String {
             let (b, pr) = certify_branch_profiled(p, q, *s, &opts).expect("certified");
             cpu += cpu_seconds() - t0;
             steps += b.steps();
-            tol = tol.max(b.tolerance);
+            tol = tol.max(b.certified_tolerance);
             if max_length.is_infinite() {
                 assert!(
                     b.ends

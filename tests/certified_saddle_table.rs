@@ -64,7 +64,7 @@ fn saddle_against_planes_steps_grow_near_the_singularity() {
         };
         println!(
             "{delta:>10.0e} {paper_steps:>10} {ours:>14} {:>12.1e}",
-            c.tolerance
+            c.certified_tolerance
         );
         steps.push(c.steps());
     }

@@ -117,11 +117,15 @@ fn small_circle_closes_exactly_once_and_every_box_holds_it() {
         let (x, y) = (r * th.cos(), r * th.sin());
         [x, y, x, y, x, y, 0.0]
     });
-    assert!(c.tolerance < 1e-9, "tolerance {}", c.tolerance);
+    assert!(
+        c.certified_tolerance < 1e-9,
+        "tolerance {}",
+        c.certified_tolerance
+    );
     println!(
         "small circle: {} steps, tolerance {:e}, max width {:e}",
         c.steps(),
-        c.tolerance,
+        c.certified_tolerance,
         c.widths.iter().cloned().fold(0.0, f64::max)
     );
 }
@@ -241,11 +245,15 @@ fn rational_sphere_patch_against_plane_arc_is_enclosed() {
             );
         }
     }
-    assert!(c.tolerance < 1e-9, "tolerance {}", c.tolerance);
+    assert!(
+        c.certified_tolerance < 1e-9,
+        "tolerance {}",
+        c.certified_tolerance
+    );
     println!(
         "sphere arc: {} steps, tolerance {:e}",
         c.steps(),
-        c.tolerance
+        c.certified_tolerance
     );
 }
 
@@ -332,11 +340,15 @@ fn cylinder_against_cylinder_open_branch_is_enclosed() {
         .collect();
     assert!(ys.iter().cloned().fold(f64::INFINITY, f64::min) <= 1e-12);
     assert!(ys.iter().cloned().fold(f64::NEG_INFINITY, f64::max) >= 0.5 - 1e-12);
-    assert!(c.tolerance < 1e-9, "tolerance {}", c.tolerance);
+    assert!(
+        c.certified_tolerance < 1e-9,
+        "tolerance {}",
+        c.certified_tolerance
+    );
     println!(
         "cylinders: {} steps, tolerance {:e}",
         c.steps(),
-        c.tolerance
+        c.certified_tolerance
     );
 }
 
@@ -398,11 +410,11 @@ fn widths_along_the_sphere_loop_with_and_without_contraction() {
          {:.2e}, {} steps; without max {:.2e} (final {:.2e}), tolerance {:.2e}, {} steps",
         max(&with.widths),
         last(&with.widths),
-        with.tolerance,
+        with.certified_tolerance,
         with.steps(),
         max(&without.widths),
         last(&without.widths),
-        without.tolerance,
+        without.certified_tolerance,
         without.steps()
     );
     use ssitrace::numeric::scalar::point;
@@ -415,5 +427,5 @@ fn widths_along_the_sphere_loop_with_and_without_contraction() {
         }
     }
     assert!(last(&with.widths) < last(&without.widths));
-    assert!(with.tolerance <= without.tolerance);
+    assert!(with.certified_tolerance <= without.certified_tolerance);
 }

@@ -364,7 +364,7 @@ fn pipeline_both_certifies_the_arcs_and_stops_them_at_the_nodes() {
                     "{:>3} {:>6} {:>10.2e} {:>24} {:>24}",
                     c.branch,
                     cb.steps(),
-                    cb.tolerance,
+                    cb.certified_tolerance,
                     end(&cb.ends[0]),
                     end(&cb.ends[1])
                 );
@@ -379,7 +379,7 @@ fn pipeline_both_certifies_the_arcs_and_stops_them_at_the_nodes() {
                     cb.ends
                 );
                 assert!(!cb.ends.contains(&CertifiedEnd::ClosedLoop));
-                assert!(cb.tolerance.is_finite() && cb.tolerance < 1e-6);
+                assert!(cb.certified_tolerance.is_finite() && cb.certified_tolerance < 1e-6);
             }
             Err(e) => println!("{:>3} not certified: {e}", c.branch),
         }

@@ -140,12 +140,12 @@ pub struct CertifiedBranch {
     pub boxes: Vec<EnclosureBox>,
     /// One tube piece per step, in the same order as `boxes`.
     pub tubes: Vec<TubePiece>,
-    /// The certified tolerance of the branch: every point of the true curve between the ends is
+    /// The certified (proven) tolerance of the branch: every point of the true curve between the ends is
     /// within this model-space distance of the reported tube curve, and every reported point is
     /// within it of the true curve: the largest `radius_xyz`, and for the short true curve piece
     /// of arc length `b` joining a step's end to the next step's re-anchored start, the larger
     /// radius of the two steps plus `b/2`.
-    pub tolerance: f64,
+    pub certified_tolerance: f64,
     /// The end at the smallest arc length, and at the largest.
     pub ends: [CertifiedEnd; 2],
     /// Transversal width of every step's end box, in order: the largest width over the three

@@ -151,7 +151,7 @@ pub fn certify_branch_profiled(
         &mut profile,
     )?;
     let (mut boxes, mut tubes, mut widths) = (Vec::new(), Vec::new(), Vec::new());
-    let mut tolerance = forward.tolerance;
+    let mut certified_tolerance = forward.certified_tolerance;
     let first_end;
     if forward.end == CertifiedEnd::ClosedLoop {
         first_end = CertifiedEnd::ClosedLoop;
@@ -161,7 +161,7 @@ pub fn certify_branch_profiled(
         boxes.extend(backward.boxes.into_iter().rev());
         tubes.extend(backward.tubes.into_iter().rev());
         widths.extend(backward.widths.into_iter().rev());
-        tolerance = tolerance.max(backward.tolerance);
+        certified_tolerance = certified_tolerance.max(backward.certified_tolerance);
     }
     let joined = boxes.len();
     boxes.extend(forward.boxes);
@@ -187,7 +187,7 @@ pub fn certify_branch_profiled(
         start_uniqueness: uniq,
         boxes,
         tubes,
-        tolerance,
+        certified_tolerance,
         ends: [first_end, forward.end],
         widths,
     };
@@ -291,7 +291,7 @@ struct Half {
     widths: Vec<f64>,
     /// Bound on the distance of the half's true curve to its reported curve (see
     /// [`join_tolerance`]); the last join is added by [`trace_half`].
-    tolerance: f64,
+    certified_tolerance: f64,
     /// The last step's model-space radius and the arc-length bound of the piece joining its end
     /// to the next start (no tube follows it yet).
     pending_join: Option<(f64, f64)>,
@@ -352,14 +352,14 @@ impl Half {
     ) -> Result<()> {
         // The radius enters the tolerance alone and in the joins before and after this step.
         let join = self.pending_join.map_or(0.0, |(_, b)| b).max(bridge);
-        let tube = tube_piece(p, rec, dir, s_err, self.tolerance - 0.5 * join)?;
+        let tube = tube_piece(p, rec, dir, s_err, self.certified_tolerance - 0.5 * join)?;
         // Every true point of this step is within radius_xyz of the reported curve; the piece
         // joining the last step's end to this start is accounted for by join_tolerance.
-        self.tolerance = self.tolerance.max(tube.radius_xyz);
+        self.certified_tolerance = self.certified_tolerance.max(tube.radius_xyz);
         if let Some((r, b)) = self.pending_join.take() {
-            self.tolerance = self
-                .tolerance
-                .max(join_tolerance(r, b, Some(tube.radius_xyz)));
+            self.certified_tolerance =
+                self.certified_tolerance
+                    .max(join_tolerance(r, b, Some(tube.radius_xyz)));
         }
         self.pending_join = (bridge > 0.0).then_some((tube.radius_xyz, bridge));
         self.tubes.push(tube);
@@ -391,7 +391,7 @@ fn trace_half(
     profile.add_work(integ.work());
     half.map(|mut h| {
         if let Some((r, b)) = h.pending_join.take() {
-            h.tolerance = h.tolerance.max(join_tolerance(r, b, None));
+            h.certified_tolerance = h.certified_tolerance.max(join_tolerance(r, b, None));
         }
         h
     })
@@ -429,7 +429,7 @@ fn trace_half_with(
         boxes: Vec::new(),
         tubes: Vec::new(),
         widths: Vec::new(),
-        tolerance: 0.0,
+        certified_tolerance: 0.0,
         pending_join: None,
         end: CertifiedEnd::ClosedLoop,
     };

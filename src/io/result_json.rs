@@ -392,7 +392,7 @@ pub fn certified_to_json(c: &CertifiedBranch, tubes: bool) -> Value {
         "enclosures".into(),
         Value::Array(c.boxes.iter().map(enclosure_to_json).collect()),
     );
-    obj.insert("tolerance".into(), json!(c.tolerance));
+    obj.insert("tolerance".into(), json!(c.certified_tolerance));
     obj.insert("steps".into(), json!(c.steps()));
     obj.insert(
         "end_reasons".into(),
