@@ -113,7 +113,7 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
                 o.step = l;
             }
             if let Some(t) = tolerance {
-                o.tolerance = t;
+                o.required_tolerance = t;
             }
             if let Some(n) = max_steps {
                 o.max_steps = n;
@@ -298,7 +298,7 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
             b.points.len()
         );
         if let Some(c) = report.certificates.iter().find(|c| c.branch == b.id) {
-            let _ = writeln!(out, "{}", certificate_line(c, opts.tolerance));
+            let _ = writeln!(out, "{}", certificate_line(c, opts.required_tolerance));
         }
         if let Some(r) = report.straying.iter().find(|r| r.branch == b.id) {
             let _ = writeln!(out, "{}", straying_line(r));

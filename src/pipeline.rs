@@ -44,8 +44,9 @@ pub struct RunOptions {
     pub method: Method,
     /// The marching step L.
     pub step: f64,
-    /// The model-space tolerance a certified branch should meet (reported, not enforced).
-    pub tolerance: f64,
+    /// The required tolerance: the model-space tolerance a certified branch should meet
+    /// (reported, not enforced).
+    pub required_tolerance: f64,
     /// Certified step budget per half branch.
     pub max_steps: usize,
     /// Write the certified tube pieces into the result (large).
@@ -58,7 +59,7 @@ impl RunOptions {
         RunOptions {
             method: scene.options.method,
             step: scene.options.step,
-            tolerance: scene.options.tolerance,
+            required_tolerance: scene.options.required_tolerance,
             max_steps: DEFAULT_MAX_STEPS,
             tubes: false,
         }
@@ -132,10 +133,10 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
             opts.step
         )));
     }
-    if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
+    if !(opts.required_tolerance.is_finite() && opts.required_tolerance > 0.0) {
         return Err(Error::Scene(format!(
             "the tolerance must be a positive number, not {}",
-            opts.tolerance
+            opts.required_tolerance
         )));
     }
     if opts.max_steps == 0 {
@@ -160,8 +161,10 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         for b in &outcome.intersection.branches {
             let cert = certify_marched_branch(p, q, b, opts);
             certify_seconds += cert.seconds;
-            meta.certified
-                .insert(b.id, certificate_json(&cert, opts.tolerance, opts.tubes));
+            meta.certified.insert(
+                b.id,
+                certificate_json(&cert, opts.required_tolerance, opts.tubes),
+            );
             if let Ok(c) = &cert.result {
                 meta.certified_events
                     .extend(certified_events_to_json(b.id, c, &|y| model_box(p, q, y)));
@@ -179,7 +182,8 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         meta.stats
             .insert("certify_seconds".into(), json!(certify_seconds));
         meta.stats.insert("max_steps".into(), json!(opts.max_steps));
-        meta.stats.insert("tolerance".into(), json!(opts.tolerance));
+        meta.stats
+            .insert("tolerance".into(), json!(opts.required_tolerance));
         let certified: Vec<Option<&CertifiedBranch>> = certificates
             .iter()
             .map(|c| c.result.as_ref().ok())

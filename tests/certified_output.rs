@@ -267,7 +267,7 @@ fn a_branch_that_cannot_be_certified_is_reported_as_an_error_object() {
     let cert = certify_marched_branch(p, q, &branch, &opts);
     assert_eq!(cert.branch, 7);
     let err = cert.result.as_ref().expect_err("off the curve");
-    let v = certificate_json(&cert, opts.tolerance, false);
+    let v = certificate_json(&cert, opts.required_tolerance, false);
     assert_eq!(v["error"].as_str(), Some(err.to_string().as_str()));
     assert!(v.get("enclosures").is_none() && v.get("meets_tolerance").is_none());
     assert!(enclosures_from_json(&v).is_err());
@@ -277,7 +277,7 @@ fn a_branch_that_cannot_be_certified_is_reported_as_an_error_object() {
         ..branch
     };
     let cert = certify_marched_branch(p, q, &empty, &opts);
-    let v = certificate_json(&cert, opts.tolerance, false);
+    let v = certificate_json(&cert, opts.required_tolerance, false);
     assert!(v["error"].as_str().is_some() && v.get("start_point").is_none());
 }
 

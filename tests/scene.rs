@@ -62,7 +62,7 @@ fn valid_scene_parses_with_its_options_and_geometry() {
         SceneOptions {
             step: 0.01,
             method: Method::Both,
-            tolerance: 1e-10,
+            required_tolerance: 1e-10,
             name: Some("cylinder-sphere".into())
         }
     );
@@ -101,7 +101,7 @@ fn options_and_optional_fields_have_defaults() {
     assert_eq!(scene.options, SceneOptions::default());
     assert_eq!(scene.options.step, 0.05);
     assert_eq!(scene.options.method, Method::Both);
-    assert_eq!(scene.options.tolerance, 1e-9);
+    assert_eq!(scene.options.required_tolerance, 1e-9);
     assert_eq!(scene.surfaces[0].domain(), Domain::UNIT);
     assert_eq!(scene.surfaces[1].domain(), Domain::UNIT);
     // The polynomial z = uv over the unit square equals the bilinear patch of the first surface.

@@ -57,8 +57,9 @@ pub struct SceneOptions {
     /// Tracing method (default [`Method::Both`]: march, certify, and check the marched points
     /// against the certificates).
     pub method: Method,
-    /// Tolerance (> 0, finite; default 1e-9).
-    pub tolerance: f64,
+    /// The required tolerance a certified branch should meet (model units; > 0, finite; default
+    /// 1e-9; `"tolerance"` in the scene file).
+    pub required_tolerance: f64,
     /// An optional name for the scene.
     pub name: Option<String>,
 }
@@ -68,7 +69,7 @@ impl Default for SceneOptions {
         SceneOptions {
             step: 0.05,
             method: Method::Both,
-            tolerance: 1e-9,
+            required_tolerance: 1e-9,
             name: None,
         }
     }
@@ -339,7 +340,7 @@ fn options(v: Option<&Value>) -> Result<SceneOptions> {
         out.step = positive(s, "options.step")?;
     }
     if let Some(t) = map.get("tolerance") {
-        out.tolerance = positive(t, "options.tolerance")?;
+        out.required_tolerance = positive(t, "options.tolerance")?;
     }
     if let Some(m) = map.get("method") {
         let m = m
@@ -450,7 +451,7 @@ impl Scene {
         let mut options = json!({
             "step": o.step,
             "method": o.method.name(),
-            "tolerance": o.tolerance,
+            "tolerance": o.required_tolerance,
         });
         if let Some(n) = &o.name {
             options["name"] = json!(n);
