@@ -6,15 +6,17 @@
 //! reported curve against the ellipse, dense samples of the ellipse against the reported curve),
 //! and must meet the target of 1e-9 for this unit-size model.
 
+mod common;
+
+use common::scenes::scene;
 use ssitrace::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
-use ssitrace::io::scene::{Method, Scene};
+use ssitrace::io::scene::Method;
 use ssitrace::numeric::scalar::point;
 use ssitrace::pipeline::{run, RunOptions};
 
 #[test]
 fn three_nested_loops_are_certified_with_disjoint_tubes() {
-    let path = format!("{}/scenes/wu_andrade_fig7.json", env!("CARGO_MANIFEST_DIR"));
-    let scene = Scene::from_path(std::path::Path::new(&path)).unwrap();
+    let scene = scene("wu_andrade_fig7.json");
     let mut opts = RunOptions::from_scene(&scene);
     opts.method = Method::Validated;
     let report = run(&scene, &opts).expect("runs");

@@ -5,6 +5,10 @@
 //! produced): a short parabola arc (paraboloid against a plane, both ends on P's boundary) and a
 //! budgeted stretch of the circle of `scenes/sphere_patch_plane.json`.
 
+mod common;
+
+use common::intervals::meets;
+use common::scenes::{scene, scene_path};
 use inari::Interval;
 use serde_json::Value;
 use ssitrace::certify::{CertifiedBranch, CertifiedEnd, EnclosureBox};
@@ -31,11 +35,7 @@ const Y0: f64 = 1.0 / 64.0;
 const A: f64 = 1.0 / 32.0;
 
 fn sphere_scene() -> Scene {
-    let path = format!(
-        "{}/scenes/sphere_patch_plane.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    Scene::from_path(std::path::Path::new(&path)).expect("scene parses")
+    scene("sphere_patch_plane.json")
 }
 
 fn run_with(scene: &Scene, method: Method, max_steps: usize) -> RunReport {
@@ -131,10 +131,6 @@ fn check_contiguous(boxes: &[EnclosureBox]) -> (f64, f64) {
         assert!(w[0].overlaps(&w[1]));
     }
     (boxes[0].s[0], boxes[boxes.len() - 1].s[1])
-}
-
-fn meets(a: Interval, b: Interval) -> bool {
-    !a.disjoint(b)
 }
 
 #[test]
@@ -374,10 +370,7 @@ fn command_line_prints_the_certificate_and_draws_its_boxes() {
     let dir = std::env::temp_dir().join(format!("ssitrace-cert-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let (out, svg) = (dir.join("r.json"), dir.join("r.svg"));
-    let scene = format!(
-        "{}/scenes/sphere_patch_plane.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let scene = scene_path("sphere_patch_plane.json").display().to_string();
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_ssitrace"))
         .args(["trace", &scene, "--method", "both", "--max-steps", "10"])
         .args(["--tolerance", "1e-300", "--tubes", "--out"])

@@ -7,12 +7,13 @@
 //! purpose of the centred field): before it the median steps were 2.8e-3 (sphere) and 1.1e-3
 //! (bicubic).
 
+mod common;
+
+use common::scenes::scene;
 use inari::Interval;
 use ssitrace::certify::{certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions};
-use ssitrace::io::scene::Scene;
 use ssitrace::numeric::scalar::point;
 use ssitrace::pipeline::{run_scene, RunOptions};
-use std::path::Path;
 use std::time::Instant;
 
 struct Run {
@@ -21,7 +22,7 @@ struct Run {
 }
 
 fn certify_scene(file: &str, opts: &CertifyOptions) -> Vec<Run> {
-    let scene = Scene::from_path(Path::new(file)).expect("scene");
+    let scene = scene(file);
     let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
     let [p, q] = &scene.surfaces;
     let mut runs = Vec::new();
@@ -63,7 +64,7 @@ fn median_step(b: &CertifiedBranch) -> f64 {
 
 #[test]
 fn sphere_patch_plane_circle_in_long_steps() {
-    let runs = certify_scene("scenes/sphere_patch_plane.json", &CertifyOptions::default());
+    let runs = certify_scene("sphere_patch_plane.json", &CertifyOptions::default());
     assert_eq!(runs.len(), 1);
     let b = &runs[0].branch;
     assert_eq!(b.ends, [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop]);
@@ -104,10 +105,7 @@ fn sphere_patch_plane_circle_in_long_steps() {
 
 #[test]
 fn bicubic_branch_in_long_steps() {
-    let runs = certify_scene(
-        "scenes/bicubic_transversal.json",
-        &CertifyOptions::default(),
-    );
+    let runs = certify_scene("bicubic_transversal.json", &CertifyOptions::default());
     assert_eq!(runs.len(), 1);
     let b = &runs[0].branch;
     // P(σ, t) has x = σ (linear precision of the net's x = i/3) and Q is the plane x = ½, so the
@@ -128,7 +126,7 @@ fn bicubic_branch_in_long_steps() {
 
 #[test]
 fn two_loops_in_long_steps() {
-    let runs = certify_scene("scenes/two_loops_s31_s32.json", &CertifyOptions::default());
+    let runs = certify_scene("two_loops_s31_s32.json", &CertifyOptions::default());
     assert_eq!(runs.len(), 2);
     for r in &runs {
         let b = &r.branch;

@@ -8,13 +8,12 @@
 //! measures older versions.
 
 use ssitrace::certify::{certify_branch, CertifyOptions, StepBudget};
-use ssitrace::io::scene::Scene;
 use ssitrace::march::{trace_branch, MarchOptions};
 use ssitrace::pipeline::{run_scene, RunOptions};
-use std::path::Path;
 
 mod common;
-use common::cpu_seconds;
+use common::clock::cpu_seconds;
+use common::scenes::scene;
 
 fn best_of<T>(reps: usize, mut f: impl FnMut() -> T) -> (T, f64) {
     let mut best = f64::INFINITY;
@@ -35,12 +34,12 @@ fn certified_against_marching_cpu_time() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(1);
     for (file, max_length) in [
-        ("scenes/sphere_patch_plane.json", f64::INFINITY),
-        ("scenes/bicubic_transversal.json", f64::INFINITY),
-        ("scenes/two_loops_s31_s32.json", f64::INFINITY),
-        ("scenes/wu_andrade_fig7.json", 0.5),
+        ("sphere_patch_plane.json", f64::INFINITY),
+        ("bicubic_transversal.json", f64::INFINITY),
+        ("two_loops_s31_s32.json", f64::INFINITY),
+        ("wu_andrade_fig7.json", 0.5),
     ] {
-        let scene = Scene::from_path(Path::new(file)).expect("scene");
+        let scene = scene(file);
         let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
         let [p, q] = &scene.surfaces;
         let branches = &outcome.intersection.branches;

@@ -3,6 +3,10 @@
 //! cancellation-free field against the determinant form, the tape's simplification and its
 //! time-constant centre against closed-form Taylor coefficients.
 
+mod common;
+use common::scenes::scene;
+
+use common::odes::Square as PlainSquare;
 use inari::Interval;
 use ssitrace::geometry::{Domain, RationalBezierPatch};
 use ssitrace::numeric::scalar::{interval, point};
@@ -198,18 +202,6 @@ fn centred_tape_expands_to_the_exact_coefficients() {
     );
 }
 
-/// y' = y² (plain form), for the integrator tests below.
-struct PlainSquare;
-
-impl OdeSystem for PlainSquare {
-    fn dim(&self) -> usize {
-        1
-    }
-    fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
-        vec![y[0].sqr()]
-    }
-}
-
 #[test]
 fn remainder_over_pieces_is_sound() {
     use ssitrace::validated::{Integrator, IntegratorOptions};
@@ -249,9 +241,9 @@ fn remainder_over_pieces_is_sound() {
 #[test]
 fn remainder_over_pieces_lengthens_steps_of_the_intersection_ode() {
     use ssitrace::certify::ode::TransversalOde;
-    use ssitrace::io::scene::Scene;
+
     use ssitrace::validated::{Integrator, IntegratorOptions};
-    let scene = Scene::from_path(std::path::Path::new("scenes/sphere_patch_plane.json")).unwrap();
+    let scene = scene("sphere_patch_plane.json");
     let [p, q] = &scene.surfaces;
     // A point of P away from (25/16, 0, 0), where the sphere's normal is the plane's, and one of
     // the plane Q: the ODE is defined there (non-parallel normals).

@@ -11,13 +11,13 @@ use ssitrace::certify::{
 use ssitrace::io::scene::Scene;
 use ssitrace::numeric::scalar::point;
 use ssitrace::pipeline::{run_scene, RunOptions};
-use std::path::Path;
 
 mod common;
-use common::cpu_seconds;
+use common::clock::cpu_seconds;
+use common::scenes::scene;
 
 fn starts(file: &str) -> (Scene, Vec<[f64; 4]>) {
-    let scene = Scene::from_path(Path::new(file)).expect("scene");
+    let scene = scene(file);
     let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
     let starts = outcome
         .intersection
@@ -123,20 +123,16 @@ fn profile_at_the_default_order() {
     for (name, file, len) in [
         (
             "sphere_patch_plane",
-            "scenes/sphere_patch_plane.json",
+            "sphere_patch_plane.json",
             f64::INFINITY,
         ),
         (
             "bicubic_transversal",
-            "scenes/bicubic_transversal.json",
+            "bicubic_transversal.json",
             f64::INFINITY,
         ),
-        (
-            "two_loops_s31_s32",
-            "scenes/two_loops_s31_s32.json",
-            f64::INFINITY,
-        ),
-        ("wu_andrade_fig7 arc", "scenes/wu_andrade_fig7.json", 0.15),
+        ("two_loops_s31_s32", "two_loops_s31_s32.json", f64::INFINITY),
+        ("wu_andrade_fig7 arc", "wu_andrade_fig7.json", 0.15),
     ] {
         println!("{}", run(name, file, len, order));
     }
@@ -151,7 +147,7 @@ fn taylor_order_sweep() {
             "{}",
             run(
                 "sphere_patch_plane",
-                "scenes/sphere_patch_plane.json",
+                "sphere_patch_plane.json",
                 f64::INFINITY,
                 order
             )
@@ -162,15 +158,11 @@ fn taylor_order_sweep() {
             for (name, file, len) in [
                 (
                     "bicubic_transversal",
-                    "scenes/bicubic_transversal.json",
+                    "bicubic_transversal.json",
                     f64::INFINITY,
                 ),
-                (
-                    "two_loops_s31_s32",
-                    "scenes/two_loops_s31_s32.json",
-                    f64::INFINITY,
-                ),
-                ("wu_andrade_fig7 arc", "scenes/wu_andrade_fig7.json", 0.3),
+                ("two_loops_s31_s32", "two_loops_s31_s32.json", f64::INFINITY),
+                ("wu_andrade_fig7 arc", "wu_andrade_fig7.json", 0.3),
             ] {
                 println!("{}", run(name, file, len, order));
             }

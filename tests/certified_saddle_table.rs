@@ -6,18 +6,14 @@
 //! δ ∈ [z]), the steps grow as |δ| shrinks, and δ = 0 is reported as singular with a box that
 //! holds the crossing.
 
-use ssitrace::certify::{certify_branch, CertifiedEnd, CertifyOptions};
-use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
+mod common;
 
-fn graph(z: Vec<(u32, u32, f64)>) -> RationalBezierPatch {
-    PowerSurface::graph(Domain::new(-1.0, 1.0, -1.0, 1.0), z)
-        .to_bezier()
-        .expect("valid surface")
-}
+use common::surfaces::{height_field, SQUARE};
+use ssitrace::certify::{certify_branch, CertifiedEnd, CertifyOptions};
 
 #[test]
 fn saddle_against_planes_steps_grow_near_the_singularity() {
-    let p = graph(vec![(1, 1, 1.0)]);
+    let p = height_field(SQUARE, vec![(1, 1, 1.0)]);
     let paper = ["845", "989", "1139", "singular", "1303", "1153", "1007"];
     let deltas = [0.03, 3e-4, 3e-6, 0.0, -3e-6, -3e-4, -0.03];
     let mut steps = Vec::new();
@@ -26,7 +22,7 @@ fn saddle_against_planes_steps_grow_near_the_singularity() {
         "delta", "paper", "ours (steps)", "tolerance"
     );
     for (delta, paper_steps) in deltas.iter().zip(paper) {
-        let q = graph(vec![(0, 0, *delta)]);
+        let q = height_field(SQUARE, vec![(0, 0, *delta)]);
         let (u, v) = (0.9, delta / 0.9);
         let c =
             certify_branch(&p, &q, [u, v, u, v], &CertifyOptions::default()).expect("certified");

@@ -3,6 +3,9 @@
 //! a polyline shifted off the curve strays; a certificate that ends early leaves the rest
 //! unchecked; and `both` is the command line's default method.
 
+mod common;
+
+use common::scenes::{scene, scene_path};
 use serde_json::Value;
 use ssitrace::certify::{
     certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions, StepBudget,
@@ -13,16 +16,10 @@ use ssitrace::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
 use ssitrace::march::MarchOptions;
 use ssitrace::search::start_points::SearchOptions;
 use ssitrace::topology::intersect::intersect;
-use std::path::Path;
 use std::time::Instant;
 
 /// The marcher's Newton tolerance, which the check compares with.
 const TOL: f64 = 1e-10;
-
-fn scene(file: &str) -> Scene {
-    let path = format!("{}/scenes/{file}", env!("CARGO_MANIFEST_DIR"));
-    Scene::from_path(Path::new(&path)).expect("scene parses")
-}
 
 fn march(s: &Scene) -> Vec<Branch> {
     let opts = MarchOptions {
@@ -316,11 +313,7 @@ fn run_cli(args: &[&str]) -> (String, Value) {
     std::fs::create_dir_all(&dir).unwrap();
     // The bicubic scene without its `"method"`, so the command line's default applies.
     let mut v: Value = serde_json::from_str(
-        &std::fs::read_to_string(format!(
-            "{}/scenes/bicubic_transversal.json",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-        .unwrap(),
+        &std::fs::read_to_string(scene_path("bicubic_transversal.json")).unwrap(),
     )
     .unwrap();
     v["options"].as_object_mut().unwrap().remove("method");
@@ -374,10 +367,7 @@ fn the_command_line_defaults_to_both() {
 fn the_command_line_warns_when_the_march_loops() {
     // S31/S32 marched with L = 1: today's marcher goes round one loop almost twice (found by
     // trying large steps); the fine march (the scene's L = 0.02) goes round each loop once.
-    let path = format!(
-        "{}/scenes/two_loops_s31_s32.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = scene_path("two_loops_s31_s32.json").display().to_string();
     let dir = std::env::temp_dir().join(format!("ssitrace-loops-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("r.json");

@@ -1,6 +1,10 @@
 //! Certified tangential contacts: the tangential ODE tube, its case per step, and the contact
 //! cover, checked against closed-form contact curves.
 
+mod common;
+
+use common::scenes::scene;
+use common::surfaces::{height_field, SQUARE};
 use inari::Interval;
 use ssitrace::certify::contact::{
     certify_contact, classify_box, CertifiedContact, ContactEnd, ContactOptions, StepCase,
@@ -42,19 +46,15 @@ fn plane() -> RationalBezierPatch {
     RationalBezierPatch::from_f64_points([1, 1], &pts, None, Domain::UNIT).unwrap()
 }
 
-const SQUARE: Domain = Domain::new(-1.0, 1.0, -1.0, 1.0);
-
 /// Q: z = y² + x²/2 + 0.3·x·y (degree 2 × 2).
 fn quadratic() -> RationalBezierPatch {
-    PowerSurface::graph(SQUARE, vec![(0, 2, 1.0), (2, 0, 0.5), (1, 1, 0.3)])
-        .to_bezier()
-        .unwrap()
+    height_field(SQUARE, vec![(0, 2, 1.0), (2, 0, 0.5), (1, 1, 0.3)])
 }
 
 /// P: z = Q + (1 + 0.3·x)·(y − x/2)² (degree 3 × 2): P − Q ≥ 0 vanishes doubly along y = x/2,
 /// so they touch along the space parabola (x, x/2, 0.9·x²).
 fn cubic() -> RationalBezierPatch {
-    PowerSurface::graph(
+    height_field(
         SQUARE,
         vec![
             (0, 2, 2.0),
@@ -65,8 +65,6 @@ fn cubic() -> RationalBezierPatch {
             (3, 0, 0.075),
         ],
     )
-    .to_bezier()
-    .unwrap()
 }
 
 fn contains4(b: &[Interval; 4], y: &[f64; 4]) -> bool {
@@ -297,10 +295,8 @@ fn cubic_quadratic_tangential_contact_is_covered_and_traced() {
 #[test]
 fn transversal_pair_is_transversal_on_every_step() {
     // z = x − 0.2 + 0.3 y² crosses z = 0 along x = 0.2 − 0.3 y².
-    let p = PowerSurface::graph(SQUARE, vec![(1, 0, 1.0), (0, 0, -0.2), (0, 2, 0.3)])
-        .to_bezier()
-        .unwrap();
-    let q = PowerSurface::graph(SQUARE, vec![]).to_bezier().unwrap();
+    let p = height_field(SQUARE, vec![(1, 0, 1.0), (0, 0, -0.2), (0, 2, 0.3)]);
+    let q = height_field(SQUARE, vec![]);
     let start = [0.2, 0.0, 0.2, 0.0];
     let branch = certify_branch(&p, &q, start, &CertifyOptions::default()).unwrap();
     assert!(!branch.boxes.is_empty());
@@ -330,9 +326,7 @@ fn sphere_on_plane_is_an_isolated_contact_point() {
     }
     .to_bezier()
     .unwrap();
-    let floor = PowerSurface::graph(d, vec![(0, 0, -1.0)])
-        .to_bezier()
-        .unwrap();
+    let floor = height_field(d, vec![(0, 0, -1.0)]);
     let row = run(
         "sphere on plane",
         &sphere,
@@ -366,10 +360,8 @@ fn contact_json_holds_the_cover_boxes_bit_for_bit() {
     use ssitrace::io::result_json::{certified_contact_to_json, interval_from_json};
     let d = Domain::new(-0.5, 0.5, -0.5, 0.5);
     // The parabolic cylinder z = x² on z = 0 (polynomial, exact): contact along x = 0.
-    let p = PowerSurface::graph(d, vec![(2, 0, 1.0)])
-        .to_bezier()
-        .unwrap();
-    let q = PowerSurface::graph(d, vec![]).to_bezier().unwrap();
+    let p = height_field(d, vec![(2, 0, 1.0)]);
+    let q = height_field(d, vec![]);
     let r = certify_contact(&p, &q, [0.0, 0.0, 0.0, 0.0], &opts(1.0 / 32.0)).unwrap();
     assert!(r.steps.iter().all(|s| s.case == StepCase::TangentialCurve));
     for k in 0..=100 {
@@ -411,14 +403,8 @@ fn scene_contact_events_off_the_line_feed_the_contact_certifier() {
     // The marcher reports this contact as singular events near (not on) the line (its run on
     // this scene takes ≈ 7 s, too slow here): two such events, 1e-9 off the line in t.
     use ssitrace::certify::contact::certify_contact_events;
-    use ssitrace::io::scene::Scene;
     use ssitrace::march::branch::{Event, EventKind};
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/scenes/cubic_quadratic_tangential.json"
-    ))
-    .unwrap();
-    let scene = Scene::from_json_str(&text).unwrap();
+    let scene = scene("cubic_quadratic_tangential.json");
     let (p, q) = (&scene.surfaces[0], &scene.surfaces[1]);
     let event = |x: f64| Event {
         kind: EventKind::Singular,
@@ -462,10 +448,8 @@ fn contact_that_meets_a_crossing_branch_stops_with_the_case_change() {
     // z = x·y² on z = 0: they touch along y = 0 (doubly), and cross along x = 0. At the origin
     // the contact quadratic vanishes (b11 = b12 = b22 = 0): the tracer must stop there with a
     // reported case, not run through it.
-    let p = PowerSurface::graph(SQUARE, vec![(1, 2, 1.0)])
-        .to_bezier()
-        .unwrap();
-    let q = PowerSurface::graph(SQUARE, vec![]).to_bezier().unwrap();
+    let p = height_field(SQUARE, vec![(1, 2, 1.0)]);
+    let q = height_field(SQUARE, vec![]);
     let row = run(
         "touch meets crossing",
         &p,

@@ -5,12 +5,15 @@
 //! unit-size curves; containment is checked with a margin of 1e-13, a hundred times that, and far
 //! below the box widths along the curve (so a box that misses the curve cannot pass).
 
+mod common;
+
+use common::scenes::scene;
+use common::surfaces::{height_field, SQUARE};
 use inari::Interval;
 use ssitrace::certify::{
     certify_branch, CertifiedBranch, CertifiedEnd, CertifyOptions, StepBudget,
 };
-use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
-use ssitrace::io::scene::Scene;
+use ssitrace::geometry::{Domain, RationalBezierPatch};
 use ssitrace::pipeline::{run_scene, RunOptions};
 
 const MARGIN: f64 = 1e-13;
@@ -21,12 +24,10 @@ fn near(x: Interval, v: f64) -> bool {
 
 /// z = a·(u² + v²) + b·u·v + c·u + d over [−1, 1]² as a Bézier patch.
 fn graph(a: f64, b: f64, c: f64, d: f64) -> RationalBezierPatch {
-    PowerSurface::graph(
-        Domain::new(-1.0, 1.0, -1.0, 1.0),
+    height_field(
+        SQUARE,
         vec![(2, 0, a), (0, 2, a), (1, 1, b), (1, 0, c), (0, 0, d)],
     )
-    .to_bezier()
-    .expect("valid surface")
 }
 
 /// Checks every box at 9 arc lengths of its range against `truth(s) = (σ, t, u, v, x, y, z)`.
@@ -201,11 +202,7 @@ fn branch_point_of_a_saddle_is_reported_as_singular() {
 fn rational_sphere_patch_against_plane_arc_is_enclosed() {
     // A budgeted arc of the circle y² + z² = 141/256 on x = 11/8 (the scene's closed form),
     // from a point of the marched branch.
-    let path = format!(
-        "{}/scenes/sphere_patch_plane.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let scene = Scene::from_path(std::path::Path::new(&path)).unwrap();
+    let scene = scene("sphere_patch_plane.json");
     let (marched, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).unwrap();
     let [p, q] = &scene.surfaces;
     let rad = (141.0f64).sqrt() / 16.0;
@@ -387,11 +384,7 @@ fn widths_along_the_sphere_loop_with_and_without_contraction() {
     // transversal width (the three parameters other than the fastest) grows along the loop; with
     // it every step restarts from a thin box. Both certificates must hold the circle
     // (u − ½)² + (v − ½)² = 141/1024 on Q in every box.
-    let path = format!(
-        "{}/scenes/sphere_patch_plane.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let scene = Scene::from_path(std::path::Path::new(&path)).unwrap();
+    let scene = scene("sphere_patch_plane.json");
     let (marched, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).unwrap();
     let [p, q] = &scene.surfaces;
     let pts = &marched.intersection.branches[0].points;

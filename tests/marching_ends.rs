@@ -1,6 +1,9 @@
 //! Stop rules at the ends of a branch: exact boundary landing, one-way marching from a boundary
 //! start, point budget, and typed errors for bad input.
 
+mod common;
+
+use common::surfaces::{plane_z0, Analytic};
 use ssitrace::error::Error;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::Domain;
@@ -9,14 +12,10 @@ use ssitrace::march::{trace_branch, MarchOptions, StepMethod};
 
 /// P: the graph z = u − 0.3 + 0.2 v² on [0,1]²; Q: the plane z = 0 on [−1,2]². The curve is
 /// u = 0.3 − 0.2 v², v ∈ [0, 1], leaving P's domain through v = 0 and v = 1.
-type Surface = AnalyticSurface<fn(Jet2, Jet2) -> [Jet2; 3]>;
-
-fn pair() -> (Surface, Surface) {
-    let graph: fn(Jet2, Jet2) -> [Jet2; 3] = |u, v| [u, v, u - 0.3 + 0.2 * v * v];
-    let plane: fn(Jet2, Jet2) -> [Jet2; 3] = |r, s| [r, s, Jet2::constant(0.0)];
+fn pair() -> (Analytic, Analytic) {
     (
-        AnalyticSurface::new(Domain::UNIT, graph),
-        AnalyticSurface::new(Domain::new(-1.0, 2.0, -1.0, 2.0), plane),
+        AnalyticSurface::new(Domain::UNIT, |u, v| [u, v, u - 0.3 + 0.2 * v * v]),
+        plane_z0(Domain::new(-1.0, 2.0, -1.0, 2.0)),
     )
 }
 

@@ -3,6 +3,9 @@
 //! point and a tangential point; the marcher stops at the first singular point on each side and
 //! reports it (crossing branch points is left to a later stage).
 
+mod common;
+
+use common::surfaces::{plane_z0, s11_s12, SQUARE};
 use nalgebra::Vector3;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::Domain;
@@ -135,12 +138,7 @@ fn s11_s12_loop_through_branch_and_tangential_points_stops_and_reports() {
     // The curve lies in |v − 1| ≤ 3/(2√2) (discriminant of h as a quadratic in u²), so this domain
     // contains all of it.
     let d = Domain::new(-2.0, 2.0, -0.5, 2.5);
-    let s11 = AnalyticSurface::new(d, |u: Jet2, v: Jet2| {
-        [u, v, 0.2 * u.powi(4) + 0.1 * v.powi(4)]
-    });
-    let s12 = AnalyticSurface::new(d, |s: Jet2, w: Jet2| {
-        [s, w, 0.3 * s * s * w - 0.1 * w * w + 0.2 * w.powi(3)]
-    });
+    let (s11, s12) = s11_s12(d);
     // Singular points of h = 0.2u⁴ + 0.1v⁴ − 0.3u²v + 0.1v² − 0.2v³ = 0 (gradient zero):
     // the tangential point (0, 0) and the branch point (0, 1).
     let singular = [V::new(0.0, 0.0, 0.0), V::new(0.0, 1.0, 0.1)];
@@ -186,7 +184,7 @@ fn thin_ellipse_is_not_closed_by_the_near_pass() {
     let graph = AnalyticSurface::new(d, move |u: Jet2, v: Jet2| {
         [u, v, u * u / (a * a) + v * v / (b * b) - 1.0]
     });
-    let plane = AnalyticSurface::new(d, |r: Jet2, s: Jet2| [r, s, Jet2::constant(0.0)]);
+    let plane = plane_z0(d);
     let l = 0.05;
     for method in [StepMethod::Circular, StepMethod::Dqoc, StepMethod::Tangent] {
         let opts = MarchOptions {
@@ -252,9 +250,7 @@ fn nested_ellipses_close_once_from_any_start() {
         let r2 = 3.0 * u * u + v * v;
         [u, v, (0.5 - r2) * (0.6 - r2) * (0.7 - r2)]
     });
-    let plane = AnalyticSurface::new(Domain::new(-1.0, 1.0, -1.0, 1.0), |r: Jet2, s: Jet2| {
-        [r, s, Jet2::constant(0.0)]
-    });
+    let plane = plane_z0(SQUARE);
     let mut worst_rel = 0.0f64;
     let mut runs = 0;
     for c in [0.5f64, 0.6, 0.7] {
@@ -307,12 +303,7 @@ fn nested_ellipses_close_once_from_any_start() {
 #[test]
 fn s11_s12_loop_closes_once_through_its_singular_points() {
     let d = Domain::new(-2.0, 2.0, -0.5, 2.5);
-    let s11 = AnalyticSurface::new(d, |u: Jet2, v: Jet2| {
-        [u, v, 0.2 * u.powi(4) + 0.1 * v.powi(4)]
-    });
-    let s12 = AnalyticSurface::new(d, |s: Jet2, w: Jet2| {
-        [s, w, 0.3 * s * s * w - 0.1 * w * w + 0.2 * w.powi(3)]
-    });
+    let (s11, s12) = s11_s12(d);
     let opts = MarchOptions {
         step: 0.1,
         cross_singular: 8,

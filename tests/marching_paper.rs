@@ -1,6 +1,9 @@
 //! Seed 000 (Wu–Andrade): Table 1 (circular vs tangent steps on S1–S3, Newton iterations per
 //! point) and Figs. 6–8 (rational surfaces, three nested loops, a singular point).
 
+mod common;
+
+use common::surfaces::{fig8, plane_z0, SQUARE};
 use nalgebra::Vector3;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::{Domain, ParametricSurface};
@@ -192,9 +195,7 @@ fn fig7_three_nested_loops_each_closed_once() {
             - v2.powi(3);
         [u, v, z]
     });
-    let plane = AnalyticSurface::new(Domain::new(-1.0, 1.0, -1.0, 1.0), |r: Jet2, s: Jet2| {
-        [r, s, Jet2::constant(0.0)]
-    });
+    let plane = plane_z0(SQUARE);
     let levels: [f64; 3] = [0.5, 0.6, 0.7];
     let mut loops = Vec::new();
     for &c in &levels {
@@ -356,13 +357,7 @@ fn fig6_rational_surfaces_trace_without_failure() {
 /// origin (both normals vertical): the singular point must be reported.
 #[test]
 fn fig8_singular_point_at_origin_is_reported() {
-    let d = Domain::new(-1.8, 1.8, -0.3, 2.3);
-    let fs = AnalyticSurface::new(d, |u: Jet2, v: Jet2| {
-        [u, v, (2.0 * u.powi(4) + v.powi(4)) / 10.0]
-    });
-    let gs = AnalyticSurface::new(d, |r: Jet2, s: Jet2| {
-        [r, s, (3.0 * r * r * s - s * s + 2.0 * s.powi(3)) / 10.0]
-    });
+    let (fs, gs) = fig8();
     let u0 = 1.5f64.sqrt(); // h(u0, 1) = 0 exactly
     let mut near_origin = false;
     for start in [[u0, 1.0, u0, 1.0], [-u0, 1.0, -u0, 1.0]] {

@@ -1,13 +1,14 @@
 //! The whole marching pipeline on the example scenes, checked against closed forms: every branch
 //! found, each traced once, every point on the known curve.
 
-use ssitrace::io::scene::Scene;
+mod common;
+
+use common::scenes::scene;
 use ssitrace::march::branch::{Branch, BranchStatus, EndReason, Intersection};
 use ssitrace::pipeline::{run_scene, RunOptions};
 
 fn run(file: &str) -> Intersection {
-    let path = format!("{}/scenes/{file}", env!("CARGO_MANIFEST_DIR"));
-    let scene = Scene::from_path(std::path::Path::new(&path)).expect("scene parses");
+    let scene = scene(file);
     let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("runs");
     assert_eq!(outcome.stats.failed_starts, 0);
     assert_eq!(outcome.stats.undecided_leaves, 0);

@@ -5,10 +5,13 @@
 //! its perturbations, an oblique plane through a paraboloid, circles tangent to a domain edge,
 //! and the marched branches of the repository scenes (first point enters, last point leaves).
 
+mod common;
+
+use common::scenes::scene;
+use common::surfaces::height_field;
 use ssitrace::error::Error;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::{Domain, ParametricSurface, PowerSurface, RationalBezierPatch};
-use ssitrace::io::scene::Scene;
 use ssitrace::march::branch::{BranchStatus, EndReason};
 use ssitrace::march::MarchOptions;
 use ssitrace::pair::boundary_direction::{
@@ -18,10 +21,6 @@ use ssitrace::pair::boundary_direction::{
 };
 use ssitrace::search::start_points::SearchOptions;
 use ssitrace::topology::intersect::intersect;
-
-fn graph(d: Domain, z: Vec<(u32, u32, f64)>) -> RationalBezierPatch {
-    PowerSurface::graph(d, z).to_bezier().expect("valid graph")
-}
 
 fn classify(
     p: &RationalBezierPatch,
@@ -40,7 +39,7 @@ fn classify(
 // at s = 0 and leaves it at s = 1 (travelling along N^P × N^Q = +x, as s increases).
 
 fn paper_f() -> RationalBezierPatch {
-    graph(Domain::UNIT, vec![(0, 0, 0.0), (1, 1, 0.0)])
+    height_field(Domain::UNIT, vec![(0, 0, 0.0), (1, 1, 0.0)])
 }
 
 fn paper_g(eps: f64) -> RationalBezierPatch {
@@ -214,8 +213,8 @@ fn seed_example_critical_case_by_perturbation_limit() {
 
 fn oblique_pair(q_domain: Domain) -> (RationalBezierPatch, RationalBezierPatch) {
     (
-        graph(Domain::UNIT, vec![(2, 0, 1.0), (0, 2, 1.0)]),
-        graph(q_domain, vec![(0, 0, 0.3), (1, 0, 0.2), (0, 1, -0.1)]),
+        height_field(Domain::UNIT, vec![(2, 0, 1.0), (0, 2, 1.0)]),
+        height_field(q_domain, vec![(0, 0, 0.3), (1, 0, 0.2), (0, 1, -0.1)]),
     )
 }
 
@@ -295,8 +294,8 @@ fn curve_through_a_corner_enters_through_both_faces() {
     // P: z = σ² + t² on [0,1]², Q: z = −0.2u + 0.3v. The circle σ² + t² + 0.2σ − 0.3t = 0 passes
     // through the corner (0, 0) with direction (−∂d/∂t, ∂d/∂σ) = (0.3, 0.2): into the domain
     // across both faces σ = 0 and t = 0.
-    let p = graph(Domain::UNIT, vec![(2, 0, 1.0), (0, 2, 1.0)]);
-    let q = graph(
+    let p = height_field(Domain::UNIT, vec![(2, 0, 1.0), (0, 2, 1.0)]);
+    let q = height_field(
         Domain::new(-1.0, 2.0, -1.0, 2.0),
         vec![(1, 0, -0.2), (0, 1, 0.3)],
     );
@@ -326,8 +325,8 @@ fn curve_through_a_corner_enters_through_both_faces() {
 
 fn touching_pair(p_domain: Domain, q_domain: Domain) -> (RationalBezierPatch, RationalBezierPatch) {
     (
-        graph(p_domain, vec![(2, 0, 1.0), (0, 2, 1.0)]),
-        graph(q_domain, vec![(0, 0, 0.25)]),
+        height_field(p_domain, vec![(2, 0, 1.0), (0, 2, 1.0)]),
+        height_field(q_domain, vec![(0, 0, 0.25)]),
     )
 }
 
@@ -407,11 +406,11 @@ fn circle_tangent_to_an_edge_touches_it() {
 #[test]
 fn isolated_contact_on_an_edge_is_isolated() {
     // The paraboloid z = σ² + t² on [−1,1]×[0,1] touches the plane z = 0 at the origin only.
-    let p = graph(
+    let p = height_field(
         Domain::new(-1.0, 1.0, 0.0, 1.0),
         vec![(2, 0, 1.0), (0, 2, 1.0)],
     );
-    let q = graph(
+    let q = height_field(
         Domain::new(-2.0, 2.0, -2.0, 2.0),
         vec![(0, 0, 0.0), (1, 1, 0.0)],
     );
@@ -452,11 +451,11 @@ fn tangent_plane_at_an_edge_of_the_rational_sphere_patch_is_isolated() {
 fn branch_point_on_an_edge_is_reported_undecided() {
     // z = σ² − t² on [−1,1]×[0,1] meets the plane z = 0 in the lines σ = ±t, which cross at the
     // origin on the edge t = 0: two branches start there, no single direction exists.
-    let p = graph(
+    let p = height_field(
         Domain::new(-1.0, 1.0, 0.0, 1.0),
         vec![(2, 0, 1.0), (0, 2, -1.0)],
     );
-    let q = graph(
+    let q = height_field(
         Domain::new(-2.0, 2.0, -2.0, 2.0),
         vec![(0, 0, 0.0), (1, 1, 0.0)],
     );
@@ -471,8 +470,8 @@ fn tangential_line_of_order_one_is_a_branch_end_oriented_inward() {
     // z = (t − 0.5)² on [0,1]² touches the plane z = 0 along t = 0.5: a branch from σ = 0 to 1.
     // The perturbed curves t = 0.5 ± √ε come in oppositely oriented pairs, so the answer is
     // oriented into the domain: Enters at both ends, with orientation +x at σ = 0, −x at σ = 1.
-    let p = graph(Domain::UNIT, vec![(0, 2, 1.0), (0, 1, -1.0), (0, 0, 0.25)]);
-    let q = graph(
+    let p = height_field(Domain::UNIT, vec![(0, 2, 1.0), (0, 1, -1.0), (0, 0, 0.25)]);
+    let q = height_field(
         Domain::new(-1.0, 2.0, -1.0, 2.0),
         vec![(0, 0, 0.0), (1, 1, 0.0)],
     );
@@ -495,7 +494,7 @@ fn tangential_line_of_order_one_is_a_branch_end_oriented_inward() {
 fn oblique_tangential_line_of_order_one_crosses_the_t_faces() {
     // z = (σ − 0.5 − 0.2t)² touches z = 0 along σ = 0.5 + 0.2t, from (0.5, 0) to (0.7, 1):
     // dσ/dt = 0.2; oriented into the domain at both ends (as the trough above).
-    let p = graph(
+    let p = height_field(
         Domain::UNIT,
         vec![
             (2, 0, 1.0),
@@ -506,7 +505,7 @@ fn oblique_tangential_line_of_order_one_crosses_the_t_faces() {
             (0, 0, 0.25),
         ],
     );
-    let q = graph(
+    let q = height_field(
         Domain::new(-1.0, 2.0, -1.0, 2.0),
         vec![(0, 0, 0.0), (1, 1, 0.0)],
     );
@@ -558,8 +557,8 @@ fn critical_curved_tangential_curve_by_perturbation_limit() {
         (0, 1, 0.75),
         (0, 0, -0.125),
     ];
-    let p = graph(Domain::UNIT, terms);
-    let q = graph(
+    let p = height_field(Domain::UNIT, terms);
+    let q = height_field(
         Domain::new(-1.0, 2.0, -1.0, 2.0),
         vec![(0, 0, 0.0), (1, 1, 0.0)],
     );
@@ -684,11 +683,6 @@ fn critical_curve_along_the_face_is_undecided() {
 // ---------------------------------------------------------------------------------------------
 // Consistency with the marcher on the repository scenes: every open branch starts with a point
 // that enters and ends with one that leaves, for the direction it was traced in.
-
-fn scene(name: &str) -> Scene {
-    let path = format!("{}/scenes/{name}", env!("CARGO_MANIFEST_DIR"));
-    Scene::from_path(std::path::Path::new(&path)).expect("scene parses")
-}
 
 /// The pairs checked: the bicubic scene as it is, and the sphere scene's rational sphere patch
 /// with its plane moved from x = 1.375 (a closed circle) to x = 1.2, where the circle (radius 1

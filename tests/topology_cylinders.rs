@@ -17,6 +17,8 @@
 //! Seven arcs in all, four leaving each node. (Four arcs between the nodes would need each patch
 //! to cover the whole circle: the arcs with x < 0 reach x = −1 and those with x > 0 reach x = 1.)
 
+mod common;
+
 use ssitrace::certify::CertifiedEnd;
 use ssitrace::io::scene::{Method, Scene};
 use ssitrace::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
@@ -35,8 +37,7 @@ const X_MIN: f64 = -5.0 / 13.0;
 const Y_MIN: f64 = -0.69 / 2.69;
 
 fn scene() -> Scene {
-    let path = format!("{}/scenes/cylinders_full.json", env!("CARGO_MANIFEST_DIR"));
-    Scene::from_path(std::path::Path::new(&path)).expect("scene parses")
+    common::scenes::scene("cylinders_full.json")
 }
 
 fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {

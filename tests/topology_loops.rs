@@ -7,6 +7,9 @@
 //! exactly one arc away from the nodes. A double trace shows up as a sample covered twice, a
 //! missing arc as a sample not covered.
 
+mod common;
+
+use common::surfaces::{fig8, height_field};
 use nalgebra::Vector3;
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::{Domain, ParametricSurface, PowerSurface};
@@ -444,13 +447,7 @@ fn seed004_examples_as_graphs_each_arc_once() {
 /// the graph run ends with every exit traced and no budget spent.
 #[test]
 fn fig8_graph_run_does_not_spend_the_budget() {
-    let d = Domain::new(-1.8, 1.8, -0.3, 2.3);
-    let fs = AnalyticSurface::new(d, |u: Jet2, v: Jet2| {
-        [u, v, (2.0 * u.powi(4) + v.powi(4)) / 10.0]
-    });
-    let gs = AnalyticSurface::new(d, |r: Jet2, s: Jet2| {
-        [r, s, (3.0 * r * r * s - s * s + 2.0 * s.powi(3)) / 10.0]
-    });
+    let (fs, gs) = fig8();
     let u0 = 1.5f64.sqrt();
     let out = trace_graph(
         &fs,
@@ -620,13 +617,7 @@ fn crossing_cylinders_meet_at_a_tangent_point_with_four_arcs() {
 /// graph's arcs together; before, from the left start the march went round until the budget.
 #[test]
 fn single_trace_with_crossing_closes_once_with_the_rotation_index() {
-    let d = Domain::new(-1.8, 1.8, -0.3, 2.3);
-    let fs = AnalyticSurface::new(d, |u: Jet2, v: Jet2| {
-        [u, v, (2.0 * u.powi(4) + v.powi(4)) / 10.0]
-    });
-    let gs = AnalyticSurface::new(d, |r: Jet2, s: Jet2| {
-        [r, s, (3.0 * r * r * s - s * s + 2.0 * s.powi(3)) / 10.0]
-    });
+    let (fs, gs) = fig8();
     let u0 = 1.5f64.sqrt();
     let check = |label: &str,
                  b: &ssitrace::march::TracedBranch,
@@ -680,12 +671,8 @@ fn single_trace_with_crossing_closes_once_with_the_rotation_index() {
 #[test]
 fn s11_s12_from_the_start_point_search_gives_the_same_graph() {
     let d = Domain::new(-2.0, 2.0, -0.5, 2.5);
-    let p = PowerSurface::graph(d, vec![(4, 0, 0.2), (0, 4, 0.1)])
-        .to_bezier()
-        .unwrap();
-    let q = PowerSurface::graph(d, vec![(2, 1, 0.3), (0, 2, -0.1), (0, 3, 0.2)])
-        .to_bezier()
-        .unwrap();
+    let p = height_field(d, vec![(4, 0, 0.2), (0, 4, 0.1)]);
+    let q = height_field(d, vec![(2, 1, 0.3), (0, 2, -0.1), (0, 3, 0.2)]);
     let out = intersect(&p, &q, &opts(0.1), &SearchOptions::default());
     let br = &out.intersection.branches;
     for b in br {

@@ -2,36 +2,28 @@
 //! arcs, written into the result JSON and read back; and a closed curve that touches the domain
 //! boundary from inside stays one closed loop (its touching points are neither starts nor ends).
 
-use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
+mod common;
+
+use common::scenes::scene;
+use common::surfaces::height_field;
+use ssitrace::geometry::Domain;
 use ssitrace::io::result_json::{result_from_json, result_to_json};
-use ssitrace::io::scene::{Method, Scene};
+use ssitrace::io::scene::Method;
 use ssitrace::march::branch::{BranchStatus, EndReason, EventKind};
 use ssitrace::march::MarchOptions;
 use ssitrace::pipeline::{run, RunOptions};
 use ssitrace::search::start_points::SearchOptions;
 use ssitrace::topology::intersect::intersect;
-use std::path::Path;
-
-fn graph(d: Domain, z: Vec<(u32, u32, f64)>) -> RationalBezierPatch {
-    PowerSurface::graph(d, z).to_bezier().expect("valid graph")
-}
-
-fn scene(name: &str) -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenes")
-        .join(name);
-    Scene::from_path(&path).expect("scene loads")
-}
 
 #[test]
 fn circle_touching_all_four_edges_from_inside_is_one_closed_loop() {
     // z = σ² + t² on [-0.5, 0.5]² against z = 0.25: the circle of radius 0.5 touches each edge
     // of P's domain at one point and lies inside otherwise.
-    let p = graph(
+    let p = height_field(
         Domain::new(-0.5, 0.5, -0.5, 0.5),
         vec![(2, 0, 1.0), (0, 2, 1.0)],
     );
-    let q = graph(Domain::new(-2.0, 2.0, -2.0, 2.0), vec![(0, 0, 0.25)]);
+    let q = height_field(Domain::new(-2.0, 2.0, -2.0, 2.0), vec![(0, 0, 0.25)]);
     let march = MarchOptions {
         step: 0.05,
         ..MarchOptions::default()
@@ -121,11 +113,11 @@ fn boundary_ends_and_nodes_are_written_and_read_back() {
 fn circle_touching_an_edge_from_outside_gives_no_branch() {
     // The same circle against P's domain [-0.5, 0.5] × [0.5, 1.5]: it touches the face t = 0.5
     // at (0, 0.5) from outside, so the domain holds one point of it and no branch.
-    let p = graph(
+    let p = height_field(
         Domain::new(-0.5, 0.5, 0.5, 1.5),
         vec![(2, 0, 1.0), (0, 2, 1.0)],
     );
-    let q = graph(Domain::new(-2.0, 2.0, -2.0, 2.0), vec![(0, 0, 0.25)]);
+    let q = height_field(Domain::new(-2.0, 2.0, -2.0, 2.0), vec![(0, 0, 0.25)]);
     let march = MarchOptions {
         step: 0.05,
         ..MarchOptions::default()

@@ -8,22 +8,19 @@
 //! Each case checks against closed forms: the paraboloid z = 1 − x² − y² (an exact biquadratic
 //! Bézier patch) cut by the plane z = c is the circle of radius √(1 − c) about the z axis.
 
+mod common;
+
+use common::surfaces::{height_field, SQUARE};
 use ssitrace::geometry::piece::Piece;
-use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
+use ssitrace::geometry::RationalBezierPatch;
 use ssitrace::march::branch::{Branch, BranchStatus};
 use ssitrace::march::MarchOptions;
 use ssitrace::search::loop_exclusion::prove_loop_free;
 use ssitrace::search::start_points::{find_start_points, SearchOptions, SearchReport};
 use ssitrace::topology::intersect::intersect;
 
-fn square() -> Domain {
-    Domain::new(-1.0, 1.0, -1.0, 1.0)
-}
-
 fn patch(terms: Vec<(u32, u32, f64)>) -> RationalBezierPatch {
-    PowerSurface::graph(square(), terms)
-        .to_bezier()
-        .expect("valid patch")
+    height_field(SQUARE, terms)
 }
 
 /// z = 1 − x² − y² over [−1, 1]² (biquadratic).

@@ -8,7 +8,9 @@
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
 use ssitrace::validated::reference::{decimal, Pcr3bp, PCR3BP_CAPD_WIDTHS, PCR3BP_T_END};
-use ssitrace::validated::{Integrator, IntegratorOptions};
+mod common;
+
+use common::odes::integrator_of_order;
 
 #[test]
 fn pcr3bp_reference_run_matches_or_beats_capd() {
@@ -16,14 +18,7 @@ fn pcr3bp_reference_run_matches_or_beats_capd() {
     let c = decimal("3.03");
     let y0 = sys.initial_state();
     assert!(sys.jacobi(&y0).contains(3.03));
-    let mut integ = Integrator::new(
-        &sys,
-        IntegratorOptions {
-            order: 30,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let mut integ = integrator_of_order(&sys, 30);
     let traj = integ.integrate(&y0, 0.0, PCR3BP_T_END).unwrap();
     let capd = PCR3BP_CAPD_WIDTHS;
     println!("steps = {}", traj.steps.len());

@@ -13,6 +13,10 @@
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
+mod common;
+
+use common::intervals::meets;
+use common::odes::{integrator_of_order, Rotation, Square};
 use inari::Interval;
 use ssitrace::numeric::scalar::{interval, point};
 use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem, Trajectory};
@@ -109,25 +113,8 @@ fn check_trajectory(
     );
 }
 
-/// The true value lies in the exact enclosure `e`; a sound claimed enclosure `b` must then meet
-/// `e` (if they are disjoint, `b` misses the true value). `e` is at most a few ulps wide (or the
-/// stated margin), so this catches any error larger than that.
-fn meets(e: Interval, b: Interval) -> bool {
-    !e.intersection(b).is_empty()
-}
-
 fn widened(x: f64, margin: f64) -> Interval {
     interval(x - margin, x + margin).expect("finite")
-}
-
-struct Rotation;
-impl OdeSystem for Rotation {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
-        vec![-y[1], y[0]]
-    }
 }
 
 #[test]
@@ -137,29 +124,12 @@ fn rotation_box_over_ten_revolutions_contains_exact_solution() {
         interval(-0.001, 0.001).unwrap(),
     ];
     for order in [8, 20, 30] {
-        let mut integ = Integrator::new(
-            &Rotation,
-            IntegratorOptions {
-                order,
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let mut integ = integrator_of_order(&Rotation, order);
         let traj = integ
             .integrate(&y0, 0.0, 20.0 * std::f64::consts::PI)
             .unwrap();
-        // x(t) = x0 cos t − y0 sin t, y(t) = x0 sin t + y0 cos t. cos/sin in f64 (≤ 1 ulp each for
-        // |t| ≤ 63), two products and a sum: error ≤ 4·2⁻⁵²·(|x0| + |y0|) ≈ 1e-15·(|x0|+|y0|).
-        // Margin 1e-13·(|x0|+|y0|): 100× that, and 1e-10 of the box width 2e-3.
-        let exact = |p: &[f64], t: f64| {
-            let m = 1e-13 * (p[0].abs() + p[1].abs());
-            let (s, c) = t.sin_cos();
-            vec![
-                widened(p[0] * c - p[1] * s, m),
-                widened(p[0] * s + p[1] * c, m),
-            ]
-        };
-        check_trajectory(&traj, &y0, &exact, &format!("rotation k={order}"));
+        // Rotation::exact: f64 cos/sin widened by 100× their error bound.
+        check_trajectory(&traj, &y0, &Rotation::exact, &format!("rotation k={order}"));
         assert!(
             traj.end_width() < 2.1e-3,
             "QR keeps the width: {}",
@@ -211,14 +181,7 @@ fn linear_three_by_three_distinct_eigenvalues_contains_exact_solution() {
         interval(-0.51, -0.49).unwrap(),
         interval(1.99, 2.01).unwrap(),
     ];
-    let mut integ = Integrator::new(
-        &Linear3(a),
-        IntegratorOptions {
-            order: 20,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let mut integ = integrator_of_order(&Linear3(a), 20);
     let traj = integ.integrate(&y0, 0.0, 10.0).unwrap();
     // y(t) = V·diag(e^{λt})·V⁻¹·y0 in f64: exp is ≤ 1 ulp, the rest ~20 roundings of numbers bounded
     // by 2·e^{2.5}·‖y0‖₁ ≈ 60: error < 1e-12. Margin 1e-11 (box widths are ≥ 1e-3 here).
@@ -233,32 +196,14 @@ fn linear_three_by_three_distinct_eigenvalues_contains_exact_solution() {
     check_trajectory(&traj, &y0, &exact, "linear 3x3");
 }
 
-struct Square;
-impl OdeSystem for Square {
-    fn dim(&self) -> usize {
-        1
-    }
-    fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
-        vec![y[0].sqr()]
-    }
-}
-
 #[test]
 fn y_squared_contains_rational_solution_up_to_near_blow_up() {
     let y0 = [interval(0.9, 0.91).unwrap()];
     for order in [5, 15, 30] {
-        let mut integ = Integrator::new(
-            &Square,
-            IntegratorOptions {
-                order,
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let mut integ = integrator_of_order(&Square, order);
         let traj = integ.integrate(&y0, 0.0, 1.0).unwrap();
         // y(t) = y0/(1 − y0 t), evaluated in intervals: rigorous, no margin.
-        let exact = |p: &[f64], t: f64| vec![point(p[0]) / (point(1.0) - point(p[0]) * point(t))];
-        check_trajectory(&traj, &y0, &exact, &format!("y'=y² k={order}"));
+        check_trajectory(&traj, &y0, &Square::exact, &format!("y'=y² k={order}"));
     }
 }
 
@@ -310,14 +255,7 @@ fn nonlinear_four_dimensional_system_contains_exact_solution() {
         interval(1.0, 1.01).unwrap(),
         interval(0.0, 0.01).unwrap(),
     ];
-    let mut integ = Integrator::new(
-        &Nonlinear,
-        IntegratorOptions {
-            order: 25,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let mut integ = integrator_of_order(&Nonlinear, 25);
     let traj = integ.integrate(&y0, 0.0, 1.5).unwrap();
     let exact = |p: &[f64], t: f64| {
         let (x0, y0, z0, u0) = (point(p[0]), point(p[1]), point(p[2]), point(p[3]));
@@ -336,17 +274,9 @@ fn nonlinear_four_dimensional_system_contains_exact_solution() {
 #[test]
 fn point_initial_condition_stays_tight_and_sound() {
     // y' = y² from the point 0.5 to t = 1.5 (solution 0.5/(1 − 0.5t) = 2 at the end).
-    let mut integ = Integrator::new(
-        &Square,
-        IntegratorOptions {
-            order: 30,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let mut integ = integrator_of_order(&Square, 30);
     let traj = integ.integrate(&[point(0.5)], 0.0, 1.5).unwrap();
-    let exact = |p: &[f64], t: f64| vec![point(p[0]) / (point(1.0) - point(p[0]) * point(t))];
-    check_trajectory(&traj, &[point(0.5)], &exact, "y'=y² point");
+    check_trajectory(&traj, &[point(0.5)], &Square::exact, "y'=y² point");
     assert!(traj.end[0].contains(2.0));
     assert!(traj.end_width() < 1e-12, "width {}", traj.end_width());
 }
@@ -478,15 +408,7 @@ fn low_orders_with_loose_tolerance_are_sound() {
             "rotation k={order}: {first_order} of {} steps proven by the first-order test",
             traj.steps.len()
         );
-        let exact = |p: &[f64], t: f64| {
-            let m = 1e-13 * (p[0].abs() + p[1].abs());
-            let (s, c) = t.sin_cos();
-            vec![
-                widened(p[0] * c - p[1] * s, m),
-                widened(p[0] * s + p[1] * c, m),
-            ]
-        };
-        check_trajectory(&traj, &y0, &exact, &format!("rotation k={order}"));
+        check_trajectory(&traj, &y0, &Rotation::exact, &format!("rotation k={order}"));
     }
 }
 

@@ -3,7 +3,10 @@
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the formulas
 
-use inari::Interval;
+mod common;
+
+use common::intervals::meets;
+use common::odes::{Rotation, Square};
 use ssitrace::numeric::scalar::{interval, point};
 use ssitrace::validated::series::naive_expand;
 use ssitrace::validated::tape::Tape;
@@ -12,20 +15,6 @@ use ssitrace::Scalar;
 
 fn ad_for<F: OdeSystem>(f: &F) -> TaylorAd {
     TaylorAd::new(Tape::record(f).unwrap())
-}
-
-fn meets(a: Interval, b: Interval) -> bool {
-    !a.intersection(b).is_empty()
-}
-
-struct Square;
-impl OdeSystem for Square {
-    fn dim(&self) -> usize {
-        1
-    }
-    fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
-        vec![y[0].sqr()]
-    }
 }
 
 #[test]
@@ -46,16 +35,6 @@ fn y_squared_coefficients_and_jacobians_to_order_30() {
         let got = e.jacobian(i)[0];
         assert!(meets(got, want), "J_{i}: {got:?} vs {want:?}");
         assert!(got.wid() <= 1e-13 * want.mag());
-    }
-}
-
-struct Rotation;
-impl OdeSystem for Rotation {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
-        vec![-y[1], y[0]]
     }
 }
 

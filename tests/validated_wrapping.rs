@@ -2,19 +2,12 @@
 //! Lohner's QR method the width must stay near its initial size; with a plain interval Taylor
 //! method (the set kept as a box) it must blow up. Both numbers are printed.
 
-use ssitrace::numeric::scalar::interval;
-use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem};
-use ssitrace::{Error, Scalar};
+mod common;
 
-struct Rotation;
-impl OdeSystem for Rotation {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn eval<S: Scalar>(&self, y: &[S]) -> Vec<S> {
-        vec![-y[1], y[0]]
-    }
-}
+use common::odes::Rotation;
+use ssitrace::numeric::scalar::interval;
+use ssitrace::validated::{Integrator, IntegratorOptions};
+use ssitrace::Error;
 
 /// Largest final width after 100 revolutions (or at the point where the run had to stop).
 fn width_after_100_revolutions(qr: bool) -> (f64, f64) {
