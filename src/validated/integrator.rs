@@ -311,10 +311,10 @@ impl Integrator {
 
     /// One proven step from `state.t` towards (never past) `t_limit`; advances `state`.
     ///
-    /// The phases, each its own method: the expansion over the initial box and the step-size
-    /// prediction ([`Self::predict_step`]), phase I with remainder control
-    /// ([`Self::phase_one`]), phase II ([`Self::phase_two`], or [`Self::direct_form`] without the
-    /// mean-value form), and the record with the state update ([`Self::advance_state`]).
+    /// The phases, each its own (private) method: the expansion over the initial box and the
+    /// step-size prediction (`predict_step`), phase I with remainder control (`phase_one`),
+    /// phase II (`phase_two`, or `direct_form` without the mean-value form), and the record with
+    /// the state update (`advance_state`).
     pub fn step(&mut self, state: &mut IntegratorState, t_limit: f64) -> Result<StepRecord> {
         let n = self.ad.dim();
         if state.boxed.len() != n {
