@@ -56,18 +56,14 @@ impl StepBudget {
         steps >= self.max_steps || length >= self.max_length
     }
 
-    /// The integrator's options for a half on the patches `p` and `q`: the largest step is
-    /// [`h_max_for`] them; the step count is left to this budget.
-    pub(crate) fn integrator_options(
-        &self,
-        p: &RationalBezierPatch,
-        q: &RationalBezierPatch,
-    ) -> IntegratorOptions {
+    /// The integrator's options for a half whose largest step is `h_max` (the budget's own
+    /// capped by [`h_max_for`] the patches); the step count is left to this budget.
+    pub(crate) fn integrator_options(&self, h_max: f64) -> IntegratorOptions {
         IntegratorOptions {
             order: self.order,
             term_target: self.term_target,
             h_min: self.h_min,
-            h_max: h_max_for(p, q, self.h_max),
+            h_max,
             qr: true,
             max_steps: usize::MAX,
         }

@@ -529,7 +529,7 @@ fn trace_half(
                 formula,
                 orientation,
             };
-            let integ = Integrator::new(&ode, opts.steps.integrator_options(p, q))?;
+            let integ = Integrator::new(&ode, opts.steps.integrator_options(h_max))?;
             let state = integ.start(&current, t)?;
             active = Some(Active {
                 formula,

@@ -11,12 +11,12 @@
 //!    inflated in the other three, proves that the curve there is a graph over `x_k` and encloses
 //!    it (the *cover*); the next step starts from the curve point with `x_k = c = mid`, enclosed
 //!    by Krawczyk with `x_k = c` (a thin box: the along-curve spread of the end box is dropped, so
-//!    Taylor coefficients, tubes and tolerance stay at rounding level instead of growing along the
-//!    branch). That point's arc length is known up to a proven error, accumulated along the half:
+//!    Taylor coefficients, tubes and the certified tolerance stay at rounding level instead of
+//!    growing along the branch). That point's arc length is known up to a proven error, accumulated along the half:
 //!    the joining piece has arc length ≤ `|c − e_k| / min|x_k'|` over the cover (unit speed).
 //!    Boxes hold the covers too, so they hold the curve over their arc-length ranges despite the
-//!    error ([`EnclosureBox`]); tubes carry it ([`TubePiece::s0_error`]); the tolerance counts
-//!    the joining pieces. Re-anchored steps need no Jacobians (the direct Taylor form's wrapping
+//!    error ([`EnclosureBox`]); tubes carry it ([`TubePiece::s0_error`]); the certified tolerance
+//!    counts the joining pieces. Re-anchored steps need no Jacobians (the direct Taylor form's wrapping
 //!    does not accumulate) and learn phase I's remainder guess from the last step.
 //! 4. **Ends**, each proven: the end box lies outside a domain (the last box straddles the
 //!    boundary); the curve crosses the start parameter's value inside the start's uniqueness box
@@ -26,7 +26,7 @@
 //!    [`CertifiedEnd::Unproven`].
 
 use crate::certify::anchor::{join_tolerance, reanchor};
-use crate::certify::budget::StepBudget;
+use crate::certify::budget::{h_max_for, StepBudget};
 use crate::certify::curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 use crate::certify::ode::TransversalOde;
 use crate::error::{Error, Result};
@@ -339,9 +339,9 @@ impl Half {
         Ok(link)
     }
 
-    /// Enclosure phase, the tube of one step and the half's tolerance: the tube's model-space
-    /// radius, and the joins before and after the step (`bridge`: the arc-length bound of the
-    /// piece joining its end to the re-anchored start, 0 if none).
+    /// Enclosure phase, the tube of one step and the half's certified tolerance: the tube's
+    /// model-space radius, and the joins before and after the step (`bridge`: the arc-length
+    /// bound of the piece joining its end to the re-anchored start, 0 if none).
     fn push_tube(
         &mut self,
         p: &RationalBezierPatch,
@@ -350,7 +350,7 @@ impl Half {
         s_err: f64,
         bridge: f64,
     ) -> Result<()> {
-        // The radius enters the tolerance alone and in the joins before and after this step.
+        // The radius enters the certified tolerance alone and in the joins before and after this step.
         let join = self.pending_join.map_or(0.0, |(_, b)| b).max(bridge);
         let tube = tube_piece(p, rec, dir, s_err, self.certified_tolerance - 0.5 * join)?;
         // Every true point of this step is within radius_xyz of the reported curve; the piece
@@ -408,7 +408,8 @@ fn make_integrator(
         q,
         orientation: dir,
     };
-    Integrator::new(&ode, opts.steps.integrator_options(p, q))
+    let h_max = h_max_for(p, q, opts.steps.h_max);
+    Integrator::new(&ode, opts.steps.integrator_options(h_max))
 }
 
 /// The loop of [`trace_half`] on a given integrator.
@@ -666,8 +667,8 @@ pub(crate) fn tube_piece(
     // Where the Bernstein evaluation over the box is loose (well above the values at its centre,
     // typically on long steps of high-degree patches), intersect with the centred (shifted power)
     // form S_σ = a/g, S_t = b/g, g > 0: far tighter there, but costlier to evaluate.
-    // Only when it matters: the branch's tolerance is the largest radius, so a radius below
-    // `refine_above` (the largest so far) is published as it is (it is a valid bound).
+    // Only when it matters: the branch's certified tolerance is the largest radius, so a radius
+    // below `refine_above` (the largest so far) is published as it is (it is a valid bound).
     let [_, cs, ct] = p.first_order(gs.mid(), gt.mid());
     let at_centre = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     let loose = (norm_s * point(radii[0]) + norm_t * point(radii[1])).sup();
