@@ -114,7 +114,7 @@ const NORMAL_TEST_LEAVES: f64 = 1.0;
 fn normal_separates(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Interval; 4]) -> bool {
     let c = y.map(|x| x.mid());
     let d = p.derivs_f64(c[0], c[1]);
-    let n = crate::pair::field::cross(&d.su, &d.sv);
+    let n = crate::numeric::vec3::cross(&d.su, &d.sv);
     if !n.iter().all(|x| x.is_finite()) {
         return false;
     }

@@ -14,11 +14,11 @@
 //! zero), so a tube of this field is "the solution from the start box", not a proof of
 //! intersection. [`crate::certify::contact`] adds what can be proven.
 
+use crate::numeric::vec3::{cross, det, dot, norm_sqr};
 use crate::pair::centred_second_order::CentredSecondOrder;
 use crate::pair::contact_quadratic::TangentialFormula;
 #[cfg(doc)]
 use crate::pair::contact_quadratic::{contact_quadratic, tangential_velocity};
-use crate::pair::field::{cross, det, dot, norm_sqr};
 use crate::validated::OdeSystem;
 use crate::Scalar;
 

@@ -44,6 +44,7 @@ use crate::certify::curve::{CertifiedBranch, CertifiedEnd, TubePiece};
 use crate::geometry::RationalBezierPatch;
 use crate::march::branch::{Branch, CurvePoint, EndReason};
 use crate::numeric::scalar::point;
+use crate::numeric::vec3::dist3;
 use tube_distance::{closest, eval_interval, tube_lower_bound};
 
 mod tube_distance;
@@ -445,10 +446,6 @@ enum Verdict {
 
 fn params(c: &CurvePoint) -> [f64; 4] {
     [c.p[0], c.p[1], c.q[0], c.q[1]]
-}
-
-fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
 }
 
 /// `tol / s₃`: the parameter distance from the curve, to first order, of a point with

@@ -3,7 +3,7 @@
 
 use crate::geometry::ParametricSurface;
 use crate::march::branch::Branch;
-use crate::numeric::vec3::dist3;
+use crate::numeric::vec3::{dist3, norm3};
 
 /// Whether the curve point with parameters `x` lies on `branch`: within the deviation bound of
 /// one of its chords in model space, with parameters inside that chord's parameter range widened
@@ -66,10 +66,6 @@ pub(crate) fn covers<P: ParametricSurface + ?Sized>(
         let radius = 0.5 * dist3(a, b) * turning + floor;
         segment_distance(&c, a, b) <= radius && between(&params(k), &params(k + 1))
     })
-}
-
-fn norm3(a: &[f64; 3]) -> f64 {
-    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
 /// Distance from point `c` to the segment `[a, b]`.

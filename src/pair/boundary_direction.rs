@@ -43,7 +43,8 @@
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::{pair_bounds, pair_widths};
 use crate::geometry::{ParametricSurface, SurfaceDerivs, Vec3};
-use crate::pair::field::{cross, dot, ScalarSurface};
+use crate::numeric::vec3::{cross, dot};
+use crate::pair::field::ScalarSurface;
 use crate::pair::krawczyk::certify_point;
 use crate::pair::newton::{refine, Constraint};
 use inari::Interval;

@@ -18,7 +18,8 @@
 //! bounded away from zero a tangential curve with one direction; every b ∋ 0 higher-order contact
 //! (undecidable at this order).
 
-use crate::pair::field::{cross, det, dot, norm_sqr, ScalarSurface};
+use crate::numeric::vec3::{cross, det, dot, norm_sqr};
+use crate::pair::field::ScalarSurface;
 use crate::Scalar;
 use inari::Interval;
 

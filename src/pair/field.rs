@@ -32,6 +32,7 @@
 //!
 //! which lets a rational patch skip its quotient rule (`g = w²`).
 
+use crate::numeric::vec3::{cross, dot, norm_sqr};
 use crate::Scalar;
 
 /// A surface whose point and partial derivatives can be evaluated in any [`Scalar`].
@@ -82,30 +83,6 @@ impl ScalarSurface for crate::geometry::RationalBezierPatch {
     ) -> ([T; 3], [T; 3], T) {
         self.scaled_partials_centred(u, v, cu, cv)
     }
-}
-
-/// Cross product.
-pub fn cross<T: Scalar>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// Dot product.
-pub fn dot<T: Scalar>(a: &[T; 3], b: &[T; 3]) -> T {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Sum of squares `a·a` (with `sqr`, so intervals stay non-negative).
-pub fn norm_sqr<T: Scalar>(a: &[T; 3]) -> T {
-    a[0].sqr() + a[1].sqr() + a[2].sqr()
-}
-
-/// Determinant `det(a, b, c) = a·(b×c)`.
-pub fn det<T: Scalar>(a: &[T; 3], b: &[T; 3], c: &[T; 3]) -> T {
-    dot(a, &cross(b, c))
 }
 
 /// Quantities of the transversal field at one point, for callers that need more than y'.

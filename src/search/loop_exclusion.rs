@@ -42,6 +42,7 @@
 
 use crate::geometry::piece::Piece;
 use crate::geometry::RationalBezierPatch;
+use crate::numeric::vec3::{cross, norm3};
 use inari::Interval;
 
 /// A proof that a pair of sub-patches holds no closed loop of the intersection.
@@ -91,8 +92,8 @@ pub fn loop_test(
     let [qu, qv] = pq.declared(&dq, 0.0);
     let dp_c = p.derivs_f64(centre(pu), centre(pv));
     let dq_c = q.derivs_f64(centre(qu), centre(qv));
-    let np = cross_f(&dp_c.su, &dp_c.sv);
-    let nq = cross_f(&dq_c.su, &dq_c.sv);
+    let np = cross(&dp_c.su, &dp_c.sv);
+    let nq = cross(&dq_c.su, &dq_c.sv);
     let frame = frame(&np, &nq);
     // First the normals in model axes: for graph-like pieces (a partial with exact components)
     // the cross products then wrap least; `d · (N_P × N_Q) = N_P · (N_Q × d)` is tested for
@@ -109,7 +110,7 @@ pub fn loop_test(
                 x.iter().any(|c| c.wid() <= 1e-9 * mag)
             };
             graph_like &= exact(&a) && exact(&b);
-            Some(cross_i(&a, &b))
+            Some(cross(&a, &b))
         }
         _ => {
             graph_like = false;
@@ -121,7 +122,7 @@ pub fn loop_test(
         // Candidates: the frame rows, then the point of the box enclosing `N_P × N_Q` nearest
         // to the origin (when the box excludes the origin, every tangent in it makes a positive
         // product with that point: the widest pair any single direction can settle).
-        let tangents = cross_i(&enp, &enq);
+        let tangents = cross(&enp, &enq);
         let nearest = tangents.map(|x| {
             if x.inf() > 0.0 {
                 x.inf()
@@ -137,7 +138,7 @@ pub fn loop_test(
                 continue;
             }
             let d = cand.map(crate::numeric::scalar::point);
-            let w = cross_i(&enq, &d);
+            let w = cross(&enq, &d);
             let t = enp[0] * w[0] + enp[1] * w[1] + enp[2] * w[2];
             if !t.is_empty() && (t.inf() > 0.0 || t.sup() < 0.0) {
                 return LoopTest {
@@ -159,7 +160,7 @@ pub fn loop_test(
     let normal = |piece: &Piece, d: &crate::geometry::Domain, origin: &[f64; 3]| match piece
         .partials(d, Some(&frame), origin, 0.0)
     {
-        Some([Some(a), Some(b)]) => Some(cross_i(&a, &b)),
+        Some([Some(a), Some(b)]) => Some(cross(&a, &b)),
         _ => None,
     };
     let enp = normal(pp, &dp, &dp_c.p);
@@ -207,35 +208,15 @@ fn relative_spread(e: Option<&[Interval; 3]>) -> f64 {
 /// (normalised); the identity where the normals are (nearly) parallel or not finite.
 fn frame(np: &[f64; 3], nq: &[f64; 3]) -> [[f64; 3]; 3] {
     let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    let t = cross_f(np, nq);
-    let (lt, lp) = (norm(&t), norm(np));
+    let t = cross(np, nq);
+    let (lt, lp) = (norm3(&t), norm3(np));
     if !(lt > 1e-300 && lp > 1e-300 && lt.is_finite() && lp.is_finite()) {
         return identity;
     }
     let e3 = t.map(|x| x / lt);
     let e1 = np.map(|x| x / lp);
-    let e2 = cross_f(&e3, &e1);
+    let e2 = cross(&e3, &e1);
     [e1, e2, e3]
-}
-
-fn cross_f(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn cross_i(a: &[Interval; 3], b: &[Interval; 3]) -> [Interval; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn norm(a: &[f64; 3]) -> f64 {
-    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@ use crate::march::branch::{Branch, CurvePoint, EndReason, Event, EventKind};
 use crate::march::covers::covers;
 use crate::march::trace::{refine_start, trace_branch, trace_from_node, TracedBranch};
 use crate::march::MarchOptions;
-use crate::numeric::vec3::dist3;
+use crate::numeric::vec3::{dist3, norm3};
 use crate::pair::branch_point::{analyse_node, locate_singular_point, SingularNode};
 use crate::pair::contact_quadratic::ContactCase;
 
@@ -195,10 +195,6 @@ impl Graph<'_> {
             .iter()
             .any(|n| dist3(&n.xyz, xyz) <= 1.5 * n.radius.max(self.opts.step / 3.0))
     }
-}
-
-fn norm3(a: &[f64; 3]) -> f64 {
-    dist3(a, &[0.0; 3])
 }
 
 /// Traces every arc and loop of `P ∩ Q` reachable from `starts` (guesses near the curve),
