@@ -5,7 +5,6 @@ pub mod bezier;
 pub mod enclosure;
 pub mod piece;
 pub mod power;
-pub mod subdivision;
 pub mod surface;
 
 pub use bezier::{PatchDerivs, RationalBezierPatch};

@@ -14,6 +14,7 @@
 
 use crate::geometry::enclosure::hull_of_net;
 use crate::geometry::{Domain, RationalBezierPatch};
+use crate::numeric::rounding::{average, dot_point, sub};
 use crate::numeric::scalar::{interval, point, Scalar};
 use inari::Interval;
 
@@ -337,84 +338,6 @@ impl Piece {
     }
 }
 
-/// `a + b` rounded down / up (`up` false / true), exactly as directed rounding would: the
-/// rounding error of the nearest sum is recovered exactly by TwoSum, and the sum stepped one ulp
-/// when it lies on the wrong side. An overflowing or infinite sum is returned as is (an
-/// infinite bound is only ever on the safe side or makes the caller's interval invalid).
-fn add_dir(a: f64, b: f64, up: bool) -> f64 {
-    let s = a + b;
-    let bb = s - a;
-    let e = (a - (s - bb)) + (b - bb);
-    if up && e > 0.0 {
-        s.next_up()
-    } else if !up && e < 0.0 {
-        s.next_down()
-    } else {
-        s
-    }
-}
-
-/// `a · b` rounded down / up: the error of the nearest product is exact by a fused
-/// multiply-add, except near the subnormal range, where the product is stepped outward
-/// unconditionally.
-fn mul_dir(a: f64, b: f64, up: bool) -> f64 {
-    let p = a * b;
-    if p.is_nan() || p.abs() < 1e-280 {
-        return if up { p.next_up() } else { p.next_down() };
-    }
-    let e = a.mul_add(b, -p);
-    if up && e > 0.0 {
-        p.next_up()
-    } else if !up && e < 0.0 {
-        p.next_down()
-    } else {
-        p
-    }
-}
-
-/// `x / 2` rounded down / up: exact unless the result is subnormal (detected by doubling back).
-fn half_dir(x: f64, up: bool) -> f64 {
-    let h = 0.5 * x;
-    if 2.0 * h == x {
-        h
-    } else if up {
-        h.next_up()
-    } else {
-        h.next_down()
-    }
-}
-
-/// `(a + b) / 2`, rounded outward.
-fn average(a: Interval, b: Interval) -> Interval {
-    let lo = half_dir(add_dir(a.inf(), b.inf(), false), false);
-    let hi = half_dir(add_dir(a.sup(), b.sup(), true), true);
-    Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
-}
-
-/// `b − a`, rounded outward.
-fn sub(b: Interval, a: Interval) -> Interval {
-    let lo = add_dir(b.inf(), -a.sup(), false);
-    let hi = add_dir(b.sup(), -a.inf(), true);
-    Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
-}
-
-/// `r · x` for an exact row `r` and an interval vector `x`, rounded outward (every product and
-/// partial sum rounded in its bound's direction). `ENTIRE` if a bound is not a number (e.g.
-/// `0 · ∞`).
-fn dot_point(r: &[f64; 3], x: &[Interval; 3]) -> Interval {
-    let (mut lo, mut hi) = (0.0f64, 0.0f64);
-    for (&rk, xk) in r.iter().zip(x) {
-        let (a, b) = if rk >= 0.0 {
-            (xk.inf(), xk.sup())
-        } else {
-            (xk.sup(), xk.inf())
-        };
-        lo = add_dir(lo, mul_dir(rk, a, false), false);
-        hi = add_dir(hi, mul_dir(rk, b, true), true);
-    }
-    Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
-}
-
 /// `x` widened about its midpoint: `mid ± rad·f` (outward); `x` itself when `f` is exactly 1.
 fn widen(x: Interval, f: Interval) -> Interval {
     if f.inf() == 1.0 && f.sup() == 1.0 {
@@ -496,40 +419,70 @@ mod tests {
         .unwrap()
     }
 
-    #[test]
-    fn float_directed_helpers_match_inari() {
-        // The helpers round each bound in its direction exactly as inari does (normal range):
-        // the results are the same intervals, and at the subnormal edge still enclose.
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            let m = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
-            m * 10f64.powi((seed % 13) as i32 - 6)
-        };
-        for _ in 0..2000 {
-            let (a0, a1, b0, b1) = (next(), next(), next(), next());
-            let a = interval(a0.min(a1), a0.max(a1)).unwrap();
-            let b = interval(b0.min(b1), b0.max(b1)).unwrap();
-            assert_eq!(sub(b, a), b - a);
-            assert_eq!(average(a, b), (a + b) * point(0.5));
-            let r = [next(), next(), next()];
-            let x = [a, b, a - b];
-            let expect = point(r[0]) * x[0] + point(r[1]) * x[1] + point(r[2]) * x[2];
-            assert_eq!(dot_point(&r, &x), expect);
+    /// A rational bicubic-by-quadratic patch on a shifted domain.
+    fn wavy_grid() -> RationalBezierPatch {
+        let mut pts = Vec::new();
+        for i in 0..4 {
+            for j in 0..3 {
+                let (x, y) = (i as f64 / 3.0, j as f64 / 2.0);
+                pts.push([x, y, ((i * 7 + j * 3) % 5) as f64 * 0.3 - 0.5]);
+            }
         }
-        let tiny = interval(f64::MIN_POSITIVE / 3.0, f64::MIN_POSITIVE / 3.0).unwrap();
-        let exact = (tiny + tiny) * point(0.5);
-        assert!(exact.subset(average(tiny, tiny)));
-        let d = dot_point(&[1e-300, 0.0, 0.0], &[interval(3e-20, 3e-20).unwrap(); 3]);
-        assert!((point(1e-300) * point(3e-20)).subset(d));
-        // 0 · ∞ is not a number: the whole line.
-        let e = dot_point(
-            &[0.0, 1.0, 1.0],
-            &[Interval::ENTIRE, point(1.0), point(2.0)],
-        );
-        assert!(e.is_entire());
+        let w: Vec<f64> = (0..12).map(|k| 1.0 + 0.1 * (k % 3) as f64).collect();
+        RationalBezierPatch::from_f64_points(
+            [3, 2],
+            &pts,
+            Some(&w),
+            Domain::new(-1.0, 2.0, 0.5, 1.5),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn split_pieces_bound_their_part_of_the_patch() {
+        let patch = wavy_grid();
+        let d = patch.domain();
+        let mut pieces = vec![Piece::whole(&patch)];
+        for level in 0..6 {
+            pieces = pieces.iter().flat_map(|s| s.split(level % 2)).collect();
+        }
+        assert_eq!(pieces.len(), 64);
+        for piece in &pieces {
+            let b = piece.bounds();
+            let [u, v] = piece.declared(&d, 0.0);
+            for a in 0..=6 {
+                for c in 0..=6 {
+                    let x = u.inf() + (u.sup() - u.inf()) * a as f64 / 6.0;
+                    let y = v.inf() + (v.sup() - v.inf()) * c as f64 / 6.0;
+                    let p = patch.point(x, y);
+                    for k in 0..3 {
+                        assert!(b[k].inf() - 1e-12 <= p[k] && p[k] <= b[k].sup() + 1e-12);
+                    }
+                }
+            }
+            // About as tight as restricting the original net directly.
+            let direct = patch.enclose(u, v);
+            for k in 0..3 {
+                assert!(b[k].wid() <= 1.5 * direct[k].wid() + 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn boundary_curves_are_the_patch_edges() {
+        let patch = wavy_grid();
+        let d = patch.domain();
+        let mut edge = Piece::whole(&patch).face(1, true);
+        for _ in 0..4 {
+            edge = edge.split(0)[1].clone();
+        }
+        let b = edge.bounds();
+        let [u, _] = edge.declared(&d, 0.0);
+        let p = patch.point(u.sup(), d.v[1]);
+        for k in 0..3 {
+            assert!(b[k].inf() - 1e-12 <= p[k] && p[k] <= b[k].sup() + 1e-12);
+        }
+        assert_eq!(edge.split(1)[0], edge);
     }
 
     #[test]

@@ -1,6 +1,8 @@
 //! Numbers: the crate's [`Scalar`](scalar::Scalar) trait over f64, intervals and Taylor types,
-//! and fast rigorous dot products of intervals.
+//! fast rigorous dot products of intervals, directed rounding without mode switches, and
+//! 3-vector helpers.
 
 pub mod dot;
+pub mod rounding;
 pub mod scalar;
 pub mod vec3;
