@@ -9,7 +9,8 @@
 //! ```
 //!
 //! `K(X) ⊂ int X` proves exactly one zero in `X`; `K(X) ∩ X = ∅` proves none (every zero in `X`
-//! lies in `K(X)`). The caller supplies the Jacobian enclosure `J(X)`; the search takes it from
+//! lies in `K(X)`); the operator is [`krawczyk_operator`], shared with the curve tracer's
+//! [`krawczyk`](crate::pair::krawczyk::krawczyk). The caller supplies the Jacobian enclosure `J(X)`; the search takes it from
 //! the interval Bernstein nets of the pieces ([`Piece::partials`](crate::geometry::piece::Piece::partials)),
 //! not from naive interval evaluation of the Bernstein sums, which wraps so badly on high degrees
 //! that the test would never pass on reasonably sized boxes.
@@ -18,9 +19,8 @@
 //! then `F(x̃)` is enclosed over it, and for the exact face value inside it — the one for which the
 //! caller's `J(X)` holds — the usual conclusions follow (parametric Krawczyk).
 
-use crate::numeric::scalar::point;
+use crate::pair::krawczyk::{krawczyk_operator, preconditioner};
 use inari::Interval;
-use nalgebra::Matrix3;
 
 /// What one Krawczyk step proved about a box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,25 +51,16 @@ pub fn settle_box(
     }
     let free: [usize; 3] = if fixed == 0 { [1, 2, 3] } else { [0, 2, 3] };
     let cols = [jac[0], jac[1].map(|c| -c), jac[2].map(|c| -c)];
-    let mid_j = Matrix3::from_fn(|r, c| cols[c][r].mid());
-    let Some(cinv) = mid_j.try_inverse() else {
+    let Some(cinv) = preconditioner(&cols) else {
         return BoxVerdict::Unknown;
     };
     if !cinv.iter().all(|c| c.is_finite()) {
         return BoxVerdict::Unknown;
     }
-    let c: [[Interval; 3]; 3] =
-        std::array::from_fn(|r| std::array::from_fn(|k| point(cinv[(r, k)])));
+    let image = krawczyk_operator(&x, &xm, &f, &free, &cols, &cinv);
     let mut out = x;
     let mut inside = true;
-    for r in 0..3 {
-        let cf = c[r][0] * f[0] + c[r][1] * f[1] + c[r][2] * f[2];
-        let mut acc = xm[free[r]] - cf;
-        for (col, &k) in free.iter().enumerate() {
-            let cj = c[r][0] * cols[col][0] + c[r][1] * cols[col][1] + c[r][2] * cols[col][2];
-            let ident = if r == col { point(1.0) } else { point(0.0) };
-            acc += (ident - cj) * (x[k] - xm[k]);
-        }
+    for (r, acc) in image.into_iter().enumerate() {
         if acc.is_empty() {
             return BoxVerdict::Unknown;
         }
@@ -90,7 +81,7 @@ pub fn settle_box(
 mod tests {
     use super::*;
     use crate::geometry::{Domain, PowerSurface};
-    use crate::numeric::scalar::interval;
+    use crate::numeric::scalar::{interval, point};
 
     fn iv(a: f64, b: f64) -> Interval {
         interval(a, b).unwrap()

@@ -109,11 +109,7 @@ where
     let neg = |a: [Interval; 3]| a.map(|x| -x);
     let cols_all = [ps, pt, neg(qu), neg(qv)];
     let jac: [[Interval; 3]; 3] = free.map(|k| cols_all[k]); // jac[col][row]
-                                                             // Midpoint inverse in f64 (any C works; a good one makes the test succeed).
-    let mid = Matrix3::from_fn(|r, c| jac[c][r].mid());
-    let cinv = mid.try_inverse()?;
-    let c: [[Interval; 3]; 3] =
-        std::array::from_fn(|r| std::array::from_fn(|k| point(cinv[(r, k)])));
+    let cinv = preconditioner(&jac)?;
     // F at the midpoint of the free coordinates, the fixed one kept as its interval: directly,
     // and in mean-value form around the fixed coordinate's midpoint c,
     // F(x̃, [p]) ⊂ F(x̃, c) + J_fixed(y)·([p] − c) (the segment lies in y). Both enclose it; the
@@ -140,18 +136,7 @@ where
             }
         }
     }
-    let mut kx = [Interval::EMPTY; 3];
-    for r in 0..3 {
-        let cf = c[r][0] * f[0] + c[r][1] * f[1] + c[r][2] * f[2];
-        let mut acc = ymid[free[r]] - cf;
-        for (col, &k) in free.iter().enumerate() {
-            // (I − C·J)[r][col]
-            let cj = c[r][0] * jac[col][0] + c[r][1] * jac[col][1] + c[r][2] * jac[col][2];
-            let ident = if r == col { point(1.0) } else { point(0.0) };
-            acc += (ident - cj) * (y[k] - ymid[k]);
-        }
-        kx[r] = acc;
-    }
+    let kx = krawczyk_operator(y, &ymid, &f, &free, &jac, &cinv);
     let inside = (0..3).all(|r| kx[r].interior(y[free[r]]));
     let mut next = *y;
     for r in 0..3 {
@@ -161,6 +146,46 @@ where
         return Some(Image::Empty);
     }
     Some(Image::Box { next, inside })
+}
+
+/// The preconditioner `C = (mid J)⁻¹` of the Krawczyk operator (any `C` gives a rigorous
+/// operator; a good one makes the test succeed), from the interval Jacobian columns
+/// `cols[col][row]`; `None` if the midpoint matrix is singular.
+pub fn preconditioner(cols: &[[Interval; 3]; 3]) -> Option<Matrix3<f64>> {
+    Matrix3::from_fn(|r, c| cols[c][r].mid()).try_inverse()
+}
+
+/// The Krawczyk operator on the three free coordinates `free` of the box `x`:
+///
+/// ```text
+/// K(X)ᵣ = x̃ᵣ − (C·F(x̃))ᵣ + Σ_col (I − C·J(X))ᵣ,col · (X − x̃)_col
+/// ```
+///
+/// with `xm` the point `x̃` (its free coordinates point intervals inside `x`, the others as in
+/// `x`), `f` an enclosure of `F` at `xm`, `cols[col][row]` the interval Jacobian of the free
+/// unknowns over `x` and `c` the preconditioner (see [`preconditioner`]). Entry `r` of the
+/// result is the image of coordinate `free[r]`. Rigorous whatever `c` is: every zero of `F` in
+/// `x` lies in the image, and an image inside the interior of `x` proves exactly one.
+pub fn krawczyk_operator(
+    x: &ParamBox,
+    xm: &ParamBox,
+    f: &[Interval; 3],
+    free: &[usize; 3],
+    cols: &[[Interval; 3]; 3],
+    c: &Matrix3<f64>,
+) -> [Interval; 3] {
+    let c: [[Interval; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|k| point(c[(r, k)])));
+    std::array::from_fn(|r| {
+        let cf = c[r][0] * f[0] + c[r][1] * f[1] + c[r][2] * f[2];
+        let mut acc = xm[free[r]] - cf;
+        for (col, &k) in free.iter().enumerate() {
+            // (I − C·J)[r][col]
+            let cj = c[r][0] * cols[col][0] + c[r][1] * cols[col][1] + c[r][2] * cols[col][2];
+            let ident = if r == col { point(1.0) } else { point(0.0) };
+            acc += (ident - cj) * (x[k] - xm[k]);
+        }
+        acc
+    })
 }
 
 /// Contracts `y` with the Krawczyk operator, holding coordinate `fixed` in its interval, without
