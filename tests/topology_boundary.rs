@@ -16,9 +16,9 @@ use ssitrace::march::branch::{BranchStatus, EndReason};
 use ssitrace::march::MarchOptions;
 use ssitrace::pair::boundary_direction::{
     boundary_sides, classify_boundary_point, classify_boundary_point_unproven, classify_on_faces,
-    Bound, BoundaryClassification, BoundaryDirection, BoundaryOptions, BoundarySide, Contact,
-    DecidedBy,
+    Bound, BoundaryClassification, BoundaryDirection, BoundaryOptions, BoundarySide, DecidedBy,
 };
+use ssitrace::pair::contact_quadratic::ContactCase;
 use ssitrace::search::start_points::SearchOptions;
 use ssitrace::topology::intersect::intersect;
 
@@ -164,7 +164,7 @@ fn seed_example_critical_case_by_perturbation_limit() {
         assert!(!c.proven, "a perturbation limit is never claimed as proven");
         assert_eq!(c.decided_by, DecidedBy::PerturbationLimit);
         // Contact of order two: every second-order term of the contact vanishes.
-        assert_eq!(c.contact, Some(Contact::HigherOrder));
+        assert_eq!(c.contact, Some(ContactCase::HigherOrder));
         assert_eq!(c.direction, expect, "s = {s}");
         // The orientation agreed by all perturbed problems is +x (N^P × N^Q for either sign of ε).
         assert!(c.orientation[0] > 0.999, "{:?}", c.orientation);
@@ -417,7 +417,7 @@ fn isolated_contact_on_an_edge_is_isolated() {
     let c = classify(&p, &q, [0.0; 4], BoundarySide::new(1, Bound::Min));
     assert!(c.critical);
     assert_eq!(c.direction, BoundaryDirection::Isolated);
-    assert_eq!(c.contact, Some(Contact::Isolated));
+    assert_eq!(c.contact, Some(ContactCase::IsolatedPoint));
     assert_eq!(c.decided_by, DecidedBy::ContactQuadratic);
 }
 
@@ -443,7 +443,7 @@ fn tangent_plane_at_an_edge_of_the_rational_sphere_patch_is_isolated() {
     assert!((at - nalgebra::Vector3::new(1.25, 0.0, -0.9375)).norm() < 1e-12);
     let c = classify(&p, &q, y, BoundarySide::new(1, Bound::Min));
     assert!(c.critical);
-    assert_eq!(c.contact, Some(Contact::Isolated));
+    assert_eq!(c.contact, Some(ContactCase::IsolatedPoint));
     assert_eq!(c.direction, BoundaryDirection::Isolated);
 }
 
@@ -461,7 +461,7 @@ fn branch_point_on_an_edge_is_reported_undecided() {
     );
     let c = classify(&p, &q, [0.0; 4], BoundarySide::new(1, Bound::Min));
     assert!(c.critical && !c.proven);
-    assert_eq!(c.contact, Some(Contact::BranchPoint));
+    assert_eq!(c.contact, Some(ContactCase::BranchPoint));
     assert_eq!(c.direction, BoundaryDirection::Undecided);
 }
 
@@ -483,7 +483,7 @@ fn tangential_line_of_order_one_is_a_branch_end_oriented_inward() {
         assert!(c.critical);
         assert_eq!(c.direction, BoundaryDirection::Enters);
         assert_eq!(c.decided_by, DecidedBy::PerturbationLimit);
-        assert_eq!(c.contact, Some(Contact::Curve));
+        assert_eq!(c.contact, Some(ContactCase::TangentialCurve));
         assert!(c.orientation[0] * ox > 0.999, "{:?}", c.orientation);
         let d = c.face_derivatives(side).unwrap();
         assert!(d[1].abs() < 1e-6 && (d[2] - 1.0).abs() < 1e-6, "{d:?}");
@@ -515,7 +515,7 @@ fn oblique_tangential_line_of_order_one_crosses_the_t_faces() {
     ] {
         let c = classify(&p, &q, y, side);
         assert!(c.critical);
-        assert_eq!(c.contact, Some(Contact::Curve));
+        assert_eq!(c.contact, Some(ContactCase::TangentialCurve));
         assert_eq!(c.direction, BoundaryDirection::Enters, "{side:?}");
         assert!(c.orientation[1] * oy > 0.9, "{:?}", c.orientation);
         let d = c.face_derivatives(side).unwrap();
@@ -580,7 +580,7 @@ fn critical_curved_tangential_curve_by_perturbation_limit() {
         let t = 0.5 + 0.3 * s * s;
         let c = classify(&p, &q, [s, t, s, t], side);
         assert!(c.critical && !c.proven);
-        assert_eq!(c.contact, Some(Contact::HigherOrder));
+        assert_eq!(c.contact, Some(ContactCase::HigherOrder));
         assert_eq!(c.decided_by, DecidedBy::PerturbationLimit);
         assert_eq!(c.direction, expect, "σ = {s}");
         let d = c.face_derivatives(side).unwrap();

@@ -13,7 +13,7 @@
 //! 2. **Case per step**: on each a-priori box (widened by
 //!    [`ContactOptions::classify_radius`]) `|N^P × N^Q|²` is enclosed; if it is bounded away from
 //!    zero the step is [`StepCase::Transversal`], else the contact quadratic is classified
-//!    ([`crate::pair::contact_quadratic::classify`], in a scaled form). The tracer stops, with the case as the reason, as soon as a step is not a
+//!    ([`crate::pair::contact_quadratic::classify`] with [`Proven`] signs, in a scaled form). The tracer stops, with the case as the reason, as soon as a step is not a
 //!    [`StepCase::TangentialCurve`] (the contact opens into a crossing, splits into branches, or
 //!    becomes a point or higher-order contact).
 //! 3. **Cover** (proven): [`contact_cover`] over the tube's boxes widened by
@@ -32,7 +32,7 @@ use crate::march::branch::{Event, EventKind};
 use crate::numeric::scalar::{interval, point};
 use crate::pair::centred_second_order::CentredSecondOrder;
 use crate::pair::contact_quadratic::{
-    contact_quadratic, tangential_velocity, ContactCase, TangentialFormula,
+    classify, contact_quadratic, tangential_velocity, ContactCase, Proven, TangentialFormula,
 };
 use crate::validated::{Integrator, IntegratorState};
 use inari::Interval;
@@ -135,16 +135,7 @@ where
     if all.iter().any(|x| x.is_empty()) || k.d.contains(0.0) {
         return StepCase::Undefined;
     }
-    let zero_free = |x: Interval| !x.contains(0.0);
-    if k.discriminant.sup() < 0.0 {
-        StepCase::IsolatedPoint
-    } else if k.discriminant.inf() > 0.0 {
-        StepCase::BranchPoint
-    } else if zero_free(k.b11) || zero_free(k.b12) || zero_free(k.b22) {
-        StepCase::TangentialCurve
-    } else {
-        StepCase::HigherOrder
-    }
+    classify(k.discriminant, [k.b11, k.b12, k.b22], &Proven).into()
 }
 
 /// Parameters of [`certify_contact`].

@@ -14,11 +14,13 @@
 //! zero), so a tube of this field is "the solution from the start box", not a proof of
 //! intersection. [`crate::certify::contact`] adds what can be proven.
 
-use crate::numeric::vec3::{cross, det, dot, norm_sqr};
+use crate::numeric::vec3::{cross, dot, norm_sqr};
 use crate::pair::centred_second_order::CentredSecondOrder;
-use crate::pair::contact_quadratic::TangentialFormula;
 #[cfg(doc)]
 use crate::pair::contact_quadratic::{contact_quadratic, tangential_velocity};
+use crate::pair::contact_quadratic::{
+    quadratic_coefficients, tangent_map_numerators, TangentialFormula,
+};
 use crate::validated::OdeSystem;
 use crate::Scalar;
 
@@ -134,20 +136,13 @@ impl<T: Scalar> ScaledContact<T> {
         let [_, ps, pt, pss, pst, ptt] = *p;
         let [_, qu, qv, quu, quv, qvv] = *q;
         let n = cross(&ps, &pt);
-        let d = det(&qu, &qv, &n);
-        let a11 = det(&ps, &qv, &n);
-        let a12 = det(&pt, &qv, &n);
-        let a21 = det(&qu, &ps, &n);
-        let a22 = det(&qu, &pt, &n);
-        let (lp, mp, np) = (dot(&pss, &n), dot(&pst, &n), dot(&ptt, &n));
-        let (lq, mq, nq) = (dot(&quu, &n), dot(&quv, &n), dot(&qvv, &n));
-        let two = T::from_f64(2.0);
+        let (d, a) = tangent_map_numerators(&ps, &pt, &qu, &qv, &n);
         let d2 = d.sqr();
-        let b11 = lq * a11.sqr() + two * mq * a11 * a21 + nq * a21.sqr() - lp * d2;
-        let b12 = lq * a11 * a12 + mq * (a11 * a22 + a12 * a21) + nq * a21 * a22 - mp * d2;
-        let b22 = lq * a12.sqr() + two * mq * a12 * a22 + nq * a22.sqr() - np * d2;
+        let p_form = [dot(&pss, &n) * d2, dot(&pst, &n) * d2, dot(&ptt, &n) * d2];
+        let q_form = [dot(&quu, &n), dot(&quv, &n), dot(&qvv, &n)];
+        let [b11, b12, b22] = quadratic_coefficients(&a, p_form, q_form);
         ScaledContact {
-            a: [[a11, a12], [a21, a22]],
+            a,
             d,
             b11,
             b12,

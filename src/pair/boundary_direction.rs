@@ -44,6 +44,7 @@ use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::{pair_bounds, pair_widths};
 use crate::geometry::{ParametricSurface, SurfaceDerivs, Vec3};
 use crate::numeric::vec3::{cross, dot};
+use crate::pair::contact_quadratic::ContactCase;
 use crate::pair::field::ScalarSurface;
 use crate::pair::krawczyk::certify_point;
 use crate::pair::newton::{refine, Constraint};
@@ -157,20 +158,6 @@ pub enum DecidedBy {
     Nothing,
 }
 
-/// The shape of a tangential contact from its second-order terms (the contact quadratic
-/// `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0` of Ye & Maekawa), estimated in `f64`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Contact {
-    /// Discriminant < 0: the surfaces touch at this point only.
-    Isolated,
-    /// Discriminant > 0: two curves cross here.
-    BranchPoint,
-    /// Discriminant ≈ 0, quadratic not zero: a curve of tangency of contact order one.
-    Curve,
-    /// The quadratic vanishes: contact of order two or more (the seed paper's example).
-    HigherOrder,
-}
-
 /// One perturbed problem of the critical case: Q translated by `epsilon · n`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PerturbedDirection {
@@ -208,7 +195,7 @@ pub struct BoundaryClassification {
     /// The perturbed problems examined (critical case only), largest `|ε|` first.
     pub perturbed: Vec<PerturbedDirection>,
     /// The shape of the contact (critical case only; estimated in `f64`).
-    pub contact: Option<Contact>,
+    pub contact: Option<ContactCase>,
 }
 
 impl BoundaryClassification {

@@ -3,8 +3,8 @@
 //! Where `N^P ∥ N^Q` the transversal tangent vanishes. [`locate_singular_point`] pins the point
 //! down (Gauss–Newton on `P = Q`, `N^P × N^Q = 0`), [`analyse_node`] classifies it by the contact
 //! quadratic `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0` (the formulas of
-//! [`certified::tangential`](crate::pair::contact_quadratic), here in `f64` on
-//! [`SurfaceDerivs`]) and finds the curve points where the arcs leave it:
+//! [`contact_quadratic`](crate::pair::contact_quadratic), here in `f64` on [`SurfaceDerivs`]
+//! with thresholds relative to the size of the `b`s) and finds the curve points where the arcs leave it:
 //!
 //! - `Δ = b12² − b11 b22 > 0` (a branch point, two crossing branches): the two roots of the
 //!   quadratic give four half-directions; each is refined onto the curve at distance `r`.
@@ -16,7 +16,9 @@
 //! All of this is `f64` estimation for the marcher; nothing here is a rigorous bound.
 
 use crate::geometry::{ParametricSurface, SurfaceDerivs, Vec3};
-use crate::pair::contact_quadratic::ContactCase;
+use crate::pair::contact_quadratic::{
+    contact_from_derivs, ContactCase, ContactQuadratic, Relative, TangentialFormula,
+};
 use crate::pair::newton::{refine, Constraint};
 use crate::pair::tangent::parameter_direction;
 use nalgebra::{Matrix6x4, Vector4, Vector6};
@@ -44,25 +46,6 @@ pub struct SingularNode {
     pub exit_xyz: Vec<[f64; 3]>,
     /// The distance of the exits from the node.
     pub radius: f64,
-}
-
-/// The contact quadratic `(b11, b12, b22)` and the map `(u', v') = a (σ', t')` at a point with
-/// parallel normals (see [`certified::tangential`](crate::pair::contact_quadratic)).
-pub fn contact_quadratic_f64(dp: &SurfaceDerivs, dq: &SurfaceDerivs) -> ([[f64; 2]; 2], [f64; 3]) {
-    let np = dp.normal();
-    let n = np / np.norm();
-    let det = |a: &Vec3, b: &Vec3| a.cross(b).dot(&n);
-    let d = det(&dq.su, &dq.sv);
-    let a11 = det(&dp.su, &dq.sv) / d;
-    let a12 = det(&dp.sv, &dq.sv) / d;
-    let a21 = det(&dq.su, &dp.su) / d;
-    let a22 = det(&dq.su, &dp.sv) / d;
-    let (lp, mp, np2) = (dp.suu.dot(&n), dp.suv.dot(&n), dp.svv.dot(&n));
-    let (lq, mq, nq) = (dq.suu.dot(&n), dq.suv.dot(&n), dq.svv.dot(&n));
-    let b11 = lq * a11 * a11 + 2.0 * mq * a11 * a21 + nq * a21 * a21 - lp;
-    let b12 = lq * a11 * a12 + mq * (a11 * a22 + a12 * a21) + nq * a21 * a22 - mp;
-    let b22 = lq * a12 * a12 + 2.0 * mq * a12 * a22 + nq * a22 * a22 - np2;
-    ([[a11, a12], [a21, a22]], [b11, b12, b22])
 }
 
 /// Pins down a point with parallel normals near `x0`: Gauss–Newton (least squares by SVD, since
@@ -207,19 +190,16 @@ where
     let dp = p.derivs(x[0], x[1]);
     let dq = q.derivs(x[2], x[3]);
     let centre = (dp.p + dq.p) * 0.5;
-    let (a, [b11, b12, b22]) = contact_quadratic_f64(&dp, &dq);
-    let disc = b12 * b12 - b11 * b22;
-    let size = b11.abs().max(b12.abs()).max(b22.abs());
-    let rel = 1e-3;
-    let case = if size <= 1e-9 * (1.0 + centre.norm()) {
-        ContactCase::HigherOrder
-    } else if disc > rel * size * size {
-        ContactCase::BranchPoint
-    } else if disc < -rel * size * size {
-        ContactCase::IsolatedPoint
-    } else {
-        ContactCase::TangentialCurve
-    };
+    let np = dp.normal();
+    let quadratic = contact_from_derivs(&dp, &dq, &(np / np.norm()));
+    let ContactQuadratic {
+        a, b11, b12, b22, ..
+    } = quadratic;
+    let disc = quadratic.discriminant;
+    let case = quadratic.case(&Relative {
+        floor: 1e-9 * (1.0 + centre.norm()),
+        rel: 1e-3,
+    });
     let mut quadratic_directions = Vec::new();
     if case == ContactCase::BranchPoint {
         let sq = disc.sqrt();
@@ -261,12 +241,8 @@ where
     // A point of a curve of tangency (the surfaces stay tangent along the double root) is a
     // contact, not a node with arcs: no exits.
     let contact_curve = case == ContactCase::TangentialCurve && {
-        let d = if b11.abs() >= b22.abs() {
-            [-b12, b11]
-        } else {
-            [b22, -b12]
-        };
-        tangency_continues(p, q, &x, d, a, radius, tol)
+        let (ds, dt) = quadratic.double_root(TangentialFormula::choose(&quadratic));
+        tangency_continues(p, q, &x, [ds, dt], a, radius, tol)
     };
     // Fall back on the circle when the quadratic does not give four distinct exits (and use it
     // for every degenerate case).

@@ -6,33 +6,28 @@
 
 use super::{
     arr, pair_bounds, velocity_at, BoundaryClassification, BoundaryDirection, BoundarySide,
-    Contact, DecidedBy, PerturbedDirection,
+    DecidedBy, PerturbedDirection,
 };
 use crate::geometry::{ParametricSurface, SurfaceDerivs, Vec3};
+use crate::pair::contact_quadratic::{
+    contact_from_derivs, ContactCase, Relative, TangentialFormula,
+};
 use nalgebra::{Matrix3, Vector3};
 
 /// The shape of the contact at a tangential point from its second-order terms (Ye & Maekawa's
-/// quadratic `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0`).
+/// quadratic `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0`), with `f64` thresholds relative to the size
+/// of the terms that cancel in the `b`s; for a curve of tangency also its direction.
 fn contact_shape(
     dp: &SurfaceDerivs,
     dq: &SurfaceDerivs,
     n: &Vec3,
     ell: f64,
-) -> (Contact, Option<[f64; 4]>) {
-    let det = |a: &Vec3, b: &Vec3, c: &Vec3| a.dot(&b.cross(c));
-    let d = det(&dq.su, &dq.sv, n);
-    if d == 0.0 || !d.is_finite() {
-        return (Contact::HigherOrder, None);
+) -> (ContactCase, Option<[f64; 4]>) {
+    let c = contact_from_derivs(dp, dq, n);
+    if c.d == 0.0 || !c.d.is_finite() {
+        return (ContactCase::HigherOrder, None);
     }
-    let a11 = det(&dp.su, &dq.sv, n) / d;
-    let a12 = det(&dp.sv, &dq.sv, n) / d;
-    let a21 = det(&dq.su, &dp.su, n) / d;
-    let a22 = det(&dq.su, &dp.sv, n) / d;
-    let (lp, mp, np) = (dp.suu.dot(n), dp.suv.dot(n), dp.svv.dot(n));
-    let (lq, mq, nq) = (dq.suu.dot(n), dq.suv.dot(n), dq.svv.dot(n));
-    let b11 = lq * a11 * a11 + 2.0 * mq * a11 * a21 + nq * a21 * a21 - lp;
-    let b12 = lq * a11 * a12 + mq * (a11 * a22 + a12 * a21) + nq * a21 * a22 - mp;
-    let b22 = lq * a12 * a12 + 2.0 * mq * a12 * a22 + nq * a22 * a22 - np;
+    let [[a11, a12], [a21, a22]] = c.a;
     // Magnitude of the terms that cancel in the b's, and of a curvature 1/ell.
     let a2 = a11 * a11 + a12 * a12 + a21 * a21 + a22 * a22;
     let scale = (dp.su.norm_squared() + dp.sv.norm_squared()) / ell
@@ -40,25 +35,16 @@ fn contact_shape(
         + 2.0 * dp.suv.norm()
         + dp.svv.norm()
         + (dq.suu.norm() + 2.0 * dq.suv.norm() + dq.svv.norm()) * a2;
-    let bm = b11.abs().max(b12.abs()).max(b22.abs());
-    if bm <= 1e-7 * scale {
-        return (Contact::HigherOrder, None);
-    }
-    let disc = b12 * b12 - b11 * b22;
-    if disc < -1e-6 * bm * bm {
-        (Contact::Isolated, None)
-    } else if disc > 1e-6 * bm * bm {
-        (Contact::BranchPoint, None)
-    } else {
-        // The double root of the quadratic: the curve's direction (σ', t'), and (u', v') = a·(σ', t').
-        let (ds, dt) = if b11.abs() >= b22.abs() {
-            (-b12, b11)
-        } else {
-            (b22, -b12)
-        };
-        let dir = [ds, dt, a11 * ds + a12 * dt, a21 * ds + a22 * dt];
-        (Contact::Curve, Some(dir))
-    }
+    let case = c.case(&Relative {
+        floor: 1e-7 * scale,
+        rel: 1e-6,
+    });
+    // The double root of the quadratic: the curve's direction (σ', t'), and (u', v') = a·(σ', t').
+    let direction = (case == ContactCase::TangentialCurve).then(|| {
+        let (ds, dt) = c.double_root(TangentialFormula::choose(&c));
+        c.lift(ds, dt)
+    });
+    (case, direction)
 }
 
 /// `|ε|` of the perturbed problems, relative to the model size: 10⁻², …, 10⁻¹⁰.
@@ -279,12 +265,12 @@ where
     let (shape, quadratic_direction) = contact_shape(&dp, &dq, &n, ell);
     out.contact = Some(shape);
     match shape {
-        Contact::Isolated => {
+        ContactCase::IsolatedPoint => {
             out.direction = BoundaryDirection::Isolated;
             out.decided_by = DecidedBy::ContactQuadratic;
             return out;
         }
-        Contact::BranchPoint => {
+        ContactCase::BranchPoint => {
             out.decided_by = DecidedBy::ContactQuadratic;
             return out;
         }
@@ -312,7 +298,7 @@ where
     let inward = side.inward_sign();
     let orientation = match consistent {
         Some(_) => velocity_at(p, q, &out.perturbed[reference].point).0,
-        None if shape == Contact::Curve => {
+        None if shape == ContactCase::TangentialCurve => {
             // A tangential curve of order one: its perturbed curves come in oppositely oriented
             // pairs, so there is no orientation from the normals; orient it into the domain.
             if across * inward < 0.0 {
