@@ -43,9 +43,9 @@
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::{pair_bounds, pair_widths};
 use crate::geometry::{ParametricSurface, SurfaceDerivs, Vec3};
-use crate::numeric::vec3::{cross, dot};
+use crate::numeric::vec3::cross;
 use crate::pair::contact_quadratic::ContactCase;
-use crate::pair::field::ScalarSurface;
+use crate::pair::field::{velocity_numerators, ScalarSurface};
 use crate::pair::krawczyk::certify_point;
 use crate::pair::newton::{refine, Constraint};
 use inari::Interval;
@@ -342,12 +342,7 @@ fn numerator_of<T: crate::Scalar>(
     qv: &[T; 3],
     k: usize,
 ) -> T {
-    match k {
-        0 => -dot(&cross(qu, qv), pt),
-        1 => dot(&cross(qu, qv), ps),
-        2 => dot(&cross(ps, pt), qv),
-        _ => -dot(&cross(ps, pt), qu),
-    }
+    velocity_numerators(ps, pt, qu, qv, &cross(ps, pt), &cross(qu, qv))[k.min(3)]
 }
 
 type Prover<'a> = &'a dyn Fn(&[f64; 4], usize, f64) -> Option<f64>;
@@ -435,9 +430,9 @@ fn first_order(dp: &SurfaceDerivs, dq: &SurfaceDerivs) -> FirstOrder {
         };
     }
     let a = |v: &Vec3| [v.x, v.y, v.z];
-    let velocity = std::array::from_fn(|k| {
-        numerator_of(&a(&dp.su), &a(&dp.sv), &a(&dq.su), &a(&dq.sv), k) / mn
-    });
+    let (ps, pt, qu, qv) = (a(&dp.su), a(&dp.sv), a(&dq.su), a(&dq.sv));
+    let velocity = velocity_numerators(&ps, &pt, &qu, &qv, &cross(&ps, &pt), &cross(&qu, &qv))
+        .map(|x| x / mn);
     FirstOrder {
         c: m / mn,
         velocity,

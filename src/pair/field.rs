@@ -85,6 +85,28 @@ impl ScalarSurface for crate::geometry::RationalBezierPatch {
     }
 }
 
+/// The transversal parameter velocity times `|m|`, `m = N^P × N^Q` (the evaluated form of the
+/// module documentation):
+///
+/// ```text
+/// (σ', t', u', v')·|m| = (−N^Q·P_t, N^Q·P_σ, N^P·Q_v, −N^P·Q_u)
+/// ```
+///
+/// from the partials `ps = P_σ`, `pt = P_t`, `qu = Q_u`, `qv = Q_v` and the normals
+/// `np = P_σ × P_t`, `nq = Q_u × Q_v`. The one formula for the curve's parameter velocity: the
+/// field, the boundary classification and the marcher's frames all scale it. Partials scaled by
+/// a positive factor per surface (with their normals) scale the entries accordingly.
+pub fn velocity_numerators<T: Scalar>(
+    ps: &[T; 3],
+    pt: &[T; 3],
+    qu: &[T; 3],
+    qv: &[T; 3],
+    np: &[T; 3],
+    nq: &[T; 3],
+) -> [T; 4] {
+    [-dot(nq, pt), dot(nq, ps), dot(np, qv), -dot(np, qu)]
+}
+
 /// Quantities of the transversal field at one point, for callers that need more than y'.
 #[derive(Debug, Clone, Copy)]
 pub struct FieldPoint<T> {
@@ -198,12 +220,9 @@ impl<T: Scalar> ScaledField<T> {
         let scale = T::from_f64(self.orientation) / self.m2.sqrt();
         let sp = self.gp * scale;
         let sq = self.gq * scale;
-        [
-            -(dot(&self.nq, &self.bp) * sp),
-            dot(&self.nq, &self.ap) * sp,
-            dot(&self.np, &self.bq) * sq,
-            -(dot(&self.np, &self.aq) * sq),
-        ]
+        let [s, t, u, v] =
+            velocity_numerators(&self.ap, &self.bp, &self.aq, &self.bq, &self.np, &self.nq);
+        [s * sp, t * sp, u * sq, v * sq]
     }
 }
 
