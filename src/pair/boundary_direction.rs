@@ -431,8 +431,8 @@ fn first_order(dp: &SurfaceDerivs, dq: &SurfaceDerivs) -> FirstOrder {
     }
     let a = |v: &Vec3| [v.x, v.y, v.z];
     let (ps, pt, qu, qv) = (a(&dp.su), a(&dp.sv), a(&dq.su), a(&dq.sv));
-    let velocity = velocity_numerators(&ps, &pt, &qu, &qv, &cross(&ps, &pt), &cross(&qu, &qv))
-        .map(|x| x / mn);
+    let velocity =
+        velocity_numerators(&ps, &pt, &qu, &qv, &cross(&ps, &pt), &cross(&qu, &qv)).map(|x| x / mn);
     FirstOrder {
         c: m / mn,
         velocity,
