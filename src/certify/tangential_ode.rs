@@ -14,12 +14,12 @@
 //! zero), so a tube of this field is "the solution from the start box", not a proof of
 //! intersection. [`crate::certify::contact`] adds what can be proven.
 
-use crate::numeric::vec3::{cross, dot, norm_sqr};
+use crate::numeric::vec3::{cross, norm_sqr};
 use crate::pair::centred_second_order::CentredSecondOrder;
 #[cfg(doc)]
 use crate::pair::contact_quadratic::{contact_quadratic, tangential_velocity};
 use crate::pair::contact_quadratic::{
-    quadratic_coefficients, tangent_map_numerators, TangentialFormula,
+    quadratic_coefficients, second_forms, tangent_map_numerators, TangentialFormula,
 };
 use crate::validated::OdeSystem;
 use crate::Scalar;
@@ -133,14 +133,13 @@ pub struct ScaledContact<T> {
 impl<T: Scalar> ScaledContact<T> {
     /// The scaled quantities from both surfaces' second-order data.
     pub fn new(p: &[[T; 3]; 6], q: &[[T; 3]; 6]) -> Self {
-        let [_, ps, pt, pss, pst, ptt] = *p;
-        let [_, qu, qv, quu, quv, qvv] = *q;
+        let [_, ps, pt, ..] = *p;
+        let [_, qu, qv, ..] = *q;
         let n = cross(&ps, &pt);
         let (d, a) = tangent_map_numerators(&ps, &pt, &qu, &qv, &n);
         let d2 = d.sqr();
-        let p_form = [dot(&pss, &n) * d2, dot(&pst, &n) * d2, dot(&ptt, &n) * d2];
-        let q_form = [dot(&quu, &n), dot(&quv, &n), dot(&qvv, &n)];
-        let [b11, b12, b22] = quadratic_coefficients(&a, p_form, q_form);
+        let (p_form, q_form) = second_forms(p, q, &n);
+        let [b11, b12, b22] = quadratic_coefficients(&a, p_form.map(|x| x * d2), q_form);
         ScaledContact {
             a,
             d,

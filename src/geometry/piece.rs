@@ -419,28 +419,9 @@ mod tests {
         .unwrap()
     }
 
-    /// A rational bicubic-by-quadratic patch on a shifted domain.
-    fn wavy_grid() -> RationalBezierPatch {
-        let mut pts = Vec::new();
-        for i in 0..4 {
-            for j in 0..3 {
-                let (x, y) = (i as f64 / 3.0, j as f64 / 2.0);
-                pts.push([x, y, ((i * 7 + j * 3) % 5) as f64 * 0.3 - 0.5]);
-            }
-        }
-        let w: Vec<f64> = (0..12).map(|k| 1.0 + 0.1 * (k % 3) as f64).collect();
-        RationalBezierPatch::from_f64_points(
-            [3, 2],
-            &pts,
-            Some(&w),
-            Domain::new(-1.0, 2.0, 0.5, 1.5),
-        )
-        .unwrap()
-    }
-
     #[test]
     fn split_pieces_bound_their_part_of_the_patch() {
-        let patch = wavy_grid();
+        let patch = wavy();
         let d = patch.domain();
         let mut pieces = vec![Piece::whole(&patch)];
         for level in 0..6 {
@@ -470,7 +451,7 @@ mod tests {
 
     #[test]
     fn boundary_curves_are_the_patch_edges() {
-        let patch = wavy_grid();
+        let patch = wavy();
         let d = patch.domain();
         let mut edge = Piece::whole(&patch).face(1, true);
         for _ in 0..4 {

@@ -103,6 +103,14 @@ pub fn quadratic_coefficients<T: Scalar>(
     ]
 }
 
+/// The second fundamental forms `([L^P, M^P, N^P], [L^Q, M^Q, N^Q])` against the normal `n`
+/// (second derivatives dotted with `n`) from the second-order data `[S, S_u, S_v, S_uu, S_uv,
+/// S_vv]` of both surfaces.
+pub fn second_forms<T: Scalar>(p: &[[T; 3]; 6], q: &[[T; 3]; 6], n: &[T; 3]) -> ([T; 3], [T; 3]) {
+    let form = |s: &[[T; 3]; 6]| [dot(&s[3], n), dot(&s[4], n), dot(&s[5], n)];
+    (form(p), form(q))
+}
+
 /// The contact quadratic from both surfaces' second-order data `[S, S_u, S_v, S_uu, S_uv, S_vv]`
 /// and the unit normal `n` (the caller's normalisation of `N^P`).
 pub fn contact_from_second_order<T: Scalar>(
@@ -110,12 +118,11 @@ pub fn contact_from_second_order<T: Scalar>(
     q: &[[T; 3]; 6],
     n: &[T; 3],
 ) -> ContactQuadratic<T> {
-    let [_, ps, pt, pss, pst, ptt] = p;
-    let [_, qu, qv, quu, quv, qvv] = q;
+    let [_, ps, pt, ..] = p;
+    let [_, qu, qv, ..] = q;
     let (d, num) = tangent_map_numerators(ps, pt, qu, qv, n);
     let a = num.map(|row| row.map(|x| x / d));
-    let p_form = [dot(pss, n), dot(pst, n), dot(ptt, n)];
-    let q_form = [dot(quu, n), dot(quv, n), dot(qvv, n)];
+    let (p_form, q_form) = second_forms(p, q, n);
     let [b11, b12, b22] = quadratic_coefficients(&a, p_form, q_form);
     ContactQuadratic {
         a,

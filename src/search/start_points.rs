@@ -470,6 +470,20 @@ fn edge_search(
             UndecidedRegion { p: ra, q: rb }
         }
     };
+    // A point inside both domains goes to `out`, in `(P, Q)` order.
+    let offer = |x: [f64; 4], out: &mut Vec<StartPoint>| {
+        if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) {
+            let params = if problem.swapped {
+                [x[2], x[3], x[0], x[1]]
+            } else {
+                x
+            };
+            out.push(StartPoint {
+                params,
+                kind: problem.kind,
+            });
+        }
+    };
     let mut stack = vec![(a0, b0, leaf0)];
     while let Some((pa, pb, mut leaf)) = stack.pop() {
         let (ea, eb) = (pa.bounds(), pb.bounds());
@@ -486,17 +500,7 @@ fn edge_search(
             report.leaves += 1;
             match settle_leaf(a, b, &pa, &pb, ctx.tol) {
                 Leaf::Root(x) => {
-                    if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) {
-                        let params = if problem.swapped {
-                            [x[2], x[3], x[0], x[1]]
-                        } else {
-                            x
-                        };
-                        out.push(StartPoint {
-                            params,
-                            kind: problem.kind,
-                        });
-                    }
+                    offer(x, out);
                     continue;
                 }
                 Leaf::Empty => continue,
@@ -506,17 +510,7 @@ fn edge_search(
                     // Still offer a Newton point (not proven unique): at a tangential contact
                     // or a singular point it is where the marcher reports the event.
                     if let Some(x) = leaf_newton(a, b, &pa, &pb, ctx.tol) {
-                        if da.contains(x[0], x[1], 1e-12) && db.contains(x[2], x[3], 1e-12) {
-                            let params = if problem.swapped {
-                                [x[2], x[3], x[0], x[1]]
-                            } else {
-                                x
-                            };
-                            out.push(StartPoint {
-                                params,
-                                kind: problem.kind,
-                            });
-                        }
+                        offer(x, out);
                     }
                     continue;
                 }
