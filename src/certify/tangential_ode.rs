@@ -73,10 +73,7 @@ impl<P: CentredSecondOrder + ?Sized, Q: CentredSecondOrder + ?Sized> TangentialO
         orientation: f64,
     ) -> [T; 4] {
         let c = ScaledContact::new(&p, &q);
-        let (ds, dt) = match formula {
-            TangentialFormula::FromB11 => (-c.b12, c.b11),
-            TangentialFormula::FromB22 => (c.b22, -c.b12),
-        };
+        let (ds, dt) = formula.double_root(c.b11, c.b12, c.b22);
         let (ps, pt) = (p[1], p[2]);
         let [[a11, a12], [a21, a22]] = c.a;
         let d = c.d;

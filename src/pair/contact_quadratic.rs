@@ -246,10 +246,7 @@ impl<T: Scalar> ContactQuadratic<T> {
 
     /// The double root `(σ', t')` of the quadratic (unnormalised) by `formula`.
     pub fn double_root(&self, formula: TangentialFormula) -> (T, T) {
-        match formula {
-            TangentialFormula::FromB11 => (-self.b12, self.b11),
-            TangentialFormula::FromB22 => (self.b22, -self.b12),
-        }
+        formula.double_root(self.b11, self.b12, self.b22)
     }
 
     /// `(σ', t', u', v')` for the P velocity `(σ', t')`, with `(u', v') = a·(σ', t')`.
@@ -274,6 +271,15 @@ pub enum TangentialFormula {
 }
 
 impl TangentialFormula {
+    /// The double root `(σ', t')` (unnormalised) of the quadratic with coefficients `b11`,
+    /// `b12`, `b22` (or any common positive multiple of them) by this formula.
+    pub fn double_root<T: Scalar>(self, b11: T, b12: T, b22: T) -> (T, T) {
+        match self {
+            TangentialFormula::FromB11 => (-b12, b11),
+            TangentialFormula::FromB22 => (b22, -b12),
+        }
+    }
+
     /// The better-conditioned formula for an `f64` quadratic.
     pub fn choose(c: &ContactQuadratic<f64>) -> Self {
         if c.b11.abs() >= c.b22.abs() {
