@@ -3,7 +3,7 @@
 
 use crate::geometry::ParametricSurface;
 use crate::march::branch::Branch;
-use crate::numeric::vec3::{dist3, norm3};
+use crate::numeric::vec3::{dist3, dot, norm3};
 
 /// Whether the curve point with parameters `x` lies on `branch`: within the deviation bound of
 /// one of its chords in model space, with parameters inside that chord's parameter range widened
@@ -48,7 +48,7 @@ pub(crate) fn covers<P: ParametricSurface + ?Sized>(
         if la == 0.0 || lb == 0.0 {
             return None;
         }
-        let cos = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb);
+        let cos = dot(&a, &b) / (la * lb);
         Some(cos.clamp(-1.0, 1.0).acos())
     };
     if n == 1 {

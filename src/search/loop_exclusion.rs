@@ -42,7 +42,7 @@
 
 use crate::geometry::piece::Piece;
 use crate::geometry::RationalBezierPatch;
-use crate::numeric::vec3::{cross, norm3};
+use crate::numeric::vec3::{cross, dot, norm3};
 use inari::Interval;
 
 /// A proof that a pair of sub-patches holds no closed loop of the intersection.
@@ -139,7 +139,7 @@ pub fn loop_test(
             }
             let d = cand.map(crate::numeric::scalar::point);
             let w = cross(&enq, &d);
-            let t = enp[0] * w[0] + enp[1] * w[1] + enp[2] * w[2];
+            let t = dot(&enp, &w);
             if !t.is_empty() && (t.inf() > 0.0 || t.sup() < 0.0) {
                 return LoopTest {
                     proof: Some(LoopFree { direction: cand }),
