@@ -20,6 +20,7 @@ use crate::geometry::enclosure::boxes_disjoint;
 use crate::geometry::surface::{pair_bounds, pair_widths};
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::scalar::{interval, point};
+use crate::numeric::vec3::{self, cross};
 use inari::Interval;
 
 /// Parameters of [`contact_cover`].
@@ -114,12 +115,12 @@ const NORMAL_TEST_LEAVES: f64 = 1.0;
 fn normal_separates(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Interval; 4]) -> bool {
     let c = y.map(|x| x.mid());
     let d = p.derivs_f64(c[0], c[1]);
-    let n = crate::numeric::vec3::cross(&d.su, &d.sv);
+    let n = cross(&d.su, &d.sv);
     if !n.iter().all(|x| x.is_finite()) {
         return false;
     }
     let n = [point(n[0]), point(n[1]), point(n[2])];
-    let dot = |a: &[Interval; 3]| n[0] * a[0] + n[1] * a[1] + n[2] * a[2];
+    let dot = |a: &[Interval; 3]| vec3::dot(&n, a);
     let pc = p.eval(point(c[0]), point(c[1]));
     let qc = q.eval(point(c[2]), point(c[3]));
     // Partials over the box, written around its centre (tight: no Bernstein cancellation).
