@@ -13,7 +13,8 @@
 //! 2. **Case per step**: on each a-priori box (widened by
 //!    [`ContactOptions::classify_radius`]) `|N^P × N^Q|²` is enclosed; if it is bounded away from
 //!    zero the step is [`StepCase::Transversal`], else the contact quadratic is classified
-//!    ([`crate::pair::contact_quadratic::classify`] with [`Proven`] signs, in a scaled form). The tracer stops, with the case as the reason, as soon as a step is not a
+//!    ([`crate::pair::contact_quadratic::classify`] with [`Proven`] signs, in a scaled form).
+//!    The tracer stops, with the case as the reason, as soon as a step is not a
 //!    [`StepCase::TangentialCurve`] (the contact opens into a crossing, splits into branches, or
 //!    becomes a point or higher-order contact).
 //! 3. **Cover** (proven): [`contact_cover`] over the tube's boxes widened by

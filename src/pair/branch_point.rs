@@ -4,7 +4,8 @@
 //! down (Gauss–Newton on `P = Q`, `N^P × N^Q = 0`), [`analyse_node`] classifies it by the contact
 //! quadratic `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0` (the formulas of
 //! [`contact_quadratic`](crate::pair::contact_quadratic), here in `f64` on [`SurfaceDerivs`]
-//! with thresholds relative to the size of the `b`s) and finds the curve points where the arcs leave it:
+//! with thresholds relative to the size of the `b`s) and finds the curve points where the arcs
+//! leave it:
 //!
 //! - `Δ = b12² − b11 b22 > 0` (a branch point, two crossing branches): the two roots of the
 //!   quadratic give four half-directions; each is refined onto the curve at distance `r`.
