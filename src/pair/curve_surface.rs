@@ -11,9 +11,10 @@
 //! `K(X) ⊂ int X` proves exactly one zero in `X`; `K(X) ∩ X = ∅` proves none (every zero in `X`
 //! lies in `K(X)`); the operator is [`krawczyk_operator`], shared with the curve tracer's
 //! [`krawczyk`](crate::pair::krawczyk::krawczyk). The caller supplies the Jacobian enclosure
-//! `J(X)`; the search takes it from the interval Bernstein nets of the pieces ([`Piece::partials`](crate::geometry::piece::Piece::partials)),
-//! not from naive interval evaluation of the Bernstein sums, which wraps so badly on high degrees
-//! that the test would never pass on reasonably sized boxes.
+//! `J(X)`; the search takes it from the interval Bernstein nets of the pieces
+//! ([`Piece::partials`](crate::geometry::piece::Piece::partials)), not from naive interval
+//! evaluation of the Bernstein sums, which wraps so badly on high degrees that the test would
+//! never pass on reasonably sized boxes.
 //!
 //! The fixed coordinate may be an interval (the declared parameter of a face, rounded outward):
 //! then `F(x̃)` is enclosed over it, and for the exact face value inside it — the one for which the
