@@ -39,8 +39,7 @@ use crate::validated::{Integrator, IntegratorState};
 use inari::Interval;
 
 /// What one parameter box is, decided in interval arithmetic.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StepCase {
     /// `|N^P × N^Q|² > 0` proven on the box: no tangency anywhere in it.
     Transversal,

@@ -126,6 +126,22 @@ impl CertifiedEnd {
     }
 }
 
+impl std::fmt::Display for CertifiedEnd {
+    /// `boundary of P` / `boundary of Q`, `closed loop`, `singular box`, `close branches (h =
+    /// 1.0e-9)`, `UNPROVEN (reason)` (in capitals: no proof of what lies beyond).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CertifiedEnd::Boundary { surface } => {
+                write!(f, "boundary of {}", if *surface == 0 { "P" } else { "Q" })
+            }
+            CertifiedEnd::ClosedLoop => f.write_str("closed loop"),
+            CertifiedEnd::Singular { .. } => f.write_str("singular box"),
+            CertifiedEnd::CloseBranches { h, .. } => write!(f, "close branches (h = {h:.1e})"),
+            CertifiedEnd::Unproven { reason, .. } => write!(f, "UNPROVEN ({reason})"),
+        }
+    }
+}
+
 /// A certified branch: the chain of boxes in order along the curve, the tubes, and both ends.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CertifiedBranch {

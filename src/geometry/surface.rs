@@ -6,7 +6,7 @@ use nalgebra::Vector3;
 pub type Vec3 = Vector3<f64>;
 
 /// A rectangular parameter domain `[u0, u1] × [v0, v1]` with `u0 < u1`, `v0 < v1`.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Domain {
     /// `[u0, u1]`.
     pub u: [f64; 2],

@@ -600,6 +600,20 @@ fn event_from_json(v: &Value, k: usize) -> Result<Event> {
     })
 }
 
+/// The name of a certified step case in the result JSON (`"transversal"`, `"isolated_point"`,
+/// `"branch_point"`, `"tangential_curve"`, `"higher_order"`, `"undefined"`).
+pub fn step_case_name(k: crate::certify::contact::StepCase) -> &'static str {
+    use crate::certify::contact::StepCase;
+    match k {
+        StepCase::Transversal => "transversal",
+        StepCase::IsolatedPoint => "isolated_point",
+        StepCase::BranchPoint => "branch_point",
+        StepCase::TangentialCurve => "tangential_curve",
+        StepCase::HigherOrder => "higher_order",
+        StepCase::Undefined => "undefined",
+    }
+}
+
 /// A certified tangential contact as `{"tangential": {...}}`: the start box and its case, the
 /// per-step cases with their a-priori boxes (`"p"`, `"q"`, `"xyz"`, `"s"`), the ends, the tube
 /// radius and (when `tubes` is set) the tube pieces, the cover (`"region"`: searched 4-D boxes,
@@ -609,9 +623,8 @@ pub fn certified_contact_to_json(
     c: &crate::certify::contact::CertifiedContact,
     tubes: bool,
 ) -> Value {
-    use crate::certify::contact::ContactEnd;
-    let case =
-        |k: crate::certify::contact::StepCase| serde_json::to_value(k).unwrap_or(Value::Null);
+    use crate::certify::contact::{ContactEnd, StepCase};
+    let case = |k: StepCase| json!(step_case_name(k));
     let end = |e: &ContactEnd| match e {
         ContactEnd::Boundary { surface } => json!({"kind": "boundary", "surface": surface}),
         ContactEnd::CaseChanged { case: k, near } => {

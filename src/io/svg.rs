@@ -584,17 +584,6 @@ fn draw_model_panel(
     Ok(())
 }
 
-fn end_name(e: EndReason) -> &'static str {
-    match e {
-        EndReason::Boundary { surface: 0 } => "boundary of P",
-        EndReason::Boundary { .. } => "boundary of Q",
-        EndReason::ClosedLoop => "closed loop",
-        EndReason::Singular => "singular point",
-        EndReason::NewtonFailed => "Newton failed",
-        EndReason::PointLimit => "point limit",
-    }
-}
-
 fn draw_legend(
     area: &DrawingArea<SVGBackend<'_>, Shift>,
     result: &Intersection,
@@ -697,13 +686,9 @@ fn draw_legend(
         let status = match b.status {
             BranchStatus::Closed => "closed loop".to_string(),
             BranchStatus::Open => {
-                format!("open: {} → {}", end_name(b.ends[0]), end_name(b.ends[1]))
+                format!("open: {} → {}", b.ends[0], b.ends[1])
             }
-            BranchStatus::Incomplete => format!(
-                "INCOMPLETE: {} → {}",
-                end_name(b.ends[0]),
-                end_name(b.ends[1])
-            ),
+            BranchStatus::Incomplete => format!("INCOMPLETE: {} → {}", b.ends[0], b.ends[1]),
         };
         let text = format!("b{}: {}, {} points", b.id, status, b.points.len());
         area.draw(&Text::new(

@@ -7,6 +7,7 @@
 use crate::error::Result;
 use crate::pair::boundary_direction::{Bound, BoundaryDirection, DecidedBy};
 use crate::pair::branch_point::SingularNode;
+use crate::pair::contact_quadratic::ContactCase;
 use crate::topology::branch_ends::BranchEndCheck;
 use serde_json::{json, Value};
 
@@ -58,11 +59,22 @@ pub fn boundary_ends_to_json(checks: &[Result<Vec<BranchEndCheck>>]) -> Value {
     Value::Array(out)
 }
 
+/// The name of a contact case in the result JSON (`"isolated_point"`, `"branch_point"`,
+/// `"tangential_curve"`, `"higher_order"`).
+pub fn contact_case_name(c: ContactCase) -> &'static str {
+    match c {
+        ContactCase::IsolatedPoint => "isolated_point",
+        ContactCase::BranchPoint => "branch_point",
+        ContactCase::TangentialCurve => "tangential_curve",
+        ContactCase::HigherOrder => "higher_order",
+    }
+}
+
 /// A singular event's `"node"` object: the contact case, `Δ`, whether the point was located
 /// (parallel normals converged), the number of arcs leaving it and their exit points.
 pub fn node_to_json(n: &SingularNode) -> Value {
     json!({
-        "case": serde_json::to_value(n.case).unwrap_or(Value::Null),
+        "case": contact_case_name(n.case),
         "discriminant": n.discriminant,
         "located": n.located,
         "arcs": n.exits.len(),

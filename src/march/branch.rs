@@ -2,10 +2,8 @@
 //!
 //! This is the data behind the result JSON (see the README for the versioned format).
 
-use serde::{Deserialize, Serialize};
-
 /// One point of a traced branch, in both parameter domains and in model space.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CurvePoint {
     /// Parameters `[σ, t]` on the first surface P.
     pub p: [f64; 2],
@@ -16,8 +14,7 @@ pub struct CurvePoint {
 }
 
 /// How a branch ended (at one of its two ends).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EndReason {
     /// Reached the boundary of surface 0 (P) or 1 (Q).
     Boundary {
@@ -34,9 +31,24 @@ pub enum EndReason {
     PointLimit,
 }
 
+impl std::fmt::Display for EndReason {
+    /// `boundary of P`, `boundary of Q`, `closed loop`, `singular point`, `Newton failed`,
+    /// `point limit`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EndReason::Boundary { surface } => {
+                write!(f, "boundary of {}", if *surface == 0 { "P" } else { "Q" })
+            }
+            EndReason::ClosedLoop => f.write_str("closed loop"),
+            EndReason::Singular => f.write_str("singular point"),
+            EndReason::NewtonFailed => f.write_str("Newton failed"),
+            EndReason::PointLimit => f.write_str("point limit"),
+        }
+    }
+}
+
 /// Overall status of a branch.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BranchStatus {
     /// A closed loop traced exactly once.
     Closed,
@@ -47,7 +59,7 @@ pub enum BranchStatus {
 }
 
 /// A traced branch: points ordered along the curve.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Branch {
     /// Index in the result.
     pub id: usize,
@@ -80,8 +92,7 @@ pub fn polyline_length(points: &[CurvePoint]) -> f64 {
 }
 
 /// Kinds of noteworthy points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EventKind {
     /// Normals parallel: a tangential contact, branch point or singular point.
     Singular,
@@ -90,7 +101,7 @@ pub enum EventKind {
 }
 
 /// A noteworthy point found while tracing.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Event {
     /// What it is.
     pub kind: EventKind,
@@ -103,7 +114,7 @@ pub struct Event {
 }
 
 /// All branches and events of one surface pair.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Intersection {
     /// The traced branches.
     pub branches: Vec<Branch>,

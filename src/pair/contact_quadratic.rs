@@ -148,8 +148,7 @@ pub fn contact_from_derivs(
 
 /// The four cases of a tangential point (the one enum for them: certified, boundary and
 /// marcher-side classifications alike).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactCase {
     /// Δ < 0: the surfaces touch at an isolated point.
     IsolatedPoint,
