@@ -23,7 +23,7 @@ use std::path::Path;
 fn scene_and_start(file: &str) -> (Scene, [f64; 4]) {
     let scene = Scene::from_path(Path::new(file)).expect("scene");
     let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
-    let b = &outcome.intersection.branches[0];
+    let b = &outcome.branches[0].marched;
     let pt = b.points[b.points.len() / 2];
     (scene, [pt.p[0], pt.p[1], pt.q[0], pt.q[1]])
 }

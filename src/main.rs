@@ -1,15 +1,12 @@
 //! The `ssitrace` command line: `ssitrace trace SCENE.json ...` and `ssitrace demo`.
 
 use clap::{Parser, Subcommand, ValueEnum};
-use ssitrace::certify::CertifiedEnd;
 use ssitrace::check::straying::StrayReport;
 use ssitrace::io::result_json::write_result;
 use ssitrace::io::scene::{Method, Scene};
-use ssitrace::io::svg::{
-    add_contact_boxes, certified_overlay, write_svg_with_overlay, DEFAULT_OVERLAY_BOXES,
-};
-use ssitrace::march::branch::{BranchStatus, EndReason};
-use ssitrace::pipeline::{BranchCertificate, RunOptions, RunReport};
+use ssitrace::march::branch::BranchStatus;
+use ssitrace::pipeline::{RunOptions, RunReport};
+use ssitrace::BranchCertificate;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -131,57 +128,49 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
     let report = ssitrace::pipeline::run(&scene, &opts)?;
     let elapsed = started.elapsed().as_secs_f64();
     say(&summary(&scene, &report, &opts, elapsed));
-    let outcome = &report.outcome;
     if let Some(path) = &outputs.out {
-        write_result(path, &outcome.intersection, &report.meta)?;
+        write_result(path, &report.result.marched(), &report.meta)?;
         say(&format!("result written to {}\n", path.display()));
     }
     if let Some(path) = &outputs.svg {
-        let title = scene
-            .options
-            .name
-            .clone()
-            .unwrap_or_else(|| "ssitrace".into());
-        let domains = [scene.surfaces[0].domain(), scene.surfaces[1].domain()];
-        let certified: Vec<_> = report
-            .certificates
-            .iter()
-            .filter_map(|c| c.result.as_ref().ok())
-            .collect();
-        let mut overlay = certified_overlay(&certified, DEFAULT_OVERLAY_BOXES);
-        add_contact_boxes(&mut overlay, &report.contacts, DEFAULT_OVERLAY_BOXES);
-        write_svg_with_overlay(path, &outcome.intersection, domains, &title, &overlay)?;
+        write_svg(path, &scene, &report)?;
         say(&format!("picture written to {}\n", path.display()));
     }
     Ok(())
+}
+
+/// Draws the marched curves with the certified boxes and contacts over them.
+#[cfg(feature = "svg")]
+fn write_svg(path: &std::path::Path, scene: &Scene, report: &RunReport) -> ssitrace::Result<()> {
+    use ssitrace::io::svg::{
+        add_contact_boxes, certified_overlay, write_svg_with_overlay, DEFAULT_OVERLAY_BOXES,
+    };
+    let title = scene
+        .options
+        .name
+        .clone()
+        .unwrap_or_else(|| "ssitrace".into());
+    let domains = [scene.surfaces[0].domain(), scene.surfaces[1].domain()];
+    let r = &report.result;
+    let certified: Vec<_> = r.branches.iter().filter_map(|b| b.certified()).collect();
+    let mut overlay = certified_overlay(&certified, DEFAULT_OVERLAY_BOXES);
+    add_contact_boxes(&mut overlay, &r.contacts, DEFAULT_OVERLAY_BOXES);
+    write_svg_with_overlay(path, &r.marched(), domains, &title, &overlay)
+}
+
+/// Without the `svg` feature there is no picture.
+#[cfg(not(feature = "svg"))]
+fn write_svg(path: &std::path::Path, _: &Scene, _: &RunReport) -> ssitrace::Result<()> {
+    Err(ssitrace::Error::Render(format!(
+        "{}: this ssitrace was built without the `svg` feature",
+        path.display()
+    )))
 }
 
 /// Prints to standard output, ignoring a closed pipe (e.g. `ssitrace demo | head -1`).
 fn say(text: &str) {
     use std::io::Write;
     let _ = std::io::stdout().lock().write_all(text.as_bytes());
-}
-
-fn end_name(e: &EndReason) -> String {
-    match e {
-        EndReason::Boundary { surface } => format!("boundary of {}", ["P", "Q"][(*surface).min(1)]),
-        EndReason::ClosedLoop => "closed".into(),
-        EndReason::Singular => "singular point".into(),
-        EndReason::NewtonFailed => "Newton failed".into(),
-        EndReason::PointLimit => "point limit".into(),
-    }
-}
-
-fn certified_end_name(e: &CertifiedEnd) -> String {
-    match e {
-        CertifiedEnd::Boundary { surface } => {
-            format!("boundary of {}", ["P", "Q"][(*surface).min(1)])
-        }
-        CertifiedEnd::ClosedLoop => "closed".into(),
-        CertifiedEnd::Singular { .. } => "singular box".into(),
-        CertifiedEnd::CloseBranches { h, .. } => format!("close branches (h = {h:.1e})"),
-        CertifiedEnd::Unproven { reason, .. } => format!("UNPROVEN ({reason})"),
-    }
 }
 
 /// One summary line for a branch's certification.
@@ -206,8 +195,8 @@ fn certificate_line(c: &BranchCertificate, tolerance: f64) -> String {
                 b.steps(),
                 b.certified_tolerance,
                 tolerance,
-                certified_end_name(&b.ends[0]),
-                certified_end_name(&b.ends[1]),
+                b.ends[0],
+                b.ends[1],
                 max_width,
                 ms
             )
@@ -271,16 +260,16 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
     use std::fmt::Write;
     let mut out = String::new();
     let name = scene.options.name.as_deref().unwrap_or("scene");
-    let outcome = &report.outcome;
-    let ix = &outcome.intersection;
+    let r = &report.result;
     let _ = writeln!(
         out,
         "{name}: {} branch(es), {} event(s), {:.1} ms",
-        ix.branches.len(),
-        ix.events.len(),
+        r.branches.len(),
+        r.events.len(),
         seconds * 1e3
     );
-    for b in &ix.branches {
+    for traced in &r.branches {
+        let b = &traced.marched;
         let status = match b.status {
             BranchStatus::Closed => "closed loop",
             BranchStatus::Open => "open",
@@ -289,7 +278,7 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
         let desc = if b.status == BranchStatus::Closed {
             String::new()
         } else {
-            format!(" from {} to {}", end_name(&b.ends[0]), end_name(&b.ends[1]))
+            format!(" from {} to {}", b.ends[0], b.ends[1])
         };
         let _ = writeln!(
             out,
@@ -297,31 +286,33 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
             b.id,
             b.points.len()
         );
-        if let Some(c) = report.certificates.iter().find(|c| c.branch == b.id) {
+        if let Some(c) = &traced.certificate {
             let _ = writeln!(out, "{}", certificate_line(c, opts.required_tolerance));
         }
-        if let Some(r) = report.straying.iter().find(|r| r.branch == b.id) {
-            let _ = writeln!(out, "{}", straying_line(r));
+        if let Some(s) = &traced.straying {
+            let _ = writeln!(out, "{}", straying_line(s));
         }
     }
-    for e in &ix.events {
+    for e in &r.events {
         let _ = writeln!(
             out,
             "  event {:?} at xyz = ({:.6}, {:.6}, {:.6})",
             e.kind, e.xyz[0], e.xyz[1], e.xyz[2]
         );
     }
-    if opts.method != Method::March {
+    if let Some(c) = &r.stats.certify {
+        let march = r.stats.march_seconds;
         let _ = writeln!(
             out,
-            "  time: marching {:.1} ms, certified {:.1} ms, ratio certified/marching {:.1}",
-            report.march_seconds * 1e3,
-            report.certify_seconds * 1e3,
-            report.certify_seconds / report.march_seconds.max(1e-9)
+            "  time: marching {:.1} ms, certified {:.1} ms ({:.1} ms wall), ratio certified/marching {:.1}",
+            march * 1e3,
+            c.seconds * 1e3,
+            c.wall_seconds * 1e3,
+            c.seconds / march.max(1e-9)
         );
     }
-    let s = &outcome.stats;
-    if s.search_complete && s.failed_starts == 0 {
+    let s = &r.stats.search;
+    if r.is_complete() {
         let _ = writeln!(
             out,
             "  search complete: {} pair(s) proven disjoint, {} proven free of closed loops",

@@ -21,8 +21,9 @@ fn three_nested_loops_are_certified_with_disjoint_tubes() {
     opts.method = Method::Validated;
     let report = run(&scene, &opts).expect("runs");
     let loops: Vec<&CertifiedBranch> = report
-        .certificates
-        .iter()
+        .result
+        .certificates()
+        .into_iter()
         .map(|c| c.result.as_ref().expect("certified"))
         .collect();
     assert_eq!(loops.len(), 3);

@@ -12,6 +12,7 @@ use common::scenes::{scene, scene_path};
 use inari::Interval;
 use serde_json::Value;
 use ssitrace::certify::{CertifiedBranch, CertifiedEnd, EnclosureBox};
+use ssitrace::io::intersection_json::certificate_json;
 use ssitrace::io::result_json::{
     enclosures_from_json, interval_from_json, result_from_json, result_to_json,
 };
@@ -19,7 +20,8 @@ use ssitrace::io::scene::{Method, Scene};
 use ssitrace::io::svg::{certified_overlay, render_svg_with_overlay};
 use ssitrace::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
 use ssitrace::numeric::scalar::{interval, point};
-use ssitrace::pipeline::{certificate_json, certify_marched_branch, run, RunOptions, RunReport};
+use ssitrace::pipeline::{run, RunOptions, RunReport};
+use ssitrace::solve::certify_marched_branch;
 
 /// z = x² + y² over [−1/32, 1/32]² against the plane y = 1/64: the arc
 /// `(x, 1/64, x² + 1/4096)`, `x ∈ [−1/32, 1/32]`, from P's boundary to P's boundary; on Q
@@ -46,8 +48,9 @@ fn run_with(scene: &Scene, method: Method, max_steps: usize) -> RunReport {
 }
 
 fn the_branch(report: &RunReport) -> &CertifiedBranch {
-    assert_eq!(report.certificates.len(), 1);
-    report.certificates[0]
+    let certificates = report.result.certificates();
+    assert_eq!(certificates.len(), 1);
+    certificates[0]
         .result
         .as_ref()
         .expect("the branch is certified")
@@ -137,7 +140,7 @@ fn check_contiguous(boxes: &[EnclosureBox]) -> (f64, f64) {
 fn parabola_arc_is_certified_end_to_end_and_every_box_holds_the_arc() {
     let scene = Scene::from_json_str(PARABOLA_ARC).unwrap();
     let report = run_with(&scene, Method::Validated, 5000);
-    assert_eq!(report.outcome.intersection.branches.len(), 1);
+    assert_eq!(report.result.branches.len(), 1);
     let cb = the_branch(&report);
     assert_eq!(
         cb.ends,
@@ -166,13 +169,13 @@ fn parabola_arc_is_certified_end_to_end_and_every_box_holds_the_arc() {
         "parabola arc: {} steps, covered s ∈ [{s0:.6}, {s1:.6}] (arc length {length:.6}), tolerance {:.3e}, {:.0} ms",
         cb.steps(),
         cb.certified_tolerance,
-        report.certify_seconds * 1e3
+        report.result.stats.certify_seconds() * 1e3
     );
     assert!(s1 - s0 >= length * (1.0 - 1e-12));
     assert!(s1 - s0 <= length + 0.01);
     // The straying check: the marched points all lie on the certified arc, which (cut where the
     // reported curve leaves the domain) is the arc's length, and they span all of it.
-    let st = &report.straying[0];
+    let st = report.result.straying()[0];
     println!(
         "straying check: {} straying, {} unchecked, certified length {:.9} (closed form {length:.9}), covered {:.6}",
         st.straying.len(),
@@ -188,7 +191,7 @@ fn parabola_arc_is_certified_end_to_end_and_every_box_holds_the_arc() {
     );
     assert!(st.covered_fraction > 0.9999, "{}", st.covered_fraction);
     // JSON: documented fields, and the boxes read back bit for bit.
-    let doc = result_to_json(&report.outcome.intersection, &report.meta);
+    let doc = result_to_json(&report.result.marched(), &report.meta);
     assert_eq!(doc["method"], "validated");
     let c = &doc["branches"][0]["certified"];
     let back = check_certified_layout(c, cb.steps());
@@ -229,7 +232,7 @@ fn budgeted_circle_boxes_hold_the_circle_and_ends_are_unproven() {
         assert!(meets((b.q[0] - half).sqr() + (b.q[1] - half).sqr(), r2q));
     }
     check_contiguous(&cb.boxes);
-    let doc = result_to_json(&report.outcome.intersection, &report.meta);
+    let doc = result_to_json(&report.result.marched(), &report.meta);
     assert_eq!(doc["method"], "both");
     let c = &doc["branches"][0]["certified"];
     check_certified_layout(c, 50);
@@ -260,7 +263,7 @@ fn a_branch_that_cannot_be_certified_is_reported_as_an_error_object() {
         points: vec![off; 3],
     };
     let opts = RunOptions::from_scene(&scene);
-    let cert = certify_marched_branch(p, q, &branch, &opts);
+    let cert = certify_marched_branch(p, q, &branch, &opts.options());
     assert_eq!(cert.branch, 7);
     let err = cert.result.as_ref().expect_err("off the curve");
     let v = certificate_json(&cert, opts.required_tolerance, false);
@@ -272,7 +275,7 @@ fn a_branch_that_cannot_be_certified_is_reported_as_an_error_object() {
         points: Vec::new(),
         ..branch
     };
-    let cert = certify_marched_branch(p, q, &empty, &opts);
+    let cert = certify_marched_branch(p, q, &empty, &opts.options());
     let v = certificate_json(&cert, opts.required_tolerance, false);
     assert!(v["error"].as_str().is_some() && v.get("start_point").is_none());
 }
@@ -355,7 +358,7 @@ fn overlay_merges_boxes_into_hulls_that_hold_them() {
         }
     }
     let svg = render_svg_with_overlay(
-        &report.outcome.intersection,
+        &report.result.marched(),
         [scene.surfaces[0].domain(), scene.surfaces[1].domain()],
         "hulls",
         &overlay,

@@ -26,7 +26,7 @@ fn certify_scene(file: &str, opts: &CertifyOptions) -> Vec<Run> {
     let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
     let [p, q] = &scene.surfaces;
     let mut runs = Vec::new();
-    for b in &outcome.intersection.branches {
+    for b in &outcome.marched().branches {
         let pt = b.points[b.points.len() / 2];
         let start = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
         let t0 = Instant::now();

@@ -42,7 +42,7 @@ fn certified_against_marching_cpu_time() {
         let scene = scene(file);
         let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
         let [p, q] = &scene.surfaces;
-        let branches = &outcome.intersection.branches;
+        let branches = &outcome.marched().branches;
         let take = if max_length.is_finite() {
             1
         } else {

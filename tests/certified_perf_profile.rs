@@ -20,9 +20,9 @@ fn starts(file: &str) -> (Scene, Vec<[f64; 4]>) {
     let scene = scene(file);
     let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
     let starts = outcome
-        .intersection
         .branches
         .iter()
+        .map(|b| &b.marched)
         .map(|b| {
             let pt = b.points[b.points.len() / 2];
             [pt.p[0], pt.p[1], pt.q[0], pt.q[1]]

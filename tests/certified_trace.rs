@@ -206,7 +206,7 @@ fn rational_sphere_patch_against_plane_arc_is_enclosed() {
     let (marched, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).unwrap();
     let [p, q] = &scene.surfaces;
     let rad = (141.0f64).sqrt() / 16.0;
-    let pts = &marched.intersection.branches[0].points;
+    let pts = &marched.branches[0].marched.points;
     let pt = pts[pts.len() / 3];
     let opts = CertifyOptions {
         steps: StepBudget {
@@ -387,7 +387,7 @@ fn widths_along_the_sphere_loop_with_and_without_contraction() {
     let scene = scene("sphere_patch_plane.json");
     let (marched, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).unwrap();
     let [p, q] = &scene.surfaces;
-    let pts = &marched.intersection.branches[0].points;
+    let pts = &marched.branches[0].marched.points;
     let pt = pts[pts.len() / 2];
     let start = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
     let with = certify_branch(p, q, start, &CertifyOptions::default()).expect("certified");

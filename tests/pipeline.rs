@@ -10,10 +10,10 @@ use ssitrace::pipeline::{run_scene, RunOptions};
 fn run(file: &str) -> Intersection {
     let scene = scene(file);
     let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("runs");
-    assert_eq!(outcome.stats.failed_starts, 0);
-    assert_eq!(outcome.stats.undecided_leaves, 0);
-    assert!(!outcome.stats.search_truncated);
-    outcome.intersection
+    assert_eq!(outcome.stats.search.failed_starts, 0);
+    assert_eq!(outcome.stats.search.undecided_leaves, 0);
+    assert!(!outcome.stats.search.search_truncated);
+    outcome.marched()
 }
 
 /// Smallest model-space distance between points of two branches.

@@ -343,16 +343,16 @@ fn pipeline_both_certifies_the_arcs_and_stops_them_at_the_nodes() {
     let seconds = t0.elapsed().as_secs_f64();
     println!(
         "pipeline both: {seconds:.2} s (march {:.2} s, certify {:.2} s), {} branches",
-        report.march_seconds,
-        report.certify_seconds,
-        report.certificates.len()
+        report.result.stats.march_seconds,
+        report.result.stats.certify_seconds(),
+        report.result.certificates().len()
     );
     println!(
         "{:>3} {:>6} {:>10} {:>24} {:>24}",
         "id", "steps", "tolerance", "end 0", "end 1"
     );
     let mut certified = 0;
-    for c in &report.certificates {
+    for c in report.result.certificates() {
         match &c.result {
             Ok(cb) => {
                 certified += 1;
@@ -385,6 +385,6 @@ fn pipeline_both_certifies_the_arcs_and_stops_them_at_the_nodes() {
             Err(e) => println!("{:>3} not certified: {e}", c.branch),
         }
     }
-    assert_eq!(report.certificates.len(), 7);
+    assert_eq!(report.result.certificates().len(), 7);
     assert_eq!(certified, 7);
 }

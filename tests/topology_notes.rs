@@ -68,7 +68,7 @@ fn boundary_ends_and_nodes_are_written_and_read_back() {
         let meta = &report.meta;
         assert_eq!(meta.stats["inconsistent_boundary_ends"], 0, "{file}");
         // Every boundary end of every branch is checked, proven, and seen the right way round.
-        for b in &report.outcome.intersection.branches {
+        for b in &report.result.marched().branches {
             let expected = b
                 .ends
                 .iter()
@@ -102,7 +102,7 @@ fn boundary_ends_and_nodes_are_written_and_read_back() {
             assert_eq!(n["case"], "branch_point", "{file}: {n}");
             assert_eq!(n["arcs"], 4, "{file}: {n}");
         }
-        let doc = result_to_json(&report.outcome.intersection, meta);
+        let doc = result_to_json(&report.result.marched(), meta);
         let back = result_from_json(&doc).expect("reads back");
         assert_eq!(back.meta.branch_notes, meta.branch_notes, "{file}");
         assert_eq!(back.meta.event_notes, meta.event_notes, "{file}");
@@ -185,10 +185,14 @@ fn a_curve_of_tangency_is_one_certified_contact_and_no_branch() {
         ..RunOptions::from_scene(&s)
     };
     let report = run(&s, &opts).expect("runs");
-    assert!(report.outcome.intersection.branches.is_empty());
-    assert!(report.outcome.nodes.iter().all(|n| n.exits.is_empty()));
-    assert_eq!(report.contacts.len(), 1, "one contact, certified once");
-    let c = &report.contacts[0];
+    assert!(report.result.branches.is_empty());
+    assert!(report.result.nodes.iter().all(|n| n.exits.is_empty()));
+    assert_eq!(
+        report.result.contacts.len(),
+        1,
+        "one contact, certified once"
+    );
+    let c = &report.result.contacts[0];
     assert!(!c.steps.is_empty());
     for st in &c.steps {
         assert_eq!(

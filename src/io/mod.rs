@@ -1,6 +1,8 @@
-//! Input and output: the scene format, result JSON, SVG pictures.
+//! Input and output: the scene format, result JSON, SVG pictures (with the `svg` feature).
 
+pub mod intersection_json;
 pub mod result_json;
 pub mod scene;
+#[cfg(feature = "svg")]
 pub mod svg;
 pub mod topology_json;

@@ -27,27 +27,7 @@ use inari::Interval;
 use serde_json::{json, Map, Value};
 use std::path::Path;
 
-/// Which tracing method a scene asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Method {
-    /// Floating-point marching only (`"march"`).
-    March,
-    /// The validated (certified) tracer only (`"validated"`).
-    Validated,
-    /// Both (`"both"`).
-    Both,
-}
-
-impl Method {
-    /// The name used in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::March => "march",
-            Method::Validated => "validated",
-            Method::Both => "both",
-        }
-    }
-}
+pub use crate::solve::Method;
 
 /// Run options of a scene; every field has a documented default.
 #[derive(Debug, Clone, PartialEq)]

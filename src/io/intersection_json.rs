@@ -1,0 +1,173 @@
+//! The result document of a [`SurfaceIntersection`]: the stats, the `"certified"` member of each
+//! branch with its `"straying"` report, the certified events and contacts, and the topology
+//! notes, gathered into a [`ResultMeta`] for [`write_result`](super::result_json::write_result).
+
+use serde_json::{json, Map, Value};
+
+use super::result_json::{
+    certified_contact_to_json, certified_error_to_json, certified_events_to_json,
+    certified_to_json, ResultMeta, CERTIFIED_CONTACT_EVENT,
+};
+use super::topology_json::{boundary_ends_to_json, node_to_json};
+use crate::check::straying::StrayReport;
+use crate::solve::{BranchCertificate, SurfaceIntersection};
+
+/// Everything of `r` that goes into the result document besides the marched curves
+/// ([`SurfaceIntersection::marched`]): scene name, method, stats, the certified members and
+/// events, the boundary-end and node notes. With `tubes`, the certified tube pieces are written
+/// too (large).
+pub fn result_meta(scene: Option<String>, r: &SurfaceIntersection, tubes: bool) -> ResultMeta {
+    let opts = &r.options;
+    let mut meta = ResultMeta::new(scene, opts.method.name());
+    meta.stats = stats_json(r);
+    for b in &r.branches {
+        if !b.boundary_ends.is_empty() {
+            meta.branch_notes.entry(b.id()).or_default().insert(
+                "boundary_ends".into(),
+                boundary_ends_to_json(&b.boundary_ends),
+            );
+        }
+    }
+    for k in 0..r.events.len() {
+        if let Some(n) = r.event_node(k) {
+            meta.event_notes
+                .entry(k)
+                .or_default()
+                .insert("node".into(), node_to_json(n));
+        }
+    }
+    if !opts.method.certifies() {
+        return meta;
+    }
+    for b in &r.branches {
+        let Some(cert) = &b.certificate else { continue };
+        let mut v = certificate_json(cert, opts.required_tolerance, tubes);
+        if let (Some(s), Value::Object(m)) = (&b.straying, &mut v) {
+            m.insert("straying".into(), straying_json(s));
+        }
+        meta.certified.insert(b.id(), v);
+        if let Ok(c) = &cert.result {
+            meta.certified_events
+                .extend(certified_events_to_json(b.id(), c, &|y| cert.xyz_of_end(y)));
+        }
+    }
+    for c in &r.contacts {
+        let mut v = certified_contact_to_json(c, tubes);
+        if let Value::Object(m) = &mut v {
+            m.insert("kind".into(), json!(CERTIFIED_CONTACT_EVENT));
+        }
+        meta.certified_events.push(v);
+    }
+    if let Some(e) = &r.contact_error {
+        meta.certified_events.push(json!({
+            "kind": CERTIFIED_CONTACT_EVENT,
+            "error": e.to_string(),
+        }));
+    }
+    meta
+}
+
+/// The branch's `"certified"` object: [`certified_to_json`] (or `{"error": ...}`) plus
+/// `"meets_tolerance"` (only when certified), `"required_tolerance"`, `"start_point"` (when the
+/// branch had points), `"max_length"` and `"seconds"`.
+pub fn certificate_json(c: &BranchCertificate, tolerance: f64, tubes: bool) -> Value {
+    let mut v = match &c.result {
+        Ok(cb) => certified_to_json(cb, tubes),
+        Err(e) => certified_error_to_json(e),
+    };
+    if let Value::Object(m) = &mut v {
+        if let Some(ok) = c.meets(tolerance) {
+            m.insert("meets_tolerance".into(), json!(ok));
+        }
+        m.insert("required_tolerance".into(), json!(tolerance));
+        if c.start.iter().all(|x| x.is_finite()) {
+            m.insert("start_point".into(), json!(c.start));
+        }
+        m.insert("max_length".into(), json!(c.max_length));
+        m.insert("seconds".into(), json!(c.seconds));
+    }
+    v
+}
+
+/// A branch's `"straying"` object: `straying_points` (objects with the marched point's `index`,
+/// the proven parameter `distance` from the certified curve, its floating-point `estimate`, the
+/// `slack` it exceeds and, when proven, the branch it strayed `onto`), `unchecked_points`
+/// (indices), `looping`, `covered_fraction`, `marched_length` and `certified_length`.
+pub fn straying_json(r: &StrayReport) -> Value {
+    let points: Vec<Value> = r
+        .straying
+        .iter()
+        .map(|s| {
+            let mut v = json!({
+                "index": s.index,
+                "distance": s.distance,
+                "estimate": s.estimate,
+                "slack": s.slack,
+            });
+            if let (Some(j), Value::Object(m)) = (s.onto, &mut v) {
+                m.insert("onto".into(), json!(j));
+            }
+            v
+        })
+        .collect();
+    json!({
+        "straying_points": points,
+        "unchecked_points": r.unchecked,
+        "looping": r.looping,
+        "covered_fraction": r.covered_fraction,
+        "marched_length": r.marched_length,
+        "certified_length": r.certified_length,
+    })
+}
+
+/// The `"stats"` object: the search and marching counts and seconds, the step, the inconsistent
+/// boundary ends and, when the method certifies, the certification counts, budgets and seconds.
+pub fn stats_json(r: &SurfaceIntersection) -> Map<String, Value> {
+    let s = &r.stats.search;
+    let v = json!({
+        "step": r.options.step,
+        "branches": r.branches.len(),
+        "points": s.points,
+        "boundary_starts": s.boundary_starts,
+        "interior_candidates": s.interior_candidates,
+        "skipped_covered": s.skipped_covered,
+        "failed_starts": s.failed_starts,
+        "undecided_leaves": s.undecided_leaves,
+        "search_truncated": s.search_truncated,
+        "search_complete": s.search_complete,
+        "disjoint_pairs": s.disjoint_pairs,
+        "loop_free_pairs": s.loop_free_pairs,
+        "undecided_regions": s
+            .undecided_regions
+            .iter()
+            .map(|r| json!({"p": r.p, "q": r.q}))
+            .collect::<Vec<_>>(),
+        "contact_points": s.contact_points,
+        "search_seconds": s.search_seconds,
+        "march_seconds": s.march_seconds,
+        "inconsistent_boundary_ends": r.stats.inconsistent_boundary_ends,
+    });
+    let mut m = match v {
+        Value::Object(m) => m,
+        _ => Map::new(),
+    };
+    if let Some(c) = &r.stats.certify {
+        let mut put = |k: &str, v: Value| {
+            m.insert(k.into(), v);
+        };
+        put("certified_steps", json!(c.certified_steps));
+        put("certify_failures", json!(c.failures));
+        put("certify_seconds", json!(c.seconds));
+        put("max_steps", json!(r.options.max_steps));
+        put("tolerance", json!(r.options.required_tolerance));
+        put("straying_seconds", json!(c.straying_seconds));
+        put("contact_seconds", json!(c.contact_seconds));
+        put("straying_points", json!(c.straying_points));
+        put("unchecked_points", json!(c.unchecked_points));
+        put("looping_branches", json!(c.looping_branches));
+        if r.contact_error.is_none() {
+            put("certified_contacts", json!(r.contacts.len()));
+        }
+    }
+    m
+}

@@ -1,0 +1,240 @@
+//! [`intersect`]: search, march, check the boundary ends, certify the branches (in parallel),
+//! check the marched points against the certificates, certify the contacts.
+
+use std::time::Instant;
+
+use inari::Interval;
+use rayon::prelude::*;
+
+use super::options::Options;
+use super::result::{
+    end_box, BranchCertificate, CertifyStats, Stats, SurfaceIntersection, TracedBranch,
+};
+use crate::certify::contact::certify_contact_events;
+use crate::certify::{certify_branch, CertifiedBranch, CertifyOptions, StepBudget};
+use crate::check::straying::{check_branches, StrayReport};
+use crate::error::{Error, Result};
+use crate::geometry::RationalBezierPatch;
+use crate::march::branch::Branch;
+use crate::march::MarchOptions;
+use crate::topology::branch_ends::check_branch_ends;
+use crate::topology::intersect::intersect as march_all;
+
+/// Finds, traces and (unless the method is [`Method::March`](super::Method::March)) certifies
+/// every branch of `P ∩ Q`.
+///
+/// The marcher finds and traces the branches. A certifying method then certifies each branch
+/// from one of its points (see [`certify_marched_branch`]; the branches are certified in
+/// parallel, on rayon's thread pool, and reported in branch order), checks the marched points
+/// against the certificates and certifies the tangential contacts behind the marcher's singular
+/// events. A branch whose certification fails keeps the error in its
+/// [`BranchCertificate::result`]; the run goes on.
+///
+/// Errors: the options fail [`Options::check`].
+pub fn intersect(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    opts: &Options,
+) -> Result<SurfaceIntersection> {
+    opts.check()?;
+    let march = MarchOptions {
+        step: opts.step,
+        ..MarchOptions::default()
+    };
+    let started = Instant::now();
+    let outcome = march_all(p, q, &march, &opts.search);
+    let march_seconds = started.elapsed().as_secs_f64();
+    let marched = outcome.intersection.branches;
+    let boundary_ends: Vec<_> = marched
+        .iter()
+        .map(|b| check_branch_ends(p, q, b, &opts.boundary))
+        .collect();
+    let inconsistent_boundary_ends = boundary_ends
+        .iter()
+        .flatten()
+        .flatten()
+        .flatten()
+        .filter(|c| !c.consistent)
+        .count();
+    let mut stats = Stats {
+        search: outcome.stats,
+        march_seconds,
+        inconsistent_boundary_ends,
+        certify: None,
+    };
+    let mut certificates: Vec<Option<BranchCertificate>> = marched.iter().map(|_| None).collect();
+    let mut straying: Vec<Option<StrayReport>> = marched.iter().map(|_| None).collect();
+    let mut contacts = Vec::new();
+    let mut contact_error = None;
+    if opts.method.certifies() {
+        let certifying = Instant::now();
+        let certs: Vec<BranchCertificate> = marched
+            .par_iter()
+            .map(|b| certify_marched_branch(p, q, b, opts))
+            .collect();
+        let wall_seconds = certifying.elapsed().as_secs_f64();
+        let certified: Vec<Option<&CertifiedBranch>> =
+            certs.iter().map(BranchCertificate::certified).collect();
+        let checking = Instant::now();
+        let reports = check_branches(p, q, &marched, &certified, march.newton_tolerance);
+        let straying_seconds = checking.elapsed().as_secs_f64();
+        let contacting = Instant::now();
+        match certify_contact_events(p, q, &outcome.intersection.events, &opts.contact) {
+            Ok(c) => contacts = c,
+            Err(e) => contact_error = Some(e),
+        }
+        let contact_seconds = contacting.elapsed().as_secs_f64();
+        let count = |f: &dyn Fn(&StrayReport) -> usize| reports.iter().map(f).sum::<usize>();
+        stats.certify = Some(CertifyStats {
+            certified_steps: certified.iter().flatten().map(|c| c.steps()).sum(),
+            failures: certified.iter().filter(|c| c.is_none()).count(),
+            // A fold from +0.0: an empty f64 sum is -0.0, which would print as such.
+            seconds: certs.iter().fold(0.0, |t, c| t + c.seconds),
+            wall_seconds,
+            straying_seconds,
+            contact_seconds,
+            straying_points: count(&|r| r.straying.len()),
+            unchecked_points: count(&|r| r.unchecked.len()),
+            looping_branches: count(&|r| usize::from(r.looping)),
+        });
+        certificates = certs.into_iter().map(Some).collect();
+        straying = reports.into_iter().map(Some).collect();
+    }
+    let branches = marched
+        .into_iter()
+        .zip(certificates)
+        .zip(straying)
+        .zip(boundary_ends)
+        .map(
+            |(((marched, certificate), straying), boundary_ends)| TracedBranch {
+                marched,
+                certificate,
+                straying,
+                boundary_ends,
+            },
+        )
+        .collect();
+    Ok(SurfaceIntersection {
+        options: *opts,
+        branches,
+        events: outcome.intersection.events,
+        nodes: outcome.nodes,
+        contacts,
+        contact_error,
+        stats,
+    })
+}
+
+/// Certifies one marched branch within the budgets of `opts`: from its middle point (or a more
+/// transversal point at a quarter or a third of the way), with `opts.max_steps` steps and
+/// `opts.length_budget` × the marched length of arc per half branch. Never fails as a whole: a
+/// certification failure is kept in [`BranchCertificate::result`].
+pub fn certify_marched_branch(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &Branch,
+    opts: &Options,
+) -> BranchCertificate {
+    let started = Instant::now();
+    let length = b.length();
+    // A closed loop is traced once from its start, an open branch each way from the middle:
+    // 1.5 × the marched length covers either with room to spare.
+    let max_length = if length > 0.0 {
+        opts.length_budget * length
+    } else {
+        opts.step
+    };
+    let certify = CertifyOptions {
+        steps: StepBudget {
+            max_steps: opts.max_steps,
+            max_length,
+            ..StepBudget::CERTIFY
+        },
+        ..CertifyOptions::default()
+    };
+    let (start, result) = match choose_start(p, q, b) {
+        Some(y) => (y, certify_branch(p, q, y, &certify)),
+        None => (
+            [f64::NAN; 4],
+            Err(Error::Certification {
+                reason: "the marched branch has no points".into(),
+                near: [f64::NAN; 4],
+            }),
+        ),
+    };
+    let end_xyz = match &result {
+        Ok(c) => c
+            .ends
+            .each_ref()
+            .map(|e| end_box(e).and_then(|y| model_box(p, q, y))),
+        Err(_) => [None, None],
+    };
+    BranchCertificate {
+        branch: b.id,
+        start,
+        max_length,
+        result,
+        end_xyz,
+        seconds: started.elapsed().as_secs_f64(),
+    }
+}
+
+/// `sin²` of the angle between the normals of P and Q at `y`: 1 for perpendicular surfaces,
+/// 0 at tangency (a floating-point estimate, used only to pick a start point).
+fn transversality(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[f64; 4]) -> f64 {
+    let (a, b) = (p.derivs_f64(y[0], y[1]), q.derivs_f64(y[2], y[3]));
+    let cross = |u: [f64; 3], v: [f64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let n2 = |u: [f64; 3]| u.iter().map(|x| x * x).sum::<f64>();
+    let (np, nq) = (cross(a.su, a.sv), cross(b.su, b.sv));
+    let s = n2(cross(np, nq)) / (n2(np) * n2(nq));
+    if s.is_finite() {
+        s
+    } else {
+        0.0
+    }
+}
+
+/// The start point of a certified trace: the middle point of the marched branch, unless a point
+/// at a quarter or a third of the way is at least twice as transversal.
+fn choose_start(p: &RationalBezierPatch, q: &RationalBezierPatch, b: &Branch) -> Option<[f64; 4]> {
+    let n = b.points.len();
+    if n == 0 {
+        return None;
+    }
+    let at = |i: usize| {
+        let c = &b.points[i.min(n - 1)];
+        [c.p[0], c.p[1], c.q[0], c.q[1]]
+    };
+    let middle = at(n / 2);
+    let mut best = (middle, 2.0 * transversality(p, q, &middle));
+    for i in [n / 4, n / 3, 2 * n / 3, 3 * n / 4] {
+        let y = at(i);
+        let s = transversality(p, q, &y);
+        if s > best.1 {
+            best = (y, s);
+        }
+    }
+    Some(best.0)
+}
+
+/// `P([σ],[t]) ∩ Q([u],[v])` for a bounded parameter box; `None` if unbounded or empty.
+fn model_box(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y: &[Interval; 4],
+) -> Option<[Interval; 3]> {
+    if y.iter()
+        .any(|x| x.is_empty() || !x.inf().is_finite() || !x.sup().is_finite())
+    {
+        return None;
+    }
+    let (a, b) = (p.enclose(y[0], y[1]), q.enclose(y[2], y[3]));
+    let out: [Interval; 3] = std::array::from_fn(|i| a[i].intersection(b[i]));
+    (!out.iter().any(|x| x.is_empty())).then_some(out)
+}
