@@ -1,6 +1,6 @@
 //! The versioned result JSON (`"format": "ssitrace-result"`, `"version": 1`).
 //!
-//! The document is the public contract described in the README:
+//! The document is the public contract described in `docs/result-format.md`:
 //!
 //! ```json
 //! {"format": "ssitrace-result", "version": 1, "scene": "name or null", "method": "march",
@@ -377,7 +377,7 @@ pub fn tube_to_json(t: &TubePiece) -> Value {
     })
 }
 
-/// A branch's `"certified"` object (layout in the README): the chain of enclosures, the
+/// A branch's `"certified"` object (layout in `docs/result-format.md`): the chain of enclosures, the
 /// certified tolerance, the step count, both ends, the start box, the fixed start coordinate,
 /// the largest tight-box width and, when `tubes` is set, the tube pieces.
 pub fn certified_to_json(c: &CertifiedBranch, tubes: bool) -> Value {

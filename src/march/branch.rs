@@ -1,6 +1,6 @@
 //! The result of intersecting two surfaces: branches of curve points and events.
 //!
-//! This is the data behind the result JSON (see the README for the versioned format).
+//! This is the data behind the result JSON (see `docs/result-format.md` for the versioned format).
 
 /// One point of a traced branch, in both parameter domains and in model space.
 #[derive(Debug, Clone, Copy, PartialEq)]
