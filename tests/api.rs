@@ -135,3 +135,33 @@ fn march_only_certifies_nothing() {
     assert!(r.stats.certify.is_none() && !r.all_certified());
     assert_eq!(r.marched(), typed("sphere_patch_plane.json").marched());
 }
+
+/// Certifying the branches on one thread or on several gives the same branches in the same
+/// order, with the same certificates.
+#[test]
+fn thread_count_does_not_change_the_result() {
+    let scene =
+        Scene::from_path(std::path::Path::new(&scene_path("two_loops_s31_s32.json"))).unwrap();
+    let [p, q] = &scene.surfaces;
+    let opts = Options {
+        step: scene.options.step,
+        ..Options::default()
+    };
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| intersect(p, q, &opts).unwrap())
+    };
+    let (one, three) = (on(1), on(3));
+    assert_eq!(one.marched(), three.marched());
+    assert_eq!(one.branches.len(), 2);
+    for (a, b) in one.branches.iter().zip(&three.branches) {
+        let (ca, cb) = (a.certified().unwrap(), b.certified().unwrap());
+        assert_eq!(ca.boxes, cb.boxes);
+        assert_eq!(ca.ends, cb.ends);
+        assert_eq!(a.certified_tolerance(), b.certified_tolerance());
+        assert_eq!(a.straying, b.straying);
+    }
+}
