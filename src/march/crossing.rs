@@ -38,6 +38,37 @@ where
     Some(n)
 }
 
+/// The singular point just ahead of `cur` when Newton cannot step on: within a few microns of a
+/// branch point the two sheets of the curve are closer together than the Newton tolerance can
+/// tell apart, so the corrector fails before the sine drops below `singular_sine`. While the
+/// normals are nearly parallel (sine below `watch_sine`), the point is located by Gauss–Newton
+/// from `cur`; it is accepted when it lies inside both domains, within one step of `cur` and
+/// ahead of it (within 60° of the tangent; a contact point beside the curve, as inside a tiny
+/// loop, is not where the march ends). Returns its parameters.
+pub(crate) fn singular_ahead<S1, S2>(
+    p: &S1,
+    q: &S2,
+    cur: &Node,
+    opts: &MarchOptions,
+) -> Option<[f64; 4]>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    if cur.frame.sine >= opts.watch_sine {
+        return None;
+    }
+    let scale = 1.0 + cur.frame.xyz.norm();
+    let tol = (100.0 * opts.newton_tolerance).max(1e-9 * scale);
+    let x = locate_singular_point(p, q, cur.x, tol, opts.singular_sine)?;
+    if !inside(&x, &p.domain(), &q.domain(), opts.domain_tolerance) {
+        return None;
+    }
+    let to = p.point(x[0], x[1]) - cur.frame.xyz;
+    let dist = to.norm();
+    (dist <= opts.step && (to.dot(&cur.frame.tangent) >= 0.5 * dist || dist <= tol)).then_some(x)
+}
+
 /// Crosses the singular point reached as the last of `path` (marched from `start`) straight
 /// through: the node is located and analysed (or found among `visited`), the exit the march
 /// arrived through is marked used, and the march continues through the unused exit nearest to

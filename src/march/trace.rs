@@ -25,7 +25,9 @@
 //!   point itself, located by Gauss–Newton. With `cross_singular` the march continues straight
 //!   through the node's unused exit (each arc once), and the closing test then accepts rotation
 //!   index 0.
-//! - **Point limit** and **Newton failure** end the half with that reason.
+//! - **Point limit** and **Newton failure** end the half with that reason, except that Newton
+//!   failing within a step of a singular point ahead (normals nearly parallel; beside a branch
+//!   point the curve's sheets are closer than the Newton tolerance resolves) stops on that point.
 
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::pair_bounds as bounds;
@@ -34,7 +36,7 @@ use crate::march::boundary::{boundary_surface_of, enters, land_on_boundary, touc
 use crate::march::branch::{Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind};
 use crate::march::circle_step::circular_step;
 use crate::march::closing::{add_turn, closing_turning, turn};
-use crate::march::crossing::{cross_node, singular_between};
+use crate::march::crossing::{cross_node, singular_ahead, singular_between};
 use crate::march::dqoc_step::dqoc_step;
 use crate::march::node::{inside, node_at, Node};
 use crate::march::options::{MarchOptions, StepMethod};
@@ -320,7 +322,15 @@ where
 
         let (refined, retried) = correct(p, q, opts, prev.as_ref(), &cur, pred, limit);
         half.retried += retried;
-        let Some(r) = refined else {
+        // Newton failing right next to a singular point stops on that point instead.
+        let ahead = || {
+            singular_ahead(p, q, &cur, opts).map(|x| Refined {
+                x,
+                iterations: 0,
+                residual: (p.point(x[0], x[1]) - q.point(x[2], x[3])).norm(),
+            })
+        };
+        let Some(r) = refined.or_else(ahead) else {
             half.end = EndReason::NewtonFailed;
             return half;
         };

@@ -3,8 +3,8 @@
 //! Where `N^P ∥ N^Q` the transversal tangent vanishes. [`locate_singular_point`] pins the point
 //! down (Gauss–Newton on `P = Q`, `N^P × N^Q = 0`), [`analyse_node`] classifies it by the contact
 //! quadratic `b11 σ'² + 2 b12 σ' t' + b22 t'² = 0` (the formulas of
-//! [`contact_quadratic`](crate::pair::contact_quadratic), here in `f64` on [`SurfaceDerivs`]
-//! with thresholds relative to the size of the `b`s) and finds the curve points where the arcs
+//! [`contact_quadratic`](crate::pair::contact_quadratic), here in `f64` on [`SurfaceDerivs`],
+//! judged in model space, see `classify_in_model_space`) and finds the curve points where the arcs
 //! leave it:
 //!
 //! - `Δ = b12² − b11 b22 > 0` (a branch point, two crossing branches): the two roots of the
@@ -18,7 +18,7 @@
 
 use crate::geometry::{ParametricSurface, SurfaceDerivs, Vec3};
 use crate::pair::contact_quadratic::{
-    contact_from_derivs, ContactCase, ContactQuadratic, Relative, TangentialFormula,
+    contact_from_derivs, ContactCase, ContactQuadratic, TangentialFormula,
 };
 use crate::pair::newton::{refine, Constraint};
 use crate::pair::tangent::parameter_direction;
@@ -197,10 +197,7 @@ where
         a, b11, b12, b22, ..
     } = quadratic;
     let disc = quadratic.discriminant;
-    let case = quadratic.case(&Relative {
-        floor: 1e-9 * (1.0 + centre.norm()),
-        rel: 1e-3,
-    });
+    let case = classify_in_model_space(&dp, [b11, b12, b22], 1e-9 * (1.0 + centre.norm()));
     let mut quadratic_directions = Vec::new();
     if case == ContactCase::BranchPoint {
         let sq = disc.sqrt();
@@ -273,6 +270,35 @@ where
         exits,
         exit_xyz,
         radius,
+    }
+}
+
+/// The contact case of the quadratic `b` (in P's parameters at `dp`), judged in model space so
+/// that it does not depend on how P is parametrised: the eigenvalues `λ₁, λ₂` of `G⁻¹B` (`G` P's
+/// first fundamental form, `B` the quadratic's matrix) are the quadratic's values on unit model
+/// directions along its principal axes. Higher-order contact when `max |λ| ≤ floor`; otherwise a
+/// branch point when `−λ₁λ₂ > 10⁻³ max λ²`, an isolated point when `λ₁λ₂ > 10⁻³ max λ²`, else
+/// a (near) double root. (In raw parameters a domain ten times narrower in σ than in t scales
+/// `b11` by 100 and would turn a branch point into a double root.)
+fn classify_in_model_space(dp: &SurfaceDerivs, b: [f64; 3], floor: f64) -> ContactCase {
+    let [b11, b12, b22] = b;
+    let (g11, g12, g22) = (dp.su.dot(&dp.su), dp.su.dot(&dp.sv), dp.sv.dot(&dp.sv));
+    let det_g = g11 * g22 - g12 * g12;
+    if !(det_g > 0.0 && det_g.is_finite()) {
+        return ContactCase::HigherOrder;
+    }
+    let prod = (b11 * b22 - b12 * b12) / det_g;
+    let half_trace = 0.5 * (g22 * b11 - 2.0 * g12 * b12 + g11 * b22) / det_g;
+    let size = half_trace.abs() + (half_trace * half_trace - prod).max(0.0).sqrt();
+    let rel = 1e-3;
+    if size.is_nan() || size <= floor {
+        ContactCase::HigherOrder
+    } else if -prod > rel * size * size {
+        ContactCase::BranchPoint
+    } else if prod > rel * size * size {
+        ContactCase::IsolatedPoint
+    } else {
+        ContactCase::TangentialCurve
     }
 }
 

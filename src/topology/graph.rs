@@ -8,16 +8,22 @@
 //! is traced ([`trace_from_node`]) and its far end, if it is a node, marks the exit it arrives
 //! through. An arc reached from its other end is therefore never traced again, and a closed curve
 //! through a node (a figure eight) becomes two arcs from the node back to it.
+//!
+//! A trace that ended with a Newton failure right beside a singular point (nearly parallel
+//! normals, a point with parallel normals within a node radius) is attached to that node as if it
+//! had stopped on it, and a node exit lying on a trace that stopped short (incomplete) is not
+//! traced again: either way the arc is traced once.
 
 use crate::geometry::surface::pair_widths;
 use crate::geometry::ParametricSurface;
-use crate::march::branch::{Branch, CurvePoint, EndReason, Event, EventKind};
+use crate::march::branch::{Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind};
 use crate::march::covers::covers;
 use crate::march::trace::{refine_start, trace_branch, trace_from_node, TracedBranch};
 use crate::march::MarchOptions;
 use crate::numeric::vec3::{dist3, norm3};
 use crate::pair::branch_point::{analyse_node, locate_singular_point, SingularNode};
 use crate::pair::contact_quadratic::ContactCase;
+use crate::pair::tangent::curve_frame;
 
 /// Counts of one [`trace_graph`] run.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -172,6 +178,16 @@ impl Graph<'_> {
     {
         let mut branch = traced.branch;
         self.add_events(traced.events);
+        for end in 0..2 {
+            if branch.ends[end] == EndReason::NewtonFailed && self.ends_at_node(p, q, &branch, end)
+            {
+                branch.ends[end] = EndReason::Singular;
+            }
+        }
+        let regular = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
+        if branch.status == BranchStatus::Incomplete && branch.ends.iter().all(regular) {
+            branch.status = BranchStatus::Open;
+        }
         if branch.ends[0] == EndReason::Singular && from_node.is_none() {
             let node_pt = self.attach(p, q, &branch.points);
             if branch.points[0] != node_pt {
@@ -187,6 +203,34 @@ impl Graph<'_> {
         }
         branch.id = self.out.branches.len();
         self.out.branches.push(branch);
+    }
+
+    /// Whether the march that ended with a Newton failure at end `end` of `branch` stopped next
+    /// to a singular point: the normals there are nearly parallel and Gauss–Newton finds a
+    /// point with parallel normals within a node radius. (Beside a branch point the sheets of the
+    /// curve are closer than the Newton tolerance resolves; the arc ends at the node.)
+    fn ends_at_node<S1, S2>(&self, p: &S1, q: &S2, branch: &Branch, end: usize) -> bool
+    where
+        S1: ParametricSurface + ?Sized,
+        S2: ParametricSurface + ?Sized,
+    {
+        let Some(c) = (if end == 0 {
+            branch.points.first()
+        } else {
+            branch.points.last()
+        }) else {
+            return false;
+        };
+        let x = [c.p[0], c.p[1], c.q[0], c.q[1]];
+        if curve_frame(p, q, x).sine >= self.opts.watch_sine {
+            return false;
+        }
+        let scale = 1.0 + norm3(&c.xyz);
+        let tol = (100.0 * self.opts.newton_tolerance).max(1e-9 * scale);
+        locate_singular_point(p, q, x, tol, self.opts.singular_sine).is_some_and(|at| {
+            let here = p.point(at[0], at[1]);
+            dist3(&[here.x, here.y, here.z], &c.xyz) <= self.radius()
+        })
     }
 
     fn near_node(&self, xyz: &[f64; 3]) -> bool {
@@ -279,6 +323,16 @@ where
         }
         g.out.exits_used[i][k] = true;
         let (x, exit) = (g.out.nodes[i].x, g.out.nodes[i].exits[k]);
+        // An exit on an arc already traced that stopped short of its ends (so it never reached
+        // the node to mark the exit) leads along that arc: not traced again.
+        if g.out
+            .branches
+            .iter()
+            .any(|b| b.status == BranchStatus::Incomplete && covers(b, &exit, p, floor, &scales))
+        {
+            g.out.stats.skipped_covered += 1;
+            continue;
+        }
         match trace_from_node(p, q, x, exit, &opts) {
             Ok(traced) => {
                 g.out.stats.node_arcs += 1;
