@@ -29,11 +29,19 @@
 //! The model-space point `xyz` of a marched point is not compared (the marcher computes it from
 //! the parameters); a branch whose chain is empty counts as not certified.
 //!
-//! **Looping**: on a proven closed loop of certified length `L`, the marcher's progress along the
-//! loop (arc length of each non-straying point's closest tube parameter, unwrapped modulo `L`;
-//! not used when consecutive points are more than `L/4` apart, as the direction is then
-//! unclear), or the summed chords between consecutive non-straying points (never longer than
-//! the arcs they span), exceeds `L` by more than `1% · L` plus two certified steps.
+//! **Looping**: the marcher passed over the certified chain (of arc length `L`) more than once:
+//! the arc length it passed over — the summed changes of the closest tube parameter between
+//! consecutive points that lie on the reported curve (within twice the widest tube radius),
+//! leaving out jumps more than twice the chord plus two certified steps long (the closest point
+//! switching between the ends of a chain that does not close) — exceeds `L` by more than
+//! `1% · L` plus two certified steps, where the tubes are at most `L/100` wide (else passages
+//! cannot be told apart and this is not decided). This holds on any chain,
+//! whether or not its closure was proven: a marcher going round a tiny loop whose certificate
+//! ends `singular` on both sides is caught. On a proven closed loop also the marcher's progress
+//! along the loop (unwrapped modulo `L`; not used when consecutive points are more than `L/4`
+//! apart, as the direction is then unclear), or the summed chords between consecutive
+//! non-straying points (never longer than the arcs they span), exceeding `L` by as much is
+//! looping.
 //! **Covered fraction**: the part of the certified arc length spanned by consecutive
 //! non-straying marched points, so a marcher that stopped early shows a fraction below 1.
 
@@ -74,7 +82,8 @@ pub struct StrayReport {
     /// Indices of points not compared: beyond a certified end that does not cover the rest of
     /// the branch, or every point when the branch has no certificate.
     pub unchecked: Vec<usize>,
-    /// The marcher went round a proven closed loop more than once.
+    /// The marcher went over the certified curve more than once (round a loop, proven closed or
+    /// not, more than once).
     pub looping: bool,
     /// Fraction (0..=1) of the certified arc length spanned by consecutive non-straying marched
     /// points; 0 without a certificate.
@@ -157,6 +166,7 @@ pub fn check_branch(
         span: [s_min, s_max],
         length: if s_max > s_min { s_max - s_min } else { 0.0 },
         max_h: own.tubes.iter().map(|t| t.h).fold(0.0, f64::max),
+        max_radius: own.tubes.iter().map(|t| t.radius_param).fold(0.0, f64::max),
         proven_loop: own.ends == [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop],
     };
 
@@ -203,6 +213,8 @@ struct Chain {
     length: f64,
     /// The longest step.
     max_h: f64,
+    /// The widest tube radius (parameters, max norm).
+    max_radius: f64,
     /// Both ends are a proven closed loop.
     proven_loop: bool,
 }
@@ -217,6 +229,13 @@ struct Located<'a> {
 }
 
 impl Located<'_> {
+    /// Whether point `i` lies on the chain's reported curve to within twice the widest tube
+    /// radius (plus 1e-9 for the marched point's own accuracy): not merely unproven far, as a
+    /// point across a tiny loop from the chain can be when the slack exceeds the loop.
+    fn on_chain(&self, i: usize, chain: &Chain) -> bool {
+        matches!(self.verdicts[i], Verdict::Near { estimate, .. } if estimate <= 2.0 * chain.max_radius + 1e-9)
+    }
+
     /// The arc length of point `i` on the chain, unless it is proven far.
     fn near_s(&self, i: usize) -> Option<f64> {
         match self.verdicts[i] {
@@ -302,7 +321,7 @@ impl Located<'_> {
     }
 
     /// Progress along the chain between consecutive near points: the covered fraction of the
-    /// certified arc length, and whether the marcher went round a proven loop more than once.
+    /// certified arc length, and whether the marcher went over the certified curve more than once.
     /// `unchecked` (sorted) are the points beyond uncovered certified ends.
     fn progress(&self, chain: &Chain, unchecked: &[usize]) -> (f64, bool) {
         let pts = self.pts;
@@ -313,6 +332,7 @@ impl Located<'_> {
         let mut progress = 0.0;
         let mut jumps = false;
         let mut near_chords = 0.0;
+        let mut variation = 0.0;
         for i in 0..n.saturating_sub(1) {
             let (a, b) = match (self.near_s(i), self.near_s(i + 1)) {
                 (Some(a), Some(b)) => (a, b),
@@ -335,7 +355,17 @@ impl Located<'_> {
                 jumps |= d.abs() > 0.25 * certified_length;
             }
             progress += d;
-            near_chords += dist3(&pts[i].xyz, &pts[i + 1].xyz);
+            let chord = dist3(&pts[i].xyz, &pts[i + 1].xyz);
+            near_chords += chord;
+            // Arc length passed over; a jump much longer than the chord is no passage (the
+            // closest chain point switching ends beside an uncovered gap, or across a loop's
+            // unproven closure).
+            if d.abs() <= 2.0 * chord + 2.0 * chain.max_h
+                && self.on_chain(i, chain)
+                && self.on_chain(i + 1, chain)
+            {
+                variation += d.abs();
+            }
             let (lo, hi) = if d >= 0.0 { (a, a + d) } else { (a + d, a) };
             if proven_loop {
                 push_wrapped(&mut spans, lo, hi, s_min, certified_length);
@@ -349,10 +379,13 @@ impl Located<'_> {
             0.0
         };
         let margin = 0.01 * certified_length + 2.0 * chain.max_h;
-        let looping = proven_loop
-            && certified_length > 0.0
-            && ((!jumps && progress.abs() > certified_length + margin)
-                || near_chords > certified_length + margin);
+        // Passages are told apart only where the tubes are much thinner than the chain is long.
+        let fine = chain.max_radius <= 0.01 * certified_length;
+        let looping = certified_length > 0.0
+            && ((proven_loop
+                && ((!jumps && progress.abs() > certified_length + margin)
+                    || near_chords > certified_length + margin))
+                || (fine && variation > certified_length + margin));
         (covered_fraction, looping)
     }
 }
@@ -440,8 +473,9 @@ fn covers(e: &CertifiedEnd) -> bool {
 enum Verdict {
     /// Proven farther than the slack: `distance` is the proven lower bound.
     Far { distance: f64, estimate: f64 },
-    /// Not proven far; `s` is the arc length of the closest reported tube point (estimate).
-    Near { s: f64 },
+    /// Not proven far; `s` is the arc length of the closest reported tube point and `estimate`
+    /// the distance to it (estimates).
+    Near { s: f64, estimate: f64 },
 }
 
 fn params(c: &CurvePoint) -> [f64; 4] {
@@ -521,7 +555,7 @@ fn locate(c: &CertifiedBranch, y: &[f64; 4], slack: f64) -> Verdict {
         return Verdict::Far { distance, estimate };
     };
     if !provable {
-        return Verdict::Near { s };
+        return Verdict::Near { s, estimate };
     }
     let prove = |target: f64| -> f64 {
         pieces
@@ -543,7 +577,7 @@ fn locate(c: &CertifiedBranch, y: &[f64; 4], slack: f64) -> Verdict {
     if distance > slack {
         Verdict::Far { distance, estimate }
     } else {
-        Verdict::Near { s }
+        Verdict::Near { s, estimate }
     }
 }
 

@@ -207,7 +207,7 @@ impl Graph<'_> {
 
     /// Whether the march that ended with a Newton failure at end `end` of `branch` stopped next
     /// to a singular point: the normals there are nearly parallel and Gauss–Newton finds a
-    /// point with parallel normals within a node radius. (Beside a branch point the sheets of the
+    /// point with parallel normals within a node radius, ahead in the direction of travel. (Beside a branch point the sheets of the
     /// curve are closer than the Newton tolerance resolves; the arc ends at the node.)
     fn ends_at_node<S1, S2>(&self, p: &S1, q: &S2, branch: &Branch, end: usize) -> bool
     where
@@ -227,9 +227,22 @@ impl Graph<'_> {
         }
         let scale = 1.0 + norm3(&c.xyz);
         let tol = (100.0 * self.opts.newton_tolerance).max(1e-9 * scale);
+        // The direction of travel into that end.
+        let pts = &branch.points;
+        let (from, to) = match (end, pts.len()) {
+            (_, 0 | 1) => return false,
+            (0, _) => (&pts[1], &pts[0]),
+            (_, n) => (&pts[n - 2], &pts[n - 1]),
+        };
+        let travel: [f64; 3] = std::array::from_fn(|i| to.xyz[i] - from.xyz[i]);
         locate_singular_point(p, q, x, tol, self.opts.singular_sine).is_some_and(|at| {
             let here = p.point(at[0], at[1]);
-            dist3(&[here.x, here.y, here.z], &c.xyz) <= self.radius()
+            let off: [f64; 3] = std::array::from_fn(|i| here[i] - c.xyz[i]);
+            let d = norm3(&off);
+            let ahead = off.iter().zip(&travel).map(|(a, b)| a * b).sum::<f64>()
+                >= 0.5 * d * norm3(&travel);
+            // Ahead (within 60°), not beside the curve as the centre of a tiny loop is.
+            d <= self.radius() && (ahead || d <= tol)
         })
     }
 
