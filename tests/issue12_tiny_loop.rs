@@ -4,12 +4,14 @@
 //! circle of radius `r = 1e-6` about `(a, b)`; along it the surfaces are within `k r² ≈ 1e-12`
 //! of touching and the sine of the normal angle is only `2kr`. The certified trace covers the
 //! loop but does not prove its closure (it ends `singular` on both sides, or runs past the start).
-//! With `k = 1` the marcher still goes round about 2.3 times and ends "newton failed" on both
-//! sides (its Newton corrections sit at the noise floor there); with `k = 2.5` it closes once.
-//! Either way the straying check must say what happened: looping exactly when the march is
-//! longer than one round, and a march over the loop twice is always looping — whether or not the
-//! certificate closed. The graph must not attach the failed ends to the contact point at the
-//! loop's centre (it is beside the curve, not ahead of it).
+//! With `k = 1` the forward half of the march fails Newton part of the way round (its
+//! corrections sit at the noise floor there); the backward half used to go on round the loop
+//! about 2.3 times and end "newton failed" too. Now it closes the loop at the forward half's last
+//! point: the loop is closed once for both `k`. The straying check must say what happened:
+//! looping exactly when the march is longer than one round (so not here), and a march over the
+//! loop twice is always looping — whether or not the certificate closed. The graph must not
+//! attach a failed end to the contact point at the loop's centre (it is beside the curve, not
+//! ahead of it).
 
 use ssitrace::certify::{certify_branch, CertifiedEnd, CertifyOptions};
 use ssitrace::check::straying::check_branch;
@@ -52,7 +54,7 @@ fn params(c: &CurvePoint) -> [f64; 4] {
 }
 
 #[test]
-fn tiny_loop_marched_more_than_once_is_looping_without_a_proven_closure() {
+fn tiny_loop_closes_once_and_marching_it_twice_is_looping_without_a_proven_closure() {
     let (r, a, b) = (1e-6, 0.1234, -0.2345);
     for k in [1.0, 2.5] {
         let (p, q) = tiny_loop(k, a, b, r);
@@ -73,9 +75,10 @@ fn tiny_loop_marched_more_than_once_is_looping_without_a_proven_closure() {
         );
         // No end attached to the centre as a node: every point on the circle.
         assert!(!m.ends.contains(&EndReason::Singular), "{:?}", m.ends);
-        if k == 2.5 {
-            assert_eq!(m.status, BranchStatus::Closed);
-        }
+        // Closed once.
+        assert_eq!(m.status, BranchStatus::Closed);
+        assert_eq!(m.ends, [EndReason::ClosedLoop; 2]);
+        assert!((m.length() - perimeter).abs() < 1e-3 * perimeter);
         for pt in &m.points {
             let rad = (pt.xyz[0] - a).hypot(pt.xyz[1] - b);
             assert!((rad - r).abs() < 1e-3 * r, "off the circle: {rad:e}");

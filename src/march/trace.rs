@@ -16,7 +16,10 @@
 //!   the start on another part of the curve (close branches, a branch point) fails the tangent or
 //!   the turning test and does not stop the march. The parameters must also return (within twice
 //!   the local parameter speed times the distance), so a loop in model space that is open in a
-//!   parameter domain (a periodic surface cut at a seam) is not closed.
+//!   parameter domain (a periodic surface cut at a seam) is not closed. When the forward half
+//!   from an interior start stops short with a Newton failure (as on a tiny loop of nearly
+//!   tangent surfaces, where the corrections sit at the noise floor), the backward half closes
+//!   the loop by the same test at the forward half's last point, instead of going round again.
 //! - **Singular point**: `|N^P × N^Q| < singular_sine |N^P||N^Q|`. Below `watch_sine` the step is
 //!   limited (while the sine decreases) to half the distance at which the sine would vanish at its
 //!   current rate, so the marcher approaches a singular point geometrically instead of stepping
@@ -262,7 +265,10 @@ where
 }
 
 /// Marches from `start` (tangent oriented along the direction of travel) until a stop rule fires.
-/// `closure`: look for the return to `start` (only for a forward half from an interior start).
+/// `closure`: the point where the march closes a loop, with the turning already accumulated
+/// from it to `start` — `start` itself (no turning) for a forward half from an interior start;
+/// the forward half's last point, for the backward half when the forward half stopped short of
+/// closing (it then closes the loop from the other side instead of going round again).
 ///
 /// Each step: the step limit near singular points ([`step_limit`]), the prediction, the closing
 /// test ([`closing_turning`]), the Newton correction ([`correct`]), then the boundary
@@ -273,7 +279,7 @@ fn march_half<S1, S2>(
     start: &Node,
     opts: &MarchOptions,
     budget: usize,
-    closure: bool,
+    closure: Option<(&Node, [f64; 2])>,
 ) -> Half
 where
     S1: ParametricSurface + ?Sized,
@@ -300,19 +306,19 @@ where
         let limit = step_limit(prev.as_ref(), &cur, opts);
         let pred = predict(prev.as_ref(), &cur, opts, limit.0, limit.1);
 
-        if closure && half.nodes.len() >= 2 {
+        if let Some((target, prior)) = closure.filter(|_| half.nodes.len() >= 2) {
             let closed = closing_turning(
-                start,
+                target,
                 prev.as_ref(),
                 &cur,
-                half.turning,
+                [prior[0] + half.turning[0], prior[1] + half.turning[1]],
                 pred.arc,
                 opts,
                 !visited.is_empty(),
             );
             if let Some(total) = closed {
-                half.turning = total;
-                let mut closing = *start;
+                half.turning = [total[0] - prior[0], total[1] - prior[1]];
+                let mut closing = *target;
                 closing.iterations = 0;
                 half.nodes.push(closing);
                 half.end = EndReason::ClosedLoop;
@@ -503,7 +509,7 @@ where
         &st,
         &opts_arc,
         opts.max_points.saturating_sub(2),
-        false,
+        None,
     );
     let mut nodes = vec![n0, st];
     nodes.extend(half.nodes.iter().copied());
@@ -570,18 +576,30 @@ where
                     node_at(p, q, s.x, 0, Some(-s.frame.tangent))
                 };
                 events.push(make_event(EventKind::BoundaryEnd, &st));
-                let f = march_half(p, q, &st, opts, budget, false);
+                let f = march_half(p, q, &st, opts, budget, None);
                 (None, Some((st, f)), EndReason::Boundary { surface })
             }
             _ => {
-                let f = march_half(p, q, &s, opts, budget, on_edge.is_none());
+                let interior = on_edge.is_none();
+                let f = march_half(p, q, &s, opts, budget, interior.then_some((&s, [0.0; 2])));
                 if f.end == EndReason::ClosedLoop {
                     (None, Some((s, f)), EndReason::ClosedLoop)
                 } else {
                     let rev = s.frame.tangent;
                     let sb = node_at(p, q, s.x, 0, Some(-rev));
                     let left = budget.saturating_sub(f.nodes.len());
-                    let b = march_half(p, q, &sb, opts, left, false);
+                    // Where the forward half stopped short (Newton failed, as on a tiny loop of
+                    // nearly tangent surfaces), the backward half may come round to that point.
+                    let stopped = matches!(f.end, EndReason::NewtonFailed);
+                    let last = f.nodes.last().map(|n| Node {
+                        frame: n.frame.reversed(),
+                        ..*n
+                    });
+                    let target = last
+                        .as_ref()
+                        .filter(|_| interior && stopped)
+                        .map(|n| (n, [-f.turning[0], -f.turning[1]]));
+                    let b = march_half(p, q, &sb, opts, left, target);
                     let end = b.end;
                     (Some(b), Some((s, f)), end)
                 }
@@ -605,6 +623,15 @@ where
         events.extend(b.events.iter().copied());
     }
     let last_end = match &fwd {
+        // The backward half closed the loop at the forward half's last point.
+        Some((st, f)) if first_end == EndReason::ClosedLoop && back.is_some() => {
+            nodes.push(*st);
+            nodes.extend(f.nodes.iter().copied());
+            add_turn(&mut turning, f.turning);
+            retried += f.retried;
+            events.extend(f.events.iter().copied());
+            EndReason::ClosedLoop
+        }
         Some((st, f)) => {
             nodes.push(*st);
             nodes.extend(f.nodes.iter().copied());
