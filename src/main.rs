@@ -1,10 +1,12 @@
 //! The `ssitrace` command line: `ssitrace trace SCENE.json ...` and `ssitrace demo`.
 
 use clap::{Parser, Subcommand, ValueEnum};
+use inari::Interval;
+use ssitrace::certify::contact::{CertifiedContact, ContactEnd};
 use ssitrace::check::straying::StrayReport;
 use ssitrace::io::result_json::write_result;
 use ssitrace::io::scene::{Method, Scene};
-use ssitrace::march::branch::BranchStatus;
+use ssitrace::march::branch::{BranchStatus, Event, EventKind};
 use ssitrace::pipeline::{RunOptions, RunReport};
 use ssitrace::BranchCertificate;
 use std::path::PathBuf;
@@ -256,6 +258,46 @@ fn straying_line(r: &StrayReport) -> String {
     format!("    warning: {}; {checked}", what.join("; "))
 }
 
+/// Whether the model point `xyz` lies in one of a certified contact's boxes (a step's a-priori
+/// box or a box of its cover), grown by 1e-6 for the marcher's own accuracy (a display rule for
+/// the summary, not a proof).
+fn contact_holds(c: &CertifiedContact, xyz: &[f64; 3]) -> bool {
+    let grow = 1e-6 * (1.0 + xyz.iter().map(|v| v.abs()).fold(0.0, f64::max));
+    let inside = |b: &[Interval; 3]| {
+        (0..3).all(|i| b[i].inf() - grow <= xyz[i] && xyz[i] <= b[i].sup() + grow)
+    };
+    c.steps.iter().any(|s| inside(&s.xyz)) || c.cover.boxes.iter().any(|b| inside(&b.xyz))
+}
+
+fn contact_end_name(e: &ContactEnd) -> String {
+    match e {
+        ContactEnd::Boundary { surface } => {
+            format!("boundary of {}", if *surface == 0 { "P" } else { "Q" })
+        }
+        ContactEnd::CaseChanged { case, .. } => format!("case changed ({case:?})"),
+        ContactEnd::StepFailed { .. } => "step failed".into(),
+        ContactEnd::Budget { .. } => "budget spent".into(),
+        ContactEnd::NotTraced => "not traced".into(),
+    }
+}
+
+fn contact_line(k: usize, c: &CertifiedContact, folded: usize) -> String {
+    format!(
+        "  contact {k}: tangential contact curve, certified in {} steps, tube radius {:.3e}, \
+         ends {} / {}, cover {} box(es){}; {folded} singular event(s) on it",
+        c.steps.len(),
+        c.tube_radius,
+        contact_end_name(&c.ends[0]),
+        contact_end_name(&c.ends[1]),
+        c.cover.boxes.len(),
+        if c.cover.resolved {
+            ""
+        } else {
+            " (not resolved)"
+        },
+    )
+}
+
 fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -> String {
     use std::fmt::Write;
     let mut out = String::new();
@@ -293,7 +335,17 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
             let _ = writeln!(out, "{}", straying_line(s));
         }
     }
-    for e in &r.events {
+    // A certified contact curve is one line; the marcher's events on it are folded into it.
+    let on_contact = |e: &Event| {
+        (e.kind == EventKind::Singular)
+            .then(|| r.contacts.iter().position(|c| contact_holds(c, &e.xyz)))
+            .flatten()
+    };
+    for (k, c) in r.contacts.iter().enumerate() {
+        let folded = r.events.iter().filter(|e| on_contact(e) == Some(k)).count();
+        let _ = writeln!(out, "{}", contact_line(k, c, folded));
+    }
+    for e in r.events.iter().filter(|e| on_contact(e).is_none()) {
         let _ = writeln!(
             out,
             "  event {:?} at xyz = ({:.6}, {:.6}, {:.6})",
