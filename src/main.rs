@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand, ValueEnum};
 use inari::Interval;
 use ssitrace::certify::contact::{CertifiedContact, ContactEnd};
+use ssitrace::certify::CertifiedEnd;
 use ssitrace::check::straying::StrayReport;
 use ssitrace::io::result_json::write_result;
 use ssitrace::io::scene::{Method, Scene};
@@ -330,6 +331,17 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
         );
         if let Some(c) = &traced.certificate {
             let _ = writeln!(out, "{}", certificate_line(c, opts.required_tolerance));
+            let closed = |e: &CertifiedEnd| *e == CertifiedEnd::ClosedLoop;
+            if let (BranchStatus::Closed, Ok(cb)) = (&b.status, &c.result) {
+                if !cb.ends.iter().all(closed) {
+                    let _ = writeln!(
+                        out,
+                        "    warning: the marched loop's closure is NOT proven (the certificate \
+                         ends {} / {})",
+                        cb.ends[0], cb.ends[1]
+                    );
+                }
+            }
         }
         if let Some(s) = &traced.straying {
             let _ = writeln!(out, "{}", straying_line(s));

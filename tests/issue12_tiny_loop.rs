@@ -111,3 +111,38 @@ fn tiny_loop_closes_once_and_marching_it_twice_is_looping_without_a_proven_closu
         );
     }
 }
+
+#[test]
+fn summary_says_when_a_marched_loop_is_not_proven_closed() {
+    // The k = 1 loop as a scene (bump z = 0.5 − ((x − a)² + (y − b)²), plane 1e-12 below its top).
+    let (a, b, r) = (0.1234f64, -0.2345f64, 1e-6f64);
+    let bump = format!(
+        r#"{{"kind": "polynomial", "domain": [[-0.7, 1.1], [-0.9, 0.6]], "x": [[1, 0, 1]],
+            "y": [[0, 1, 1]], "z": [[0, 0, {}], [1, 0, {}], [0, 1, {}], [2, 0, -1], [0, 2, -1]]}}"#,
+        0.5 - (a * a + b * b),
+        2.0 * a,
+        2.0 * b
+    );
+    let plane = format!(
+        r#"{{"kind": "polynomial", "domain": [[-0.7, 1.1], [-0.9, 0.6]], "x": [[1, 0, 1]],
+            "y": [[0, 1, 1]], "z": [[0, 0, {}], [1, 1, 0]]}}"#,
+        0.5 - r * r
+    );
+    let text = format!(
+        r#"{{"surfaces": [{bump}, {plane}], "options": {{"name": "tiny", "method": "both"}}}}"#
+    );
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("issue12_tiny_loop.json");
+    std::fs::write(&path, text).expect("scene written");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_ssitrace"))
+        .arg("trace")
+        .arg(&path)
+        .output()
+        .expect("the command runs");
+    assert!(output.status.success(), "{output:?}");
+    let summary = String::from_utf8(output.stdout).expect("utf-8");
+    println!("{summary}");
+    assert!(summary.contains("branch 0: closed loop"), "{summary}");
+    let proven = summary.contains("ends closed / closed");
+    let said = summary.contains("closure is NOT proven");
+    assert!(proven != said, "either proven or said not to be: {summary}");
+}
