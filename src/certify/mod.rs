@@ -14,6 +14,7 @@ pub mod contact_cover;
 pub mod curve;
 pub mod ode;
 pub mod tangential_ode;
+mod term_target;
 pub mod trace;
 
 pub use budget::StepBudget;

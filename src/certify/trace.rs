@@ -29,6 +29,7 @@ use crate::certify::anchor::{join_tolerance, reanchor};
 use crate::certify::budget::{h_max_for, StepBudget};
 use crate::certify::curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 use crate::certify::ode::TransversalOde;
+use crate::certify::term_target::TermTarget;
 use crate::error::{Error, Result};
 use crate::geometry::surface::{pair_bounds as bounds, pair_widths};
 use crate::geometry::{Domain, RationalBezierPatch};
@@ -49,6 +50,12 @@ pub struct CertifyOptions {
     pub steps: StepBudget,
     /// Pull every end box back onto `P = Q` (Krawczyk) before the next step.
     pub contract: bool,
+    /// The model-space tolerance the branch should meet (default 1e-9). It sizes the steps and
+    /// is not a claim: each half starts at the budget's [`term_target`](StepBudget::term_target)
+    /// and raises it while a step's tube radius stays near a sixteenth of this and the
+    /// re-anchoring's arc-length error within its budget over [`StepBudget::max_length`]
+    /// (`certify/term_target.rs`). 0 keeps every step at the budget's term target.
+    pub required_tolerance: f64,
 }
 
 impl Default for CertifyOptions {
@@ -56,6 +63,7 @@ impl Default for CertifyOptions {
         CertifyOptions {
             steps: StepBudget::CERTIFY,
             contract: true,
+            required_tolerance: 1e-9,
         }
     }
 }
@@ -442,6 +450,14 @@ fn trace_half_with(
     // the curve within twice that arc length of it (and the piece joining it to the last step).
     let mut s_err = 0.0f64;
     let mut cover = *y0;
+    // (h_max_for caps at 1/8 of the smaller patch's model size.)
+    let model_size = 8.0 * h_max_for(p, q, f64::INFINITY);
+    let mut target = TermTarget::new(
+        opts.steps.term_target,
+        opts.required_tolerance,
+        opts.steps.max_length,
+        model_size,
+    );
     loop {
         if opts.steps.spent(half.boxes.len(), state.t) {
             half.end = CertifiedEnd::Unproven {
@@ -455,6 +471,7 @@ fn trace_half_with(
             return Ok(half);
         }
         let limit = state.t + integ.options().h_max;
+        integ.set_term_target(target.current());
         let clock = Instant::now();
         let stepped = integ.step(&mut state, limit);
         profile.step_seconds += clock.elapsed().as_secs_f64();
@@ -488,6 +505,9 @@ fn trace_half_with(
         };
         let link = half.push_box(p, q, &rec, dir, [&cover, &next_cover], [s_err, next_err])?;
         half.push_tube(p, &rec, dir, s_err, bridge)?;
+        if let Some(tube) = half.tubes.last() {
+            target.observe(rec.h, rec.t1, tube.radius_xyz, bridge, next_err);
+        }
         profile.enclosure_seconds += clock.elapsed().as_secs_f64();
         let previous_cover = cover;
         match anchor {

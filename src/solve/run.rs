@@ -150,6 +150,7 @@ pub fn certify_marched_branch(
             max_length,
             ..StepBudget::CERTIFY
         },
+        required_tolerance: opts.required_tolerance,
         ..CertifyOptions::default()
     };
     let (start, result) = match choose_start(p, q, b) {

@@ -249,6 +249,15 @@ impl Integrator {
         self.adaptive_guess = on;
     }
 
+    /// Changes the per-step term target ([`IntegratorOptions::term_target`]) for the next steps,
+    /// e.g. to size each step from what the caller's error budget allows (a value that is not
+    /// positive and finite is ignored). Any target is sound: it sizes the steps, never a bound.
+    pub fn set_term_target(&mut self, term_target: f64) {
+        if term_target > 0.0 && term_target.is_finite() {
+            self.options.term_target = term_target;
+        }
+    }
+
     /// The options in use.
     pub fn options(&self) -> &IntegratorOptions {
         &self.options
