@@ -1,0 +1,179 @@
+//! Per example scene: every branch certified (default `CertifyOptions`, the pipeline's
+//! arc-length budget of 1.5 × the marched length) next to the marcher on the same branches, and
+//! where a certified step spends its time.
+//!
+//! Before the criterion groups run, one line per scene is printed with the measured ratio
+//! certified / marched and the per-step split: the validated step (its Taylor work divided
+//! between the expansion over the initial box, which also predicts the step, and phase I, the
+//! a-priori box and its remainder; phase II is off on re-anchored thin boxes), the re-anchoring
+//! (Krawczyk), the model-space boxes and tubes, and the loop-closing test. Fig. 7 is represented
+//! by its smallest loop (one iteration takes about a second). Under load from other processes
+//! the ratios printed here (one process, back to back) mean more than the absolute times.
+//!
+//! `cargo bench --bench scenes`; `SSITRACE_BENCH_ORDERS=12,14,16,20` also prints the split at
+//! those Taylor orders.
+
+// criterion_group!/criterion_main! generate undocumented functions.
+#![allow(missing_docs)]
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use ssitrace::certify::{certify_branch_profiled, CertifyOptions, TraceProfile};
+use ssitrace::geometry::RationalBezierPatch;
+use ssitrace::io::scene::Scene;
+use ssitrace::march::{trace_branch, MarchOptions};
+use ssitrace::pipeline::{run_scene, RunOptions, LENGTH_BUDGET_FACTOR};
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Instant;
+
+/// One branch to certify: its start (the middle marched point) and its arc-length budget.
+struct Job {
+    start: [f64; 4],
+    max_length: f64,
+}
+
+struct Case {
+    name: &'static str,
+    scene: Scene,
+    jobs: Vec<Job>,
+}
+
+fn case(name: &'static str, file: &str, smallest_only: bool) -> Case {
+    let scene = Scene::from_path(Path::new(file)).expect("scene");
+    let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
+    let mut jobs: Vec<Job> = outcome
+        .intersection
+        .branches
+        .iter()
+        .filter(|b| !b.points.is_empty())
+        .map(|b| {
+            let pt = b.points[b.points.len() / 2];
+            Job {
+                start: [pt.p[0], pt.p[1], pt.q[0], pt.q[1]],
+                max_length: LENGTH_BUDGET_FACTOR * b.length(),
+            }
+        })
+        .collect();
+    if smallest_only {
+        jobs.sort_by(|a, b| a.max_length.total_cmp(&b.max_length));
+        jobs.truncate(1);
+    }
+    Case { name, scene, jobs }
+}
+
+fn certify_all(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    jobs: &[Job],
+    order: usize,
+) -> (usize, f64, TraceProfile) {
+    let mut prof = TraceProfile::default();
+    let (mut steps, mut tol) = (0, 0.0f64);
+    for j in jobs {
+        let opts = CertifyOptions {
+            max_length: j.max_length,
+            order,
+            ..CertifyOptions::default()
+        };
+        if let Ok((b, pr)) = certify_branch_profiled(p, q, black_box(j.start), &opts) {
+            steps += b.steps();
+            tol = tol.max(b.tolerance);
+            prof.step_seconds += pr.step_seconds;
+            prof.anchor_seconds += pr.anchor_seconds;
+            prof.enclosure_seconds += pr.enclosure_seconds;
+            prof.closing_seconds += pr.closing_seconds;
+            prof.integrator += pr.integrator;
+        }
+    }
+    (steps, tol, prof)
+}
+
+fn march_all(p: &RationalBezierPatch, q: &RationalBezierPatch, jobs: &[Job], step: f64) -> usize {
+    let opts = MarchOptions {
+        step,
+        ..MarchOptions::default()
+    };
+    jobs.iter()
+        .filter_map(|j| trace_branch(p, q, black_box(j.start), &opts).ok())
+        .map(|b| b.branch.points.len())
+        .sum()
+}
+
+/// Prints the ratio and the per-step split of one scene at one order.
+fn report(c: &Case, order: usize) {
+    let [p, q] = &c.scene.surfaces;
+    let t0 = Instant::now();
+    let (steps, tol, pr) = certify_all(p, q, &c.jobs, order);
+    let cert = t0.elapsed().as_secs_f64();
+    let t1 = Instant::now();
+    march_all(p, q, &c.jobs, c.scene.options.step);
+    let march = t1.elapsed().as_secs_f64();
+    let w = pr.integrator;
+    let units = (w.box_units + w.phase1_units + w.phase2_units).max(1e-300);
+    let per = |x: f64| 1e3 * x / steps.max(1) as f64;
+    println!(
+        "{:<22} k={order:>2}: {steps:>5} steps, tol {tol:.1e}, certified {:.1} ms, marched {:.2} ms, \
+         ratio {:.0} | per step {:.3} ms: series+predict {:.3}, phase I {:.3}, phase II {:.3}, \
+         anchor {:.3}, boxes {:.3}, closing {:.3} | phase I tries/step {:.2}, remainder cuts {}",
+        c.name,
+        1e3 * cert,
+        1e3 * march,
+        cert / march.max(1e-12),
+        per(cert),
+        per(pr.step_seconds * w.box_units / units),
+        per(pr.step_seconds * w.phase1_units / units),
+        per(pr.step_seconds * w.phase2_units / units),
+        per(pr.anchor_seconds),
+        per(pr.enclosure_seconds),
+        per(pr.closing_seconds),
+        w.phase1_attempts as f64 / w.steps.max(1) as f64,
+        w.remainder_cuts,
+    );
+}
+
+fn cases() -> Vec<Case> {
+    vec![
+        case(
+            "sphere_patch_plane",
+            "scenes/sphere_patch_plane.json",
+            false,
+        ),
+        case(
+            "bicubic_transversal",
+            "scenes/bicubic_transversal.json",
+            false,
+        ),
+        case("two_loops_s31_s32", "scenes/two_loops_s31_s32.json", false),
+        case("wu_andrade_fig7_loop", "scenes/wu_andrade_fig7.json", true),
+    ]
+}
+
+fn bench_scenes(crit: &mut Criterion) {
+    let cases = cases();
+    let order = CertifyOptions::default().order;
+    let orders: Vec<usize> = std::env::var("SSITRACE_BENCH_ORDERS")
+        .ok()
+        .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
+        .unwrap_or_default();
+    for c in &cases {
+        report(c, order);
+        for &k in orders.iter().filter(|&&k| k != order) {
+            report(c, k);
+        }
+    }
+    let mut group = crit.benchmark_group("scene");
+    group.sample_size(10);
+    for c in &cases {
+        let [p, q] = &c.scene.surfaces;
+        group.bench_function(format!("{}/certified", c.name), |b| {
+            b.iter(|| certify_all(p, q, &c.jobs, order))
+        });
+        group.bench_function(format!("{}/marched", c.name), |b| {
+            b.iter(|| march_all(p, q, &c.jobs, c.scene.options.step))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_scenes);
+criterion_main!(benches);
