@@ -10,6 +10,9 @@
 //! by its smallest loop (one iteration takes about a second). Under load from other processes
 //! the ratios printed here (one process, back to back) mean more than the absolute times.
 //!
+//! The group `halves` times the open bicubic branch with its two halves one after the other and
+//! on two threads (`CertifyOptions::parallel_halves`).
+//!
 //! `cargo bench --bench scenes`; `SSITRACE_BENCH_ORDERS=12,14,16,20` also prints the split at
 //! those Taylor orders.
 
@@ -17,11 +20,12 @@
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use ssitrace::certify::budget::StepBudget;
 use ssitrace::certify::{certify_branch_profiled, CertifyOptions, TraceProfile};
 use ssitrace::geometry::RationalBezierPatch;
 use ssitrace::io::scene::Scene;
 use ssitrace::march::{trace_branch, MarchOptions};
-use ssitrace::pipeline::{run_scene, RunOptions, LENGTH_BUDGET_FACTOR};
+use ssitrace::solve::{intersect, Method, Options, LENGTH_BUDGET_FACTOR};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
@@ -40,11 +44,17 @@ struct Case {
 
 fn case(name: &'static str, file: &str, smallest_only: bool) -> Case {
     let scene = Scene::from_path(Path::new(file)).expect("scene");
-    let (outcome, _) = run_scene(&scene, &RunOptions::from_scene(&scene)).expect("march");
-    let mut jobs: Vec<Job> = outcome
-        .intersection
+    let [p, q] = &scene.surfaces;
+    let opts = Options {
+        method: Method::March,
+        step: scene.options.step,
+        ..Options::default()
+    };
+    let marched = intersect(p, q, &opts).expect("march");
+    let mut jobs: Vec<Job> = marched
         .branches
         .iter()
+        .map(|t| &t.marched)
         .filter(|b| !b.points.is_empty())
         .map(|b| {
             let pt = b.points[b.points.len() / 2];
@@ -67,17 +77,31 @@ fn certify_all(
     jobs: &[Job],
     order: usize,
 ) -> (usize, f64, TraceProfile) {
+    certify_with(p, q, jobs, order, false)
+}
+
+fn certify_with(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    jobs: &[Job],
+    order: usize,
+    parallel_halves: bool,
+) -> (usize, f64, TraceProfile) {
     let mut prof = TraceProfile::default();
     let (mut steps, mut tol) = (0, 0.0f64);
     for j in jobs {
         let opts = CertifyOptions {
-            max_length: j.max_length,
-            order,
+            steps: StepBudget {
+                max_length: j.max_length,
+                order,
+                ..StepBudget::CERTIFY
+            },
+            parallel_halves,
             ..CertifyOptions::default()
         };
         if let Ok((b, pr)) = certify_branch_profiled(p, q, black_box(j.start), &opts) {
             steps += b.steps();
-            tol = tol.max(b.tolerance);
+            tol = tol.max(b.certified_tolerance);
             prof.step_seconds += pr.step_seconds;
             prof.anchor_seconds += pr.anchor_seconds;
             prof.enclosure_seconds += pr.enclosure_seconds;
@@ -150,7 +174,7 @@ fn cases() -> Vec<Case> {
 
 fn bench_scenes(crit: &mut Criterion) {
     let cases = cases();
-    let order = CertifyOptions::default().order;
+    let order = CertifyOptions::default().steps.order;
     let orders: Vec<usize> = std::env::var("SSITRACE_BENCH_ORDERS")
         .ok()
         .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
@@ -175,5 +199,25 @@ fn bench_scenes(crit: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_scenes);
+/// The two halves of an open branch (bicubic transversal) one after the other and on two
+/// threads (`CertifyOptions::parallel_halves`).
+fn bench_halves(crit: &mut Criterion) {
+    let c = case(
+        "bicubic_transversal",
+        "scenes/bicubic_transversal.json",
+        false,
+    );
+    let [p, q] = &c.scene.surfaces;
+    let order = CertifyOptions::default().steps.order;
+    let mut group = crit.benchmark_group("halves");
+    group.sample_size(10);
+    for (name, parallel) in [("sequential", false), ("parallel", true)] {
+        group.bench_function(format!("{}/{name}", c.name), |b| {
+            b.iter(|| certify_with(p, q, &c.jobs, order, parallel))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_scenes, bench_halves);
 criterion_main!(benches);

@@ -56,6 +56,11 @@ pub struct CertifyOptions {
     /// re-anchoring's arc-length error within its budget over [`StepBudget::max_length`]
     /// (`certify/term_target.rs`). 0 keeps every step at the budget's term target.
     pub required_tolerance: f64,
+    /// Trace the backward half on another thread (`rayon::join`) while the forward half runs.
+    /// The result is the same. Worth it for an open branch (the two halves are about equal); on a
+    /// closed loop the forward half closes it alone and the backward work is thrown away, so
+    /// set it only for branches known to be open (default `false`).
+    pub parallel_halves: bool,
 }
 
 impl Default for CertifyOptions {
@@ -64,6 +69,7 @@ impl Default for CertifyOptions {
             steps: StepBudget::CERTIFY,
             contract: true,
             required_tolerance: 1e-9,
+            parallel_halves: false,
         }
     }
 }
@@ -103,6 +109,14 @@ pub struct TraceProfile {
 impl TraceProfile {
     fn add_work(&mut self, w: IntegratorWork) {
         self.integrator += w;
+    }
+
+    fn add(&mut self, other: &TraceProfile) {
+        self.step_seconds += other.step_seconds;
+        self.anchor_seconds += other.anchor_seconds;
+        self.enclosure_seconds += other.enclosure_seconds;
+        self.closing_seconds += other.closing_seconds;
+        self.integrator += other.integrator;
     }
 }
 
@@ -150,27 +164,43 @@ pub fn certify_branch_profiled(
         )
     })?;
 
-    let forward = trace_half(
-        p,
-        q,
-        &y0,
-        1.0,
-        Some((fixed, start[fixed], &uniq, v0.velocity[fixed])),
-        opts,
-        &mut profile,
-    )?;
+    let closure = Some((fixed, start[fixed], &uniq, v0.velocity[fixed]));
+    let (forward, backward) = if opts.parallel_halves {
+        let half = |dir: f64, closure: Option<Closure>| {
+            let mut pr = TraceProfile::default();
+            let h = trace_half(p, q, &y0, dir, closure, opts, &mut pr);
+            (h, pr)
+        };
+        let ((forward, pf), (backward, pb)) =
+            rayon::join(|| half(1.0, closure), || half(-1.0, None));
+        profile.add(&pf);
+        profile.add(&pb);
+        let forward = forward?;
+        // A closed loop needs no backward half (the sequential trace never runs it).
+        let backward = match forward.end {
+            CertifiedEnd::ClosedLoop => None,
+            _ => Some(backward?),
+        };
+        (forward, backward)
+    } else {
+        let forward = trace_half(p, q, &y0, 1.0, closure, opts, &mut profile)?;
+        let backward = match forward.end {
+            CertifiedEnd::ClosedLoop => None,
+            _ => Some(trace_half(p, q, &y0, -1.0, None, opts, &mut profile)?),
+        };
+        (forward, backward)
+    };
     let (mut boxes, mut tubes, mut widths) = (Vec::new(), Vec::new(), Vec::new());
     let mut certified_tolerance = forward.certified_tolerance;
     let first_end;
-    if forward.end == CertifiedEnd::ClosedLoop {
-        first_end = CertifiedEnd::ClosedLoop;
-    } else {
-        let backward = trace_half(p, q, &y0, -1.0, None, opts, &mut profile)?;
+    if let Some(backward) = backward {
         first_end = backward.end;
         boxes.extend(backward.boxes.into_iter().rev());
         tubes.extend(backward.tubes.into_iter().rev());
         widths.extend(backward.widths.into_iter().rev());
         certified_tolerance = certified_tolerance.max(backward.certified_tolerance);
+    } else {
+        first_end = CertifiedEnd::ClosedLoop;
     }
     let joined = boxes.len();
     boxes.extend(forward.boxes);

@@ -15,7 +15,7 @@ use crate::certify::{certify_branch, CertifiedBranch, CertifyOptions, StepBudget
 use crate::check::straying::{check_branches, StrayReport};
 use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
-use crate::march::branch::Branch;
+use crate::march::branch::{Branch, BranchStatus};
 use crate::march::MarchOptions;
 use crate::topology::branch_ends::check_branch_ends;
 use crate::topology::intersect::intersect as march_all;
@@ -151,6 +151,7 @@ pub fn certify_marched_branch(
             ..StepBudget::CERTIFY
         },
         required_tolerance: opts.required_tolerance,
+        parallel_halves: b.status != BranchStatus::Closed,
         ..CertifyOptions::default()
     };
     let (start, result) = match choose_start(p, q, b) {
