@@ -147,6 +147,17 @@ pub struct IntegratorWork {
     pub phase1_units: f64,
     /// Cost of the phase-II expansions (Jacobians and the centre).
     pub phase2_units: f64,
+    /// What sized the steps, summed over them: the steps `h`.
+    pub h_sum: f64,
+    /// The root-test radius `min_{k/2 ≤ i ≤ k} ‖yᵢ‖^{−1/i}` of the coefficients over the (thin)
+    /// initial box: about the point solution's radius of convergence. Summed over the steps.
+    pub radius_point_sum: f64,
+    /// `‖y_k([ỹ])‖^{−1/k}` of the remainder coefficient over the a-priori box: the radius the
+    /// validated remainder behaves as if it had, `h ≈ radius · (ε/C)^{1/k}`. Summed over the
+    /// steps. When it is well below [`radius_point_sum`](Self::radius_point_sum), the interval
+    /// coefficients over the a-priori box (which spans the step in every coordinate) limit the
+    /// step, not the solution's own series.
+    pub radius_apriori_sum: f64,
 }
 
 impl std::ops::AddAssign for IntegratorWork {
@@ -160,6 +171,9 @@ impl std::ops::AddAssign for IntegratorWork {
         self.box_units += w.box_units;
         self.phase1_units += w.phase1_units;
         self.phase2_units += w.phase2_units;
+        self.h_sum += w.h_sum;
+        self.radius_point_sum += w.radius_point_sum;
+        self.radius_apriori_sum += w.radius_apriori_sum;
     }
 }
 
@@ -364,6 +378,7 @@ impl Integrator {
         let rem_target = eps.max(REMAINDER_FRACTION_OF_WIDTH * width);
 
         let proven = self.phase_one(state, &range, h, t_limit, rem_target)?;
+        self.record_radii(k, &proven);
         let u2 = work_units(&self.ad);
         self.work.phase1_units += u2 - u1;
 
@@ -374,6 +389,20 @@ impl Integrator {
         };
         self.advance_state(state, &record, next, h_predicted, t_limit);
         Ok(record)
+    }
+
+    /// Adds the step's size and the two radii of [`IntegratorWork`] (profiling only).
+    fn record_radii(&mut self, k: usize, proven: &ProvenStep) {
+        let mag = |c: &[Interval]| c.iter().fold(0.0f64, |m, x| m.max(x.mag()));
+        let radius_point = (k / 2..=k)
+            .map(|i| mag(self.exp_box.coeff(i)).powf(-1.0 / i as f64))
+            .fold(f64::INFINITY, f64::min);
+        let radius_apriori = mag(&proven.apriori.remainder_coeff).powf(-1.0 / k as f64);
+        if radius_point.is_finite() && radius_apriori.is_finite() {
+            self.work.h_sum += proven.h.sup();
+            self.work.radius_point_sum += radius_point;
+            self.work.radius_apriori_sum += radius_apriori;
+        }
     }
 
     /// Step control: the step size predicted from the last two terms of the expansion over the
