@@ -9,6 +9,7 @@
 
 mod anchor;
 pub mod budget;
+mod closing;
 pub mod contact;
 pub mod contact_cover;
 pub mod curve;
