@@ -7,7 +7,7 @@
 //! between the expansion over the initial box, which also predicts the step, and phase I, the
 //! a-priori box and its remainder; phase II is off on re-anchored thin boxes), the re-anchoring
 //! (Krawczyk), the model-space boxes and tubes, and the loop-closing test. Fig. 7 is represented
-//! by its smallest loop (one iteration takes about a second). Under load from other processes
+//! by its smallest loop (one iteration takes seconds). Under load from other processes
 //! the ratios printed here (one process, back to back) mean more than the absolute times.
 //!
 //! **What sizes a certified step** (measured with this bench, order 20, 2026-12): the last

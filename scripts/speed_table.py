@@ -4,14 +4,15 @@ OpenCASCADE's uncertified `GeomInt_IntSS::Perform` on the same two patches, in o
 
 Usage (from the project root, after `cargo build --release`):
 
-    python3 scripts/speed_table.py [--repeat N] [--tolerance T] [SCENE.json ...]
+    python3 scripts/speed_table.py [--repeat N] [--tolerance T] [--baseline BIN] [SCENE.json ...]
 
 For each scene it prints the median wall time of N whole ssitrace processes (search, march,
 certification, straying check, output), OCCT's `time_ms` (the driver's own median of timed
 runs, `Perform` alone), their ratio, and per certified branch its steps and proven tolerance.
 The peer driver is looked up at $SSITRACE_PEERS (default /tmp/ssitrace-peers, built by
 ../shared/peers/build.sh); when it or the scene converter is missing the OCCT columns say so and
-the ssitrace columns are still measured.
+the ssitrace columns are still measured. With `--baseline BIN` (e.g. a build of `main`) each
+scene also runs that binary, just before this one, and prints its row under the same OCCT time.
 """
 
 import argparse
@@ -86,6 +87,7 @@ def main():
     ap.add_argument("--tolerance", type=float, default=None, help="--tolerance for ssitrace")
     ap.add_argument("--occt-tol", type=float, default=1e-7)
     ap.add_argument("--json", default=None, help="also write the rows here")
+    ap.add_argument("--baseline", default=None, help="another ssitrace binary to run alongside")
     args = ap.parse_args()
     if not os.path.exists(args.binary):
         sys.exit(f"{args.binary} missing: run `cargo build --release` first")
@@ -94,34 +96,41 @@ def main():
     hdr = f"{'scene':34} {'validated':>10} {'OCCT':>9} {'lines':>5} {'ratio':>7}  branches (steps, tolerance)"
     print(hdr)
     print("-" * len(hdr))
+    binaries = [("", args.binary)]
+    if args.baseline:
+        binaries.insert(0, ("base ", args.baseline))
     for scene in args.scenes:
-        walls, branches, err = [], None, None
-        for _ in range(max(1, args.repeat)):
-            w, b, e = run_ssitrace(args.binary, scene, args.tolerance)
-            walls.append(w)
-            branches, err = b, e
-        wall = statistics.median(walls)
+        measured = []
+        for tag, binary in binaries:
+            walls, branches, err = [], None, None
+            for _ in range(max(1, args.repeat)):
+                w, b, e = run_ssitrace(binary, scene, args.tolerance)
+                walls.append(w)
+                branches, err = b, e
+            measured.append((tag, statistics.median(walls), branches, err))
         occt, why = run_occt(scene, args.occt_tol)
-        name = os.path.basename(scene)
-        if occt is None:
-            occt_s, lines_s, ratio_s = "-", "-", "-"
-        else:
-            occt_s = f"{occt[0]:.1f}ms"
-            lines_s = str(occt[1])
-            ratio_s = f"{1000 * wall / occt[0]:.1f}x" if occt[0] > 0 else "-"
-        br = "; ".join(f"{s}, {t:.2e}" for s, t in branches) if branches else (err or ["none"])[0]
-        print(f"{name:34} {1000 * wall:>8.0f}ms {occt_s:>9} {lines_s:>5} {ratio_s:>7}  {br}")
+        for tag, wall, branches, err in measured:
+            name = tag + os.path.basename(scene)
+            if occt is None:
+                occt_s, lines_s, ratio_s = "-", "-", "-"
+            else:
+                occt_s = f"{occt[0]:.1f}ms"
+                lines_s = str(occt[1])
+                ratio_s = f"{1000 * wall / occt[0]:.1f}x" if occt[0] > 0 else "-"
+            br = "; ".join(f"{s}, {t:.2e}" for s, t in branches) if branches else (err or ["none"])[0]
+            print(f"{name:34} {1000 * wall:>8.0f}ms {occt_s:>9} {lines_s:>5} {ratio_s:>7}  {br}")
+            rows.append(
+                {
+                    "scene": scene,
+                    "binary": tag.strip() or "new",
+                    "validated_ms": 1000 * wall,
+                    "occt_ms": occt[0] if occt else None,
+                    "occt_lines": occt[1] if occt else None,
+                    "branches": branches,
+                }
+            )
         if why:
             print(f"{'':34} ({why})")
-        rows.append(
-            {
-                "scene": scene,
-                "validated_ms": 1000 * wall,
-                "occt_ms": occt[0] if occt else None,
-                "occt_lines": occt[1] if occt else None,
-                "branches": branches,
-            }
-        )
         sys.stdout.flush()
     if args.json:
         with open(args.json, "w") as f:
