@@ -69,6 +69,10 @@ enum Command {
         /// Write the certified tube pieces into the result JSON (large).
         #[arg(long)]
         tubes: bool,
+        /// Wall-clock limit of the certification in seconds: when it expires, every branch
+        /// still being certified ends unproven ("time limit"), with what is proven so far.
+        #[arg(long, value_name = "SECONDS")]
+        time_limit: Option<f64>,
         #[command(flatten)]
         outputs: Outputs,
     },
@@ -98,6 +102,7 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
             tolerance,
             max_steps,
             tubes,
+            time_limit,
             outputs,
         } => {
             let s = Scene::from_path(&scene)?;
@@ -119,6 +124,17 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
                 o.max_steps = n;
             }
             o.tubes = tubes;
+            if let Some(t) = time_limit {
+                let limit = std::time::Duration::try_from_secs_f64(t).map_err(|_| {
+                    ssitrace::Error::input(
+                        "--time-limit",
+                        ssitrace::InputProblem::WrongShape(format!(
+                            "{t} is not a number of seconds ≥ 0"
+                        )),
+                    )
+                })?;
+                o.time_limit = Some(limit);
+            }
             (s, o, outputs)
         }
         Command::Demo { outputs } => {

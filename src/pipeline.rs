@@ -20,6 +20,8 @@ pub struct RunOptions {
     pub max_steps: usize,
     /// Write the certified tube pieces into the result (large).
     pub tubes: bool,
+    /// Wall-clock limit of the certification ([`Options::time_limit`]).
+    pub time_limit: Option<std::time::Duration>,
 }
 
 impl RunOptions {
@@ -31,6 +33,7 @@ impl RunOptions {
             required_tolerance: scene.options.required_tolerance,
             max_steps: DEFAULT_MAX_STEPS,
             tubes: false,
+            time_limit: None,
         }
     }
 
@@ -41,6 +44,7 @@ impl RunOptions {
             step: self.step,
             required_tolerance: self.required_tolerance,
             max_steps: self.max_steps,
+            time_limit: self.time_limit,
             ..Options::default()
         }
     }

@@ -6,6 +6,7 @@
 use crate::geometry::RationalBezierPatch;
 use crate::validated::IntegratorOptions;
 use inari::Interval;
+use std::time::Instant;
 
 /// How the validated steps of one half are taken and when the half stops for its budget.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -25,6 +26,9 @@ pub struct StepBudget {
     pub max_steps: usize,
     /// Arc-length budget per half (e.g. 1.5 × the marcher's loop length).
     pub max_length: f64,
+    /// Wall-clock deadline (none by default). Once it has passed, a half ends before its next
+    /// step as unproven ("time limit"), keeping every step proven so far.
+    pub deadline: Option<Instant>,
 }
 
 impl StepBudget {
@@ -39,6 +43,7 @@ impl StepBudget {
         h_max: 0.25,
         max_steps: 200_000,
         max_length: f64::INFINITY,
+        deadline: None,
     };
 
     /// The default of the contact tracer.
@@ -49,11 +54,17 @@ impl StepBudget {
         h_max: 0.125,
         max_steps: 1000,
         max_length: f64::INFINITY,
+        deadline: None,
     };
 
     /// Whether a half that took `steps` steps over the arc length `length` has spent its budget.
     pub(crate) fn spent(&self, steps: usize, length: f64) -> bool {
         steps >= self.max_steps || length >= self.max_length
+    }
+
+    /// Whether the deadline has passed.
+    pub(crate) fn out_of_time(&self) -> bool {
+        self.deadline.is_some_and(|d| Instant::now() >= d)
     }
 
     /// The integrator's options for a half whose largest step is `h_max` (the budget's own

@@ -495,7 +495,7 @@ fn trace_half(
     let mut heading = heading;
     let mut active: Option<Active> = None;
     loop {
-        if opts.steps.spent(half.steps.len(), t) {
+        if opts.steps.spent(half.steps.len(), t) || opts.steps.out_of_time() {
             half.end = ContactEnd::Budget { length: t };
             return Ok(half);
         }

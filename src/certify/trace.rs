@@ -485,6 +485,17 @@ fn trace_half_with(
         model_size,
     );
     loop {
+        if opts.steps.out_of_time() {
+            half.end = CertifiedEnd::Unproven {
+                reason: format!(
+                    "time limit reached ({} steps, arc length {})",
+                    half.boxes.len(),
+                    state.t
+                ),
+                near: current,
+            };
+            return Ok(half);
+        }
         if opts.steps.spent(half.boxes.len(), state.t) {
             half.end = CertifiedEnd::Unproven {
                 reason: format!(

@@ -6,6 +6,7 @@ use crate::certify::contact_cover::CoverOptions;
 use crate::error::{Error, Result};
 use crate::pair::boundary_direction::BoundaryOptions;
 use crate::search::start_points::SearchOptions;
+use std::time::Duration;
 
 /// How the branches are traced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -74,6 +75,10 @@ pub struct Options {
     /// The certification of tangential contacts, with its cover (default: the contact defaults
     /// with a cover of leaf [`COVER_LEAF`] and budget [`COVER_EVALUATIONS`]).
     pub contact: ContactOptions,
+    /// Wall-clock limit of the certification, counted from the call (none by default). When it
+    /// expires, each certified half and contact still running ends unproven ("time limit")
+    /// with everything proven up to there; the search and the march are not limited.
+    pub time_limit: Option<Duration>,
 }
 
 impl Default for Options {
@@ -93,6 +98,7 @@ impl Default for Options {
                 },
                 ..ContactOptions::default()
             },
+            time_limit: None,
         }
     }
 }

@@ -42,6 +42,7 @@ pub fn intersect(
         ..MarchOptions::default()
     };
     let started = Instant::now();
+    let deadline = opts.time_limit.map(|limit| started + limit);
     let outcome = march_all(p, q, &march, &opts.search);
     let march_seconds = started.elapsed().as_secs_f64();
     let marched = outcome.intersection.branches;
@@ -70,7 +71,7 @@ pub fn intersect(
         let certifying = Instant::now();
         let certs: Vec<BranchCertificate> = marched
             .par_iter()
-            .map(|b| certify_marched_branch(p, q, b, opts))
+            .map(|b| certify_within(p, q, b, opts, deadline))
             .collect();
         let wall_seconds = certifying.elapsed().as_secs_f64();
         let certified: Vec<Option<&CertifiedBranch>> =
@@ -79,7 +80,9 @@ pub fn intersect(
         let reports = check_branches(p, q, &marched, &certified, march.newton_tolerance);
         let straying_seconds = checking.elapsed().as_secs_f64();
         let contacting = Instant::now();
-        match certify_contact_events(p, q, &outcome.intersection.events, &opts.contact) {
+        let mut contact = opts.contact;
+        contact.steps.deadline = deadline;
+        match certify_contact_events(p, q, &outcome.intersection.events, &contact) {
             Ok(c) => contacts = c,
             Err(e) => contact_error = Some(e),
         }
@@ -135,6 +138,18 @@ pub fn certify_marched_branch(
     b: &Branch,
     opts: &Options,
 ) -> BranchCertificate {
+    let deadline = opts.time_limit.map(|limit| Instant::now() + limit);
+    certify_within(p, q, b, opts, deadline)
+}
+
+/// [`certify_marched_branch`] with the run's deadline.
+fn certify_within(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &Branch,
+    opts: &Options,
+    deadline: Option<Instant>,
+) -> BranchCertificate {
     let started = Instant::now();
     let length = b.length();
     // A closed loop is traced once from its start, an open branch each way from the middle:
@@ -148,6 +163,7 @@ pub fn certify_marched_branch(
         steps: StepBudget {
             max_steps: opts.max_steps,
             max_length,
+            deadline,
             ..StepBudget::CERTIFY
         },
         required_tolerance: opts.required_tolerance,
