@@ -3,6 +3,7 @@
 pub mod analytic;
 pub mod bezier;
 pub mod enclosure;
+pub mod nurbs;
 pub mod piece;
 pub mod power;
 pub mod surface;
