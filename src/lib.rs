@@ -62,6 +62,7 @@ pub mod numeric;
 pub mod pair;
 pub mod pipeline;
 pub mod search;
+pub mod shell;
 pub mod solve;
 pub mod topology;
 pub mod validated;

@@ -5,10 +5,11 @@ use inari::Interval;
 use ssitrace::certify::contact::{CertifiedContact, ContactEnd};
 use ssitrace::certify::CertifiedEnd;
 use ssitrace::check::straying::StrayReport;
+use ssitrace::io::intersection_json::mark_pair;
 use ssitrace::io::result_json::write_result;
-use ssitrace::io::scene::{Method, Scene};
+use ssitrace::io::scene::{Method, Scene, ShellScene};
 use ssitrace::march::branch::{BranchStatus, Event, EventKind};
-use ssitrace::pipeline::{RunOptions, RunReport};
+use ssitrace::pipeline::{RunOptions, RunReport, ShellRunReport};
 use ssitrace::BranchCertificate;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -105,8 +106,8 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
             time_limit,
             outputs,
         } => {
-            let s = Scene::from_path(&scene)?;
-            let mut o = RunOptions::from_scene(&s);
+            let s = ShellScene::from_path(&scene)?;
+            let mut o = RunOptions::from_scene_options(&s.options);
             if let Some(m) = method {
                 o.method = match m {
                     MethodArg::March => Method::March,
@@ -135,7 +136,10 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
                 })?;
                 o.time_limit = Some(limit);
             }
-            (s, o, outputs)
+            match s.as_pair() {
+                Some(pair) => (pair, o, outputs),
+                None => return run_shells(&s, &o, &outputs),
+            }
         }
         Command::Demo { outputs } => {
             let s = Scene::from_json_str(DEMO_SCENE)?;
@@ -144,9 +148,10 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
         }
     };
     let started = Instant::now();
-    let report = ssitrace::pipeline::run(&scene, &opts)?;
+    let mut report = ssitrace::pipeline::run(&scene, &opts)?;
     let elapsed = started.elapsed().as_secs_f64();
     say(&summary(&scene, &report, &opts, elapsed));
+    mark_pair(&mut report.meta, &report.result, [0, 0]);
     if let Some(path) = &outputs.out {
         write_result(path, &report.result.marched(), &report.meta)?;
         say(&format!("result written to {}\n", path.display()));
@@ -156,6 +161,80 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
         say(&format!("picture written to {}\n", path.display()));
     }
     Ok(())
+}
+
+/// A scene of shells (several faces, or NURBS surfaces of several knot spans): every piece
+/// pair traced, a summary printed, the merged result written.
+fn run_shells(scene: &ShellScene, opts: &RunOptions, outputs: &Outputs) -> ssitrace::Result<()> {
+    let started = Instant::now();
+    let report = ssitrace::pipeline::run_shells(scene, opts)?;
+    let elapsed = started.elapsed().as_secs_f64();
+    say(&shell_summary(scene, &report, opts, elapsed));
+    if let Some(path) = &outputs.out {
+        write_result(path, &report.curves, &report.meta)?;
+        say(&format!("result written to {}\n", path.display()));
+    }
+    if let Some(path) = &outputs.svg {
+        say(&format!(
+            "no picture written to {}: pictures of shell scenes are not drawn yet\n",
+            path.display()
+        ));
+    }
+    Ok(())
+}
+
+/// The summary of a shell run: counts, then each traced piece pair and its branches.
+fn shell_summary(
+    scene: &ShellScene,
+    report: &ShellRunReport,
+    opts: &RunOptions,
+    seconds: f64,
+) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    let name = scene.options.name.as_deref().unwrap_or("scene");
+    let r = &report.result;
+    let _ = writeln!(
+        out,
+        "{name}: {} x {} face(s), {} piece pair(s), {} skipped by their bounding boxes, {} branch(es), {:.1} ms",
+        scene.shells[0].len(),
+        scene.shells[1].len(),
+        r.piece_pairs,
+        r.skipped_pairs,
+        r.branch_count(),
+        seconds * 1e3
+    );
+    for p in &r.pairs {
+        if p.result.branches.is_empty() && p.result.is_complete() {
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "  faces {:?}, pieces {:?}: {} branch(es){}",
+            p.faces,
+            p.pieces,
+            p.result.branches.len(),
+            if p.result.is_complete() {
+                ""
+            } else {
+                " (warning: search not complete)"
+            }
+        );
+        for traced in &p.result.branches {
+            let b = &traced.marched;
+            let _ = writeln!(
+                out,
+                "    branch: {} to {}, {} points",
+                b.ends[0],
+                b.ends[1],
+                b.points.len()
+            );
+            if let Some(c) = &traced.certificate {
+                let _ = writeln!(out, "  {}", certificate_line(c, opts.required_tolerance));
+            }
+        }
+    }
+    out
 }
 
 /// Draws the marched curves with the certified boxes and contacts over them.

@@ -1,10 +1,13 @@
 //! From a scene to a result document, for the command line: the scene's two patches go through
-//! [`intersect`] and the result through [`result_meta`].
+//! [`intersect`] and the result through [`result_meta`]; a shell scene's faces go through
+//! [`intersect_shells`] and the result through [`shell_result`].
 
 use crate::error::Result;
-use crate::io::intersection_json::result_meta;
+use crate::io::intersection_json::{result_meta, shell_result};
 use crate::io::result_json::ResultMeta;
-use crate::io::scene::{Method, Scene};
+use crate::io::scene::{Method, Scene, SceneOptions, ShellScene};
+use crate::march::branch::Intersection;
+use crate::shell::{intersect_shells, ShellIntersection};
 use crate::solve::{intersect, Options, SurfaceIntersection, DEFAULT_MAX_STEPS};
 
 /// What to run on a scene: the scene's own options, possibly overridden on the command line.
@@ -27,10 +30,15 @@ pub struct RunOptions {
 impl RunOptions {
     /// The options a scene asks for (step budget [`DEFAULT_MAX_STEPS`], no tubes).
     pub fn from_scene(scene: &Scene) -> Self {
+        Self::from_scene_options(&scene.options)
+    }
+
+    /// The options a scene's run options ask for (step budget [`DEFAULT_MAX_STEPS`], no tubes).
+    pub fn from_scene_options(o: &SceneOptions) -> Self {
         RunOptions {
-            method: scene.options.method,
-            step: scene.options.step,
-            required_tolerance: scene.options.required_tolerance,
+            method: o.method,
+            step: o.step,
+            required_tolerance: o.required_tolerance,
             max_steps: DEFAULT_MAX_STEPS,
             tubes: false,
             time_limit: None,
@@ -76,4 +84,30 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
 pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<(SurfaceIntersection, ResultMeta)> {
     let report = run(scene, opts)?;
     Ok((report.result, report.meta))
+}
+
+/// Everything a shell run produced.
+#[derive(Debug)]
+pub struct ShellRunReport {
+    /// The typed result, per traced piece pair.
+    pub result: ShellIntersection,
+    /// The marched curves of all piece pairs, renumbered into one sequence.
+    pub curves: Intersection,
+    /// The result document's metadata for `curves` (every branch with its `"pair"`).
+    pub meta: ResultMeta,
+}
+
+/// Intersects every face of the scene's shell A with every face of shell B
+/// ([`intersect_shells`]); the typed result and the merged result document.
+///
+/// Errors: as [`intersect`].
+pub fn run_shells(scene: &ShellScene, opts: &RunOptions) -> Result<ShellRunReport> {
+    let [a, b] = &scene.shells;
+    let result = intersect_shells(a, b, &opts.options())?;
+    let (curves, meta) = shell_result(scene.options.name.clone(), &result, opts.tubes);
+    Ok(ShellRunReport {
+        result,
+        curves,
+        meta,
+    })
 }

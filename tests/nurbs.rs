@@ -36,8 +36,9 @@ fn de_boor(knots: &[f64], p: usize, pts: &[[f64; 4]], x: f64) -> [f64; 4] {
             let lo = knots[j + k - p];
             let hi = knots[j + 1 + k - r];
             let a = (x - lo) / (hi - lo);
-            for c in 0..4 {
-                d[j][c] = (1.0 - a) * d[j - 1][c] + a * d[j][c];
+            let prev = d[j - 1];
+            for (x, y) in d[j].iter_mut().zip(prev) {
+                *x = (1.0 - a) * y + a * *x;
             }
         }
     }
@@ -174,7 +175,8 @@ fn bezier_pieces_enclose_the_nurbs_clamped_and_unclamped() {
 /// The standard NURBS unit sphere: a 9-point circle in u (degree 2, four quarter arcs) times a
 /// 5-point half circle in v, with the weight √2/2 given as an interval enclosing it.
 fn sphere() -> NurbsSurface {
-    let s = Interval::try_from((0.7071067811865475, 0.7071067811865476)).unwrap();
+    let r = std::f64::consts::FRAC_1_SQRT_2;
+    let s = Interval::try_from((r.next_down(), r.next_up())).unwrap();
     let half = pt(0.5);
     assert!((s * s).inf() <= 0.5 && 0.5 <= (s * s).sup() && half.inf() == 0.5);
     let circle = [

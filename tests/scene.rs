@@ -215,10 +215,10 @@ fn every_bad_input_gives_a_typed_error_naming_surface_and_field() {
             BadDegree(-2),
         ),
         (
-            edited(|v| v["surfaces"][1]["kind"] = json!("nurbs")),
+            edited(|v| v["surfaces"][1]["kind"] = json!("subdivision")),
             Some(1),
             "kind",
-            UnknownKind("nurbs".into()),
+            UnknownKind("subdivision".into()),
         ),
         (
             edited(|v| v["surfaces"][1]["colour"] = json!("red")),

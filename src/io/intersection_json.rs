@@ -1,6 +1,8 @@
 //! The result document of a [`SurfaceIntersection`]: the stats, the `"certified"` member of each
 //! branch with its `"straying"` report, the certified events and contacts, and the topology
-//! notes, gathered into a [`ResultMeta`] for [`write_result`](super::result_json::write_result).
+//! notes, gathered into a [`ResultMeta`] for [`write_result`](super::result_json::write_result);
+//! and the same for a shell intersection, whose branches each carry the `"pair"` of faces they
+//! belong to ([`shell_result`]).
 
 use serde_json::{json, Map, Value};
 
@@ -10,6 +12,8 @@ use super::result_json::{
 };
 use super::topology_json::{boundary_ends_to_json, node_to_json};
 use crate::check::straying::StrayReport;
+use crate::march::branch::Intersection;
+use crate::shell::ShellIntersection;
 use crate::solve::{BranchCertificate, SurfaceIntersection};
 
 /// Everything of `r` that goes into the result document besides the marched curves
@@ -170,4 +174,96 @@ pub fn stats_json(r: &SurfaceIntersection) -> Map<String, Value> {
         }
     }
     m
+}
+
+/// Add `"pair": [i, j]` (face of A, face of B) to every branch of `r` in `meta`.
+pub fn mark_pair(meta: &mut ResultMeta, r: &SurfaceIntersection, pair: [usize; 2]) {
+    for b in &r.branches {
+        meta.branch_notes
+            .entry(b.id())
+            .or_default()
+            .insert("pair".into(), json!(pair));
+    }
+}
+
+/// Add `delta` to the unsigned integer at `v[key]`, if there is one.
+fn shift(v: &mut Value, key: &str, delta: usize) {
+    if let Some(x) = v.get_mut(key) {
+        if let Some(n) = x.as_u64() {
+            *x = json!(n as usize + delta);
+        }
+    }
+}
+
+/// The result document of a shell intersection: the branches and events of every traced piece
+/// pair, in the order of [`ShellIntersection::pairs`], renumbered into one sequence (branch ids
+/// and event indices, and the branch references inside the certified members and events,
+/// shifted by the counts before them). Every branch, marcher event note and certified event
+/// carries `"pair": [i, j]` (the faces of A and B) and `"pieces"` (the Bézier pieces of those
+/// faces). The stats hold `"piece_pairs"`, `"skipped_pairs"` (proven disjoint by their
+/// bounding boxes), `"branches"`, `"search_complete"` (every traced pair settled) and
+/// `"pairs"`, the [`stats_json`] of each traced pair with its `"pair"` and `"pieces"`.
+pub fn shell_result(
+    scene: Option<String>,
+    s: &ShellIntersection,
+    tubes: bool,
+) -> (Intersection, ResultMeta) {
+    let mut all = Intersection::default();
+    let mut meta = ResultMeta::new(scene, s.options.method.name());
+    let mut pair_stats = Vec::new();
+    for pi in &s.pairs {
+        let (b0, e0) = (all.branches.len(), all.events.len());
+        let tag = |v: &mut Value| {
+            if let Value::Object(m) = v {
+                m.insert("pair".into(), json!(pi.faces));
+                m.insert("pieces".into(), json!(pi.pieces));
+            }
+        };
+        let mut m = result_meta(None, &pi.result, tubes);
+        mark_pair(&mut m, &pi.result, pi.faces);
+        let marched = pi.result.marched();
+        for mut b in marched.branches {
+            let id = b.id;
+            b.id += b0;
+            let mut notes = m.branch_notes.remove(&id).unwrap_or_default();
+            notes.insert("pieces".into(), json!(pi.pieces));
+            meta.branch_notes.insert(b.id, notes);
+            if let Some(mut c) = m.certified.remove(&id) {
+                if let Some(points) = c
+                    .get_mut("straying")
+                    .and_then(|x| x.get_mut("straying_points"))
+                    .and_then(|x| x.as_array_mut())
+                {
+                    for p in points {
+                        shift(p, "onto", b0);
+                    }
+                }
+                meta.certified.insert(b.id, c);
+            }
+            all.branches.push(b);
+        }
+        for (k, e) in marched.events.into_iter().enumerate() {
+            let mut notes = Value::Object(m.event_notes.remove(&k).unwrap_or_default());
+            tag(&mut notes);
+            if let Value::Object(n) = notes {
+                meta.event_notes.insert(k + e0, n);
+            }
+            all.events.push(e);
+        }
+        for mut v in m.certified_events {
+            shift(&mut v, "branch", b0);
+            tag(&mut v);
+            meta.certified_events.push(v);
+        }
+        let mut st = Value::Object(m.stats);
+        tag(&mut st);
+        pair_stats.push(st);
+    }
+    let stats = &mut meta.stats;
+    stats.insert("piece_pairs".into(), json!(s.piece_pairs));
+    stats.insert("skipped_pairs".into(), json!(s.skipped_pairs));
+    stats.insert("branches".into(), json!(all.branches.len()));
+    stats.insert("search_complete".into(), json!(s.is_complete()));
+    stats.insert("pairs".into(), Value::Array(pair_stats));
+    (all, meta)
 }

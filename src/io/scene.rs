@@ -1,10 +1,11 @@
-//! The scene file: two surfaces and optional run options, as JSON.
+//! The scene file: two surfaces (or two shells of surfaces) and optional run options, as JSON.
 //!
 //! ```json
-//! {"surfaces": [S, S], "options": {"step": 0.05, "method": "march", "tolerance": 1e-9, "name": "x"}}
+//! {"surfaces": [A, B], "options": {"step": 0.05, "method": "march", "tolerance": 1e-9, "name": "x"}}
 //! ```
 //!
-//! with each `S` one of
+//! with `A` and `B` each one surface `S` or a non-empty array of surfaces (a shell; every face
+//! of A is intersected with every face of B, see [`crate::shell`]), and each `S` one of
 //!
 //! * `{"kind": "bezier", "degree": [m, n], "points": [[x,y,z], …], "weights": […],
 //!   "domain": [[u0,u1],[v0,v1]]}`: `(m+1)(n+1)` points, index `i·(n+1)+j`; `weights` (default
@@ -12,7 +13,15 @@
 //!   number or an interval `[lo, hi]`;
 //! * `{"kind": "polynomial", "domain": [[u0,u1],[v0,v1]], "x": [[i,j,c], …], "y": […],
 //!   "z": […], "w": […]}`: each component the sum of `c·uⁱ·vʲ`, the surface `(x/w, y/w, z/w)`;
-//!   `w` (default 1) and `domain` (default the unit square) optional.
+//!   `w` (default 1) and `domain` (default the unit square) optional;
+//! * `{"kind": "nurbs", "degree": [p, q], "knots": [[u_0, …, u_{nu+p}], [v_0, …, v_{nv+q}]],
+//!   "points": [[x,y,z], …], "weights": […]}`: `nu·nv` Cartesian control points with
+//!   `nu = len(knots[0]) − p − 1`, point `(i, j)` at index `i·nv + j`; `weights` optional (all
+//!   1); knots non-decreasing, clamped or not; domain `[u_p, u_nu] × [v_q, v_nv]`; coordinates
+//!   and weights may be intervals (see [`NurbsSurface`]).
+//!
+//! [`ShellScene`] reads every scene; [`Scene`] reads those of two single Bézier patches (a
+//! NURBS surface of one knot span counts as one).
 //!
 //! The parser walks the [`serde_json::Value`] by hand so every problem is reported as an
 //! [`Error::InvalidInput`] naming the surface index and the field path (top-level and option
@@ -20,9 +29,11 @@
 
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::bezier::RationalBezierPatch;
+use crate::geometry::nurbs::NurbsSurface;
 use crate::geometry::power::{PowerSurface, PowerTerm};
 use crate::geometry::surface::Domain;
 use crate::numeric::scalar::{interval, point};
+use crate::shell::Face;
 use inari::Interval;
 use serde_json::{json, Map, Value};
 use std::path::Path;
@@ -60,6 +71,15 @@ impl Default for SceneOptions {
 pub struct Scene {
     /// The two surfaces, in file order (surface 0 is P, surface 1 is Q).
     pub surfaces: [RationalBezierPatch; 2],
+    /// The run options.
+    pub options: SceneOptions,
+}
+
+/// A parsed scene in its general form: two shells (each a list of faces) and the run options.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShellScene {
+    /// Shell A (the first entry of `"surfaces"`) and shell B (the second), faces in file order.
+    pub shells: [Vec<Face>; 2],
     /// The run options.
     pub options: SceneOptions,
 }
@@ -187,8 +207,7 @@ fn domain(v: Option<&Value>) -> Result<Domain> {
     })
 }
 
-fn bezier(map: &Map<String, Value>) -> Result<RationalBezierPatch> {
-    only_fields(map, &["kind", "degree", "points", "weights", "domain"], "")?;
+fn degree_pair(map: &Map<String, Value>) -> Result<[usize; 2]> {
     let deg = array(required(map, "degree", "degree")?, "degree")?;
     if deg.len() != 2 {
         return Err(Error::input(
@@ -207,6 +226,10 @@ fn bezier(map: &Map<String, Value>) -> Result<RationalBezierPatch> {
             return Err(Error::input(field, InputProblem::BadDegree(0)));
         }
     }
+    Ok(degree)
+}
+
+fn control_points(map: &Map<String, Value>) -> Result<Vec<[Interval; 3]>> {
     let pts = array(required(map, "points", "points")?, "points")?;
     let mut points = Vec::with_capacity(pts.len());
     for (k, p) in pts.iter().enumerate() {
@@ -227,22 +250,31 @@ fn bezier(map: &Map<String, Value>) -> Result<RationalBezierPatch> {
         }
         points.push(q);
     }
-    let weights = match map.get("weights") {
-        None => None,
-        Some(w) => {
-            let w = array(w, "weights")?;
-            let mut out = Vec::with_capacity(w.len());
-            for (k, x) in w.iter().enumerate() {
-                let field = format!("weights[{k}]");
-                let x = interval_value(x, &field)?;
-                if x.inf() <= 0.0 {
-                    return Err(Error::input(field, InputProblem::NonPositiveWeight));
-                }
-                out.push(x);
-            }
-            Some(out)
-        }
+    Ok(points)
+}
+
+fn weights(map: &Map<String, Value>) -> Result<Option<Vec<Interval>>> {
+    let Some(w) = map.get("weights") else {
+        return Ok(None);
     };
+    let w = array(w, "weights")?;
+    let mut out = Vec::with_capacity(w.len());
+    for (k, x) in w.iter().enumerate() {
+        let field = format!("weights[{k}]");
+        let x = interval_value(x, &field)?;
+        if x.inf() <= 0.0 {
+            return Err(Error::input(field, InputProblem::NonPositiveWeight));
+        }
+        out.push(x);
+    }
+    Ok(Some(out))
+}
+
+fn bezier(map: &Map<String, Value>) -> Result<RationalBezierPatch> {
+    only_fields(map, &["kind", "degree", "points", "weights", "domain"], "")?;
+    let degree = degree_pair(map)?;
+    let points = control_points(map)?;
+    let weights = weights(map)?;
     RationalBezierPatch::new(degree, points, weights, domain(map.get("domain"))?)
 }
 
@@ -284,19 +316,77 @@ fn polynomial(map: &Map<String, Value>) -> Result<RationalBezierPatch> {
     surface.to_bezier()
 }
 
-/// One surface object (errors not yet attributed to a surface index).
-fn surface(v: &Value) -> Result<RationalBezierPatch> {
+fn knot_vector(v: &Value, field: &str) -> Result<Vec<f64>> {
+    array(v, field)?
+        .iter()
+        .enumerate()
+        .map(|(i, t)| number(t, &format!("{field}[{i}]")))
+        .collect()
+}
+
+fn nurbs(map: &Map<String, Value>) -> Result<NurbsSurface> {
+    only_fields(map, &["kind", "degree", "knots", "points", "weights"], "")?;
+    let degree = degree_pair(map)?;
+    let knots = array(required(map, "knots", "knots")?, "knots")?;
+    if knots.len() != 2 {
+        return Err(Error::input(
+            "knots",
+            InputProblem::WrongCount {
+                expected: 2,
+                found: knots.len(),
+            },
+        ));
+    }
+    let knots = [
+        knot_vector(&knots[0], "knots[0]")?,
+        knot_vector(&knots[1], "knots[1]")?,
+    ];
+    NurbsSurface::new(degree, knots, control_points(map)?, weights(map)?)
+}
+
+/// One surface object as a face (errors not yet attributed to a surface index).
+fn face(v: &Value) -> Result<Face> {
     let map = object(v, "surface")?;
     let kind = required(map, "kind", "kind")?
         .as_str()
         .ok_or_else(|| shape("kind", "expected a string"))?;
     match kind {
-        "bezier" => bezier(map),
-        "polynomial" => polynomial(map),
+        "bezier" => bezier(map).map(Face::from_patch),
+        "polynomial" => polynomial(map).map(Face::from_patch),
+        "nurbs" => Face::from_nurbs(&nurbs(map)?),
         other => Err(Error::input(
             "kind",
             InputProblem::UnknownKind(other.to_string()),
         )),
+    }
+}
+
+/// The same input error with its field prefixed by `face[k].`.
+fn in_face(e: Error, k: usize) -> Error {
+    match e {
+        Error::InvalidInput {
+            surface,
+            field,
+            problem,
+        } => Error::InvalidInput {
+            surface,
+            field: format!("face[{k}].{field}"),
+            problem,
+        },
+        other => other,
+    }
+}
+
+/// One side of a scene: a surface object (one face) or a non-empty array of them.
+fn side(v: &Value) -> Result<Vec<Face>> {
+    match v.as_array() {
+        None => Ok(vec![face(v)?]),
+        Some(list) if list.is_empty() => Err(shape("surface", "an empty list of faces")),
+        Some(list) => list
+            .iter()
+            .enumerate()
+            .map(|(k, f)| face(f).map_err(|e| in_face(e, k)))
+            .collect(),
     }
 }
 
@@ -381,9 +471,24 @@ fn patch_json(p: &RationalBezierPatch) -> Value {
     out
 }
 
-impl Scene {
-    /// Parse a scene from a JSON value (see the module documentation for the format).
-    pub fn from_json_value(v: &Value) -> Result<Scene> {
+/// Read a file's text; read failures give [`Error::Io`].
+fn read_text(path: &Path) -> Result<String> {
+    std::fs::read_to_string(path).map_err(|e| Error::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })
+}
+
+/// Text to JSON; text that is not JSON gives [`Error::Scene`].
+fn parse_text(text: &str) -> Result<Value> {
+    serde_json::from_str(text).map_err(|e| Error::Scene(format!("invalid JSON: {e}")))
+}
+
+impl ShellScene {
+    /// Parse a scene from a JSON value: each entry of `"surfaces"` one surface object or a
+    /// non-empty array of them (see the module documentation). Errors in face `k` of a list
+    /// name the field `face[k].…`.
+    pub fn from_json_value(v: &Value) -> Result<ShellScene> {
         let map = v
             .as_object()
             .ok_or_else(|| Error::Scene("the scene must be a JSON object".into()))?;
@@ -398,28 +503,57 @@ impl Scene {
                 },
             ));
         }
-        let first = surface(&list[0]).map_err(|e| e.in_surface(0))?;
-        let second = surface(&list[1]).map_err(|e| e.in_surface(1))?;
-        Ok(Scene {
-            surfaces: [first, second],
+        let first = side(&list[0]).map_err(|e| e.in_surface(0))?;
+        let second = side(&list[1]).map_err(|e| e.in_surface(1))?;
+        Ok(ShellScene {
+            shells: [first, second],
             options: options(map.get("options"))?,
         })
     }
 
     /// Parse a scene from JSON text; text that is not JSON gives [`Error::Scene`].
+    pub fn from_json_str(text: &str) -> Result<ShellScene> {
+        Self::from_json_value(&parse_text(text)?)
+    }
+
+    /// Read and parse a scene file; read failures give [`Error::Io`].
+    pub fn from_path(path: &Path) -> Result<ShellScene> {
+        Self::from_json_str(&read_text(path)?)
+    }
+
+    /// The two-patch [`Scene`] when each shell is one face of one Bézier piece.
+    pub fn as_pair(&self) -> Option<Scene> {
+        match &self.shells {
+            [a, b] if a.len() == 1 && b.len() == 1 => Some(Scene {
+                surfaces: [a[0].as_patch()?.clone(), b[0].as_patch()?.clone()],
+                options: self.options.clone(),
+            }),
+            _ => None,
+        }
+    }
+}
+
+impl Scene {
+    /// Parse a scene of two single patches from a JSON value (see the module documentation for
+    /// the format). A scene of several faces, or with a NURBS surface of several knot spans, is
+    /// an [`Error::InvalidInput`] on `surfaces`: read it as a [`ShellScene`].
+    pub fn from_json_value(v: &Value) -> Result<Scene> {
+        ShellScene::from_json_value(v)?.as_pair().ok_or_else(|| {
+            shape(
+                "surfaces",
+                "a shell scene (several faces or Bézier pieces); read it as a ShellScene",
+            )
+        })
+    }
+
+    /// Parse a scene from JSON text; text that is not JSON gives [`Error::Scene`].
     pub fn from_json_str(text: &str) -> Result<Scene> {
-        let v: Value =
-            serde_json::from_str(text).map_err(|e| Error::Scene(format!("invalid JSON: {e}")))?;
-        Self::from_json_value(&v)
+        Self::from_json_value(&parse_text(text)?)
     }
 
     /// Read and parse a scene file; read failures give [`Error::Io`].
     pub fn from_path(path: &Path) -> Result<Scene> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
-            path: path.display().to_string(),
-            message: e.to_string(),
-        })?;
-        Self::from_json_str(&text)
+        Self::from_json_str(&read_text(path)?)
     }
 
     /// The scene as JSON, both surfaces in Bézier form. Patches built from Cartesian data are

@@ -1,0 +1,153 @@
+//! Shells: many faces against many faces.
+//!
+//! A [`Face`] is one surface of a scene, held as the rational Bézier patches it is made of (one
+//! for a Bézier or polynomial surface; one per pair of knot spans for a NURBS surface, each on
+//! its knot span so its parameters are the NURBS's own). [`intersect_shells`] intersects every
+//! Bézier piece of every face of shell A with every piece of every face of shell B: pairs whose
+//! rigorous bounding boxes (the hulls of their control nets) are disjoint are skipped, the rest
+//! go through [`intersect`] in parallel on rayon's thread pool, and the results come back in a
+//! fixed order (faces of A, faces of B, pieces of A, pieces of B, all ascending) whatever the
+//! scheduling.
+//!
+//! Each piece pair is traced on its own: a curve that crosses a knot line or passes from one
+//! face to another comes back as one branch per piece pair. Joining those branches across knot
+//! lines, seams and shared edges is not done here.
+
+use rayon::prelude::*;
+
+use crate::error::Result;
+use crate::geometry::bezier::RationalBezierPatch;
+use crate::geometry::enclosure::boxes_disjoint;
+use crate::geometry::nurbs::NurbsSurface;
+use crate::geometry::surface::Domain;
+use crate::solve::{intersect, Options, SurfaceIntersection};
+use inari::Interval;
+
+/// One face of a shell: its rational Bézier pieces and their rigorous bounding boxes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Face {
+    pieces: Vec<RationalBezierPatch>,
+    boxes: Vec<[Interval; 3]>,
+    domain: Domain,
+}
+
+impl Face {
+    /// A face that is one Bézier patch.
+    pub fn from_patch(p: RationalBezierPatch) -> Face {
+        let domain = p.domain();
+        Face {
+            boxes: vec![p.bounding_box()],
+            pieces: vec![p],
+            domain,
+        }
+    }
+
+    /// A face that is a NURBS surface, split into its Bézier pieces
+    /// ([`NurbsSurface::to_bezier`]).
+    ///
+    /// Errors: as [`NurbsSurface::to_bezier`].
+    pub fn from_nurbs(s: &NurbsSurface) -> Result<Face> {
+        let pieces = s.to_bezier()?;
+        Ok(Face {
+            boxes: pieces.iter().map(|p| p.bounding_box()).collect(),
+            pieces,
+            domain: s.domain(),
+        })
+    }
+
+    /// The Bézier pieces, each on its own part of the face's domain.
+    pub fn pieces(&self) -> &[RationalBezierPatch] {
+        &self.pieces
+    }
+
+    /// The face's parameter domain (the union of its pieces' domains).
+    pub fn domain(&self) -> Domain {
+        self.domain
+    }
+
+    /// The single patch of a one-piece face.
+    pub fn as_patch(&self) -> Option<&RationalBezierPatch> {
+        match self.pieces.as_slice() {
+            [p] => Some(p),
+            _ => None,
+        }
+    }
+}
+
+/// The intersection of one Bézier piece of a face of A with one of a face of B.
+#[derive(Debug)]
+pub struct PieceIntersection {
+    /// `[face of A, face of B]`.
+    pub faces: [usize; 2],
+    /// `[piece of that face of A, piece of that face of B]`.
+    pub pieces: [usize; 2],
+    /// The result of [`intersect`] on the two pieces (parameters are the faces' own).
+    pub result: SurfaceIntersection,
+}
+
+/// The intersection of two shells.
+#[derive(Debug)]
+pub struct ShellIntersection {
+    /// The options every piece pair ran with.
+    pub options: Options,
+    /// The piece pairs that were traced (bounding boxes not disjoint), in a fixed order.
+    pub pairs: Vec<PieceIntersection>,
+    /// How many piece pairs there were in all.
+    pub piece_pairs: usize,
+    /// How many the bounding-box pre-filter proved disjoint (not traced).
+    pub skipped_pairs: usize,
+}
+
+impl ShellIntersection {
+    /// Whether every traced piece pair settled its search ([`SurfaceIntersection::is_complete`]).
+    pub fn is_complete(&self) -> bool {
+        self.pairs.iter().all(|p| p.result.is_complete())
+    }
+
+    /// The number of branches over all piece pairs.
+    pub fn branch_count(&self) -> usize {
+        self.pairs.iter().map(|p| p.result.branches.len()).sum()
+    }
+}
+
+/// Intersect every Bézier piece of every face of `a` with every piece of every face of `b`
+/// (see the module documentation).
+///
+/// Errors: the first error of [`intersect`] in pair order (bad options).
+pub fn intersect_shells(a: &[Face], b: &[Face], opts: &Options) -> Result<ShellIntersection> {
+    opts.check()?;
+    let mut all = Vec::new();
+    for (fa, face_a) in a.iter().enumerate() {
+        for (fb, face_b) in b.iter().enumerate() {
+            for pa in 0..face_a.pieces.len() {
+                for pb in 0..face_b.pieces.len() {
+                    all.push(([fa, fb], [pa, pb]));
+                }
+            }
+        }
+    }
+    let piece_pairs = all.len();
+    let kept: Vec<([usize; 2], [usize; 2])> = all
+        .into_iter()
+        .filter(|&([fa, fb], [pa, pb])| !boxes_disjoint(&a[fa].boxes[pa], &b[fb].boxes[pb]))
+        .collect();
+    let skipped_pairs = piece_pairs - kept.len();
+    let pairs = kept
+        .into_par_iter()
+        .map(|(faces, pieces)| {
+            let p = &a[faces[0]].pieces[pieces[0]];
+            let q = &b[faces[1]].pieces[pieces[1]];
+            intersect(p, q, opts).map(|result| PieceIntersection {
+                faces,
+                pieces,
+                result,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(ShellIntersection {
+        options: *opts,
+        pairs,
+        piece_pairs,
+        skipped_pairs,
+    })
+}
