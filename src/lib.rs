@@ -49,7 +49,8 @@
 //! [`search`] (a start on every branch) → [`march`] (the fast circular-step marcher) →
 //! [`topology`] (all branches, the arc graph, branch ends) → [`validated`] (the validated Taylor
 //! ODE engine) → [`certify`] (certified branches and contacts) → [`check`] (straying and
-//! looping) → [`solve`] (the typed entry point [`intersect`]) → [`io`] (scene files, result
+//! looping) → [`solve`] (the typed entry point [`intersect`]) → [`shell`] (many faces against
+//! many, NURBS faces by their Bézier pieces, in parallel) → [`io`] (scene files, result
 //! JSON, SVG) → [`pipeline`] (scene in, result document out, for the command line).
 
 pub mod certify;
