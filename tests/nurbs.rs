@@ -303,3 +303,79 @@ fn bad_nurbs_input_names_the_field() {
     let e = NurbsSurface::new([0, 2], [k3.clone(), k3.clone()], grid(9), None).unwrap_err();
     assert_eq!(field_of(e).0, "degree[0]");
 }
+
+mod mangled {
+    use proptest::prelude::*;
+    use serde_json::Value;
+    use ssitrace::error::Error;
+    use ssitrace::io::scene::ShellScene;
+
+    fn sphere_scene() -> Value {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/scenes/nurbs_sphere_plane.json"
+        );
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    }
+
+    fn arb_json() -> impl Strategy<Value = Value> {
+        let leaf = prop_oneof![
+            Just(Value::Null),
+            any::<bool>().prop_map(Value::from),
+            (-3i64..12).prop_map(Value::from),
+            any::<i64>().prop_map(Value::from),
+            any::<f64>()
+                .prop_map(|x| serde_json::Number::from_f64(x).map_or(Value::Null, Value::Number)),
+            prop_oneof![Just("nurbs"), Just("bezier"), Just("x")].prop_map(Value::from),
+        ];
+        leaf.prop_recursive(3, 24, 4, |inner| {
+            prop::collection::vec(inner, 0..5).prop_map(Value::Array)
+        })
+    }
+
+    /// Replace the node reached by `path` inside the NURBS surface (indices modulo sizes).
+    fn replace_at(v: &mut Value, path: &[usize], new: Value) {
+        let Some((&k, rest)) = path.split_first() else {
+            *v = new;
+            return;
+        };
+        match v {
+            Value::Array(a) if !a.is_empty() => {
+                let n = a.len();
+                replace_at(&mut a[k % n], rest, new);
+            }
+            Value::Object(m) if !m.is_empty() => {
+                let n = m.len();
+                if let Some((_, x)) = m.iter_mut().nth(k % n) {
+                    replace_at(x, rest, new);
+                }
+            }
+            _ => *v = new,
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(500))]
+
+        #[test]
+        fn mangled_nurbs_never_panics_and_names_the_field(
+            path in prop::collection::vec(any::<usize>(), 0..4),
+            new in arb_json(),
+        ) {
+            let mut v = sphere_scene();
+            replace_at(&mut v["surfaces"][0], &path, new);
+            match ShellScene::from_json_value(&v) {
+                Ok(s) => {
+                    for f in &s.shells[0] {
+                        prop_assert!(!f.pieces().is_empty());
+                    }
+                }
+                Err(Error::InvalidInput { surface, field, .. }) => {
+                    prop_assert_eq!(surface, Some(0));
+                    prop_assert!(!field.is_empty());
+                }
+                Err(other) => prop_assert!(false, "unexpected error kind {other:?}"),
+            }
+        }
+    }
+}
