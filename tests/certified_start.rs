@@ -7,25 +7,15 @@
 //! pairs failed depended on the marcher's step, so every marched point of every branch is tried
 //! as a start here, each with a budget of a few steps (only the start proof is under test).
 
+mod common;
+
+use common::rng::Rng;
 use inari::{interval, Interval};
 use ssitrace::certify::{certify_branch, CertifyOptions, StepBudget};
 use ssitrace::geometry::{Domain, RationalBezierPatch};
 use ssitrace::march::MarchOptions;
 use ssitrace::search::start_points::SearchOptions;
 use ssitrace::topology::intersect::intersect;
-
-/// xorshift64*: a small deterministic generator, so the pairs are the same on every run.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let bits = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
-        lo + (hi - lo) * (bits as f64 / (1u64 << 53) as f64)
-    }
-}
 
 fn height_field(rng: &mut Rng) -> RationalBezierPatch {
     let points: Vec<[Interval; 3]> = (0..4)

@@ -12,22 +12,11 @@
 //!
 //! (`SSITRACE_FUZZ_SEED` picks another sequence.) A panicking input is printed in full.
 
+mod common;
+
+use common::rng::Rng;
 use ssitrace::io::scene::Scene;
 use std::panic::{catch_unwind, AssertUnwindSafe};
-
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
 
 /// Tokens that stress the reader: extreme and non-finite numbers, wrong shapes, other kinds.
 const TOKENS: &[&str] = &[

@@ -25,26 +25,13 @@
 //! the same check on many more pairs from one command (see the README): `SSITRACE_ORACLE_PAIRS=
 //! 100000 cargo test --release --test oracle_random soak -- --ignored --nocapture`.
 
+mod common;
+
+use common::rng::Rng;
 use inari::{interval, Interval};
 use ssitrace::geometry::{Domain, RationalBezierPatch};
 use ssitrace::{intersect, Method, Options, SurfaceIntersection};
 use std::time::Instant;
-
-/// xorshift64*: a small deterministic generator.
-struct Rng(u64);
-
-impl Rng {
-    fn new(seed: u64) -> Self {
-        Rng(0x9e37_79b9_7f4a_7c15 ^ seed.wrapping_mul(0xd1b5_4a32_d192_ed03) | 1)
-    }
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let bits = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
-        lo + (hi - lo) * (bits as f64 / (1u64 << 53) as f64)
-    }
-}
 
 /// A height field `z = Σ z_ij B_i(x) B_j(y)` of degree `m` in both directions.
 #[derive(Clone)]

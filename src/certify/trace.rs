@@ -485,24 +485,16 @@ fn trace_half_with(
         model_size,
     );
     loop {
-        if opts.steps.out_of_time() {
+        let stop = if opts.steps.out_of_time() {
+            Some("time limit reached")
+        } else if opts.steps.spent(half.boxes.len(), state.t) {
+            Some("budget spent")
+        } else {
+            None
+        };
+        if let Some(why) = stop {
             half.end = CertifiedEnd::Unproven {
-                reason: format!(
-                    "time limit reached ({} steps, arc length {})",
-                    half.boxes.len(),
-                    state.t
-                ),
-                near: current,
-            };
-            return Ok(half);
-        }
-        if opts.steps.spent(half.boxes.len(), state.t) {
-            half.end = CertifiedEnd::Unproven {
-                reason: format!(
-                    "budget spent ({} steps, arc length {})",
-                    half.boxes.len(),
-                    state.t
-                ),
+                reason: format!("{why} ({} steps, arc length {})", half.boxes.len(), state.t),
                 near: current,
             };
             return Ok(half);

@@ -87,6 +87,55 @@ pub(crate) fn check_domain(domain: &Domain) -> Result<()> {
     Ok(())
 }
 
+/// Checks Cartesian control data of `count` points: the point count, every coordinate finite
+/// and non-empty, and the weights (all 1 when `None`) of the right count, finite and positive.
+/// Errors name `points`, `points[k][c]`, `weights` or `weights[k]`.
+pub(crate) fn check_control_data(
+    points: &[[Interval; 3]],
+    weights: Option<Vec<Interval>>,
+    count: usize,
+) -> Result<Vec<Interval>> {
+    if points.len() != count {
+        return Err(Error::input(
+            "points",
+            InputProblem::WrongCount {
+                expected: count,
+                found: points.len(),
+            },
+        ));
+    }
+    for (k, p) in points.iter().enumerate() {
+        for (c, x) in p.iter().enumerate() {
+            check_interval(*x).map_err(|e| Error::input(format!("points[{k}][{c}]"), e))?;
+        }
+    }
+    let weights = match weights {
+        Some(w) => {
+            if w.len() != count {
+                return Err(Error::input(
+                    "weights",
+                    InputProblem::WrongCount {
+                        expected: count,
+                        found: w.len(),
+                    },
+                ));
+            }
+            for (k, x) in w.iter().enumerate() {
+                check_interval(*x).map_err(|e| Error::input(format!("weights[{k}]"), e))?;
+                if x.inf() <= 0.0 {
+                    return Err(Error::input(
+                        format!("weights[{k}]"),
+                        InputProblem::NonPositiveWeight,
+                    ));
+                }
+            }
+            w
+        }
+        None => vec![Interval::from_f64(1.0); count],
+    };
+    Ok(weights)
+}
+
 /// Validate a degree and return the number of control points it needs.
 fn check_degree(degree: [usize; 2]) -> Result<usize> {
     for (k, d) in degree.into_iter().enumerate() {
@@ -124,44 +173,7 @@ impl RationalBezierPatch {
         domain: Domain,
     ) -> Result<Self> {
         let count = check_degree(degree)?;
-        if points.len() != count {
-            return Err(Error::input(
-                "points",
-                InputProblem::WrongCount {
-                    expected: count,
-                    found: points.len(),
-                },
-            ));
-        }
-        for (k, p) in points.iter().enumerate() {
-            for (c, x) in p.iter().enumerate() {
-                check_interval(*x).map_err(|e| Error::input(format!("points[{k}][{c}]"), e))?;
-            }
-        }
-        let weights = match weights {
-            Some(w) => {
-                if w.len() != count {
-                    return Err(Error::input(
-                        "weights",
-                        InputProblem::WrongCount {
-                            expected: count,
-                            found: w.len(),
-                        },
-                    ));
-                }
-                for (k, x) in w.iter().enumerate() {
-                    check_interval(*x).map_err(|e| Error::input(format!("weights[{k}]"), e))?;
-                    if x.inf() <= 0.0 {
-                        return Err(Error::input(
-                            format!("weights[{k}]"),
-                            InputProblem::NonPositiveWeight,
-                        ));
-                    }
-                }
-                w
-            }
-            None => vec![Interval::from_f64(1.0); count],
-        };
+        let weights = check_control_data(&points, weights, count)?;
         check_domain(&domain)?;
         let cartesian: Vec<[Interval; 4]> = points
             .iter()

@@ -27,7 +27,7 @@
 //! knot insertion.
 
 use crate::error::{Error, InputProblem, Result};
-use crate::geometry::bezier::{check_interval, RationalBezierPatch};
+use crate::geometry::bezier::{check_control_data, RationalBezierPatch};
 use crate::geometry::surface::Domain;
 use crate::numeric::scalar::Scalar;
 use inari::Interval;
@@ -137,44 +137,7 @@ impl NurbsSurface {
             .checked_mul(nv)
             .filter(|&c| c < (1 << 24))
             .ok_or_else(|| Error::input("knots", InputProblem::WrongShape("too many".into())))?;
-        if points.len() != count {
-            return Err(Error::input(
-                "points",
-                InputProblem::WrongCount {
-                    expected: count,
-                    found: points.len(),
-                },
-            ));
-        }
-        for (k, p) in points.iter().enumerate() {
-            for (c, x) in p.iter().enumerate() {
-                check_interval(*x).map_err(|e| Error::input(format!("points[{k}][{c}]"), e))?;
-            }
-        }
-        let weights = match weights {
-            None => vec![Interval::from_f64(1.0); count],
-            Some(w) => {
-                if w.len() != count {
-                    return Err(Error::input(
-                        "weights",
-                        InputProblem::WrongCount {
-                            expected: count,
-                            found: w.len(),
-                        },
-                    ));
-                }
-                for (k, x) in w.iter().enumerate() {
-                    check_interval(*x).map_err(|e| Error::input(format!("weights[{k}]"), e))?;
-                    if x.inf() <= 0.0 {
-                        return Err(Error::input(
-                            format!("weights[{k}]"),
-                            InputProblem::NonPositiveWeight,
-                        ));
-                    }
-                }
-                w
-            }
-        };
+        let weights = check_control_data(&points, weights, count)?;
         Ok(NurbsSurface {
             degree,
             knots,

@@ -8,5 +8,6 @@
 pub(crate) mod clock;
 pub(crate) mod intervals;
 pub(crate) mod odes;
+pub(crate) mod rng;
 pub(crate) mod scenes;
 pub(crate) mod surfaces;
