@@ -12,7 +12,7 @@ use ssitrace::certify::{
 };
 use ssitrace::check::straying::{check_branch, check_branches, StrayReport};
 use ssitrace::io::scene::Scene;
-use ssitrace::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
+use ssitrace::march::branch::{polyline_length, Branch, BranchStatus, CurvePoint, EndReason};
 use ssitrace::march::MarchOptions;
 use ssitrace::search::start_points::SearchOptions;
 use ssitrace::topology::intersect::intersect;
@@ -384,17 +384,7 @@ fn the_command_line_warns_when_the_march_loops() {
     // The loop lengths, independently: the fine march's polylines.
     let fine: Vec<f64> = march(&scene("two_loops_s31_s32.json"))
         .iter()
-        .map(|b| {
-            b.points
-                .windows(2)
-                .map(|w| {
-                    (0..3)
-                        .map(|i| (w[1].xyz[i] - w[0].xyz[i]).powi(2))
-                        .sum::<f64>()
-                        .sqrt()
-                })
-                .sum()
-        })
+        .map(|b| polyline_length(&b.points))
         .collect();
     assert_eq!(fine.len(), 2);
     let mut looping = 0;

@@ -2,6 +2,8 @@
 //! (checked against an independent de Boor evaluation in f64), an interval-weighted NURBS sphere
 //! stays on the unit sphere, and bad input is rejected naming the field.
 
+mod common;
+
 use inari::Interval;
 use ssitrace::error::{Error, InputProblem};
 use ssitrace::geometry::nurbs::NurbsSurface;
@@ -305,6 +307,7 @@ fn bad_nurbs_input_names_the_field() {
 }
 
 mod mangled {
+    use crate::common::mangle::replace_at;
     use proptest::prelude::*;
     use serde_json::Value;
     use ssitrace::error::Error;
@@ -331,27 +334,6 @@ mod mangled {
         leaf.prop_recursive(3, 24, 4, |inner| {
             prop::collection::vec(inner, 0..5).prop_map(Value::Array)
         })
-    }
-
-    /// Replace the node reached by `path` inside the NURBS surface (indices modulo sizes).
-    fn replace_at(v: &mut Value, path: &[usize], new: Value) {
-        let Some((&k, rest)) = path.split_first() else {
-            *v = new;
-            return;
-        };
-        match v {
-            Value::Array(a) if !a.is_empty() => {
-                let n = a.len();
-                replace_at(&mut a[k % n], rest, new);
-            }
-            Value::Object(m) if !m.is_empty() => {
-                let n = m.len();
-                if let Some((_, x)) = m.iter_mut().nth(k % n) {
-                    replace_at(x, rest, new);
-                }
-            }
-            _ => *v = new,
-        }
     }
 
     proptest! {

@@ -1,5 +1,8 @@
 //! The scene format: parsing, typed errors naming surface and field, round trips, robustness.
 
+mod common;
+
+use common::mangle::replace_at;
 use proptest::prelude::*;
 use serde_json::{json, Value};
 use ssitrace::geometry::Domain;
@@ -485,27 +488,6 @@ fn arb_json() -> impl Strategy<Value = Value> {
                 .prop_map(|m| Value::Object(m.into_iter().collect())),
         ]
     })
-}
-
-/// Replace the node reached by following `path` (indices taken modulo the container sizes).
-fn replace_at(v: &mut Value, path: &[usize], new: Value) {
-    let Some((&k, rest)) = path.split_first() else {
-        *v = new;
-        return;
-    };
-    match v {
-        Value::Array(a) if !a.is_empty() => {
-            let n = a.len();
-            replace_at(&mut a[k % n], rest, new);
-        }
-        Value::Object(m) if !m.is_empty() => {
-            let n = m.len();
-            if let Some((_, x)) = m.iter_mut().nth(k % n) {
-                replace_at(x, rest, new);
-            }
-        }
-        _ => *v = new,
-    }
 }
 
 proptest! {

@@ -7,6 +7,7 @@
 
 pub(crate) mod clock;
 pub(crate) mod intervals;
+pub(crate) mod mangle;
 pub(crate) mod odes;
 pub(crate) mod rng;
 pub(crate) mod scenes;
