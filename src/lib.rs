@@ -72,5 +72,5 @@ pub use error::{Error, InputProblem, Result};
 pub use geometry::{Domain, PowerSurface, RationalBezierPatch};
 pub use numeric::scalar::Scalar;
 pub use solve::{
-    intersect, BranchCertificate, Method, Options, Stats, SurfaceIntersection, TracedBranch,
+    intersect, BranchCertificate, Engine, Method, Options, Stats, SurfaceIntersection, TracedBranch,
 };

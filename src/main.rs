@@ -10,7 +10,7 @@ use ssitrace::io::result_json::write_result;
 use ssitrace::io::scene::{Method, Scene, ShellScene};
 use ssitrace::march::branch::{BranchStatus, Event, EventKind};
 use ssitrace::pipeline::{RunOptions, RunReport, ShellRunReport};
-use ssitrace::BranchCertificate;
+use ssitrace::{BranchCertificate, Engine};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -39,6 +39,14 @@ enum MethodArg {
     Both,
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum EngineArg {
+    /// Krawczyk-proven tubes around cubic predictors between the marched points (fast).
+    Chain,
+    /// The validated Taylor ODE solver by arc length (proven arc lengths; slow).
+    Taylor,
+}
+
 #[derive(clap::Args)]
 struct Outputs {
     /// Write the result JSON here.
@@ -58,6 +66,9 @@ enum Command {
         /// Tracing method (default: the scene's, else `both`).
         #[arg(long, value_enum)]
         method: Option<MethodArg>,
+        /// Certification engine of transversal branches (default `chain`).
+        #[arg(long, value_enum)]
+        engine: Option<EngineArg>,
         /// Marching step L (default: the scene's, else 0.05).
         #[arg(long)]
         step: Option<f64>,
@@ -99,6 +110,7 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
         Command::Trace {
             scene,
             method,
+            engine,
             step,
             tolerance,
             max_steps,
@@ -113,6 +125,12 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
                     MethodArg::March => Method::March,
                     MethodArg::Validated => Method::Validated,
                     MethodArg::Both => Method::Both,
+                };
+            }
+            if let Some(e) = engine {
+                o.engine = match e {
+                    EngineArg::Chain => Engine::Chain,
+                    EngineArg::Taylor => Engine::Taylor,
                 };
             }
             if let Some(l) = step {
@@ -427,8 +445,8 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
         if let Some(c) = &traced.certificate {
             let _ = writeln!(out, "{}", certificate_line(c, opts.required_tolerance));
             let closed = |e: &CertifiedEnd| *e == CertifiedEnd::ClosedLoop;
-            if let (BranchStatus::Closed, Ok(cb)) = (&b.status, &c.result) {
-                if !cb.ends.iter().all(closed) {
+            match (&b.status, &c.result) {
+                (BranchStatus::Closed, Ok(cb)) if !cb.ends.iter().all(closed) => {
                     let _ = writeln!(
                         out,
                         "    warning: the marched loop's closure is NOT proven (the certificate \
@@ -436,6 +454,13 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
                         cb.ends[0], cb.ends[1]
                     );
                 }
+                (BranchStatus::Closed, Err(_)) => {
+                    let _ = writeln!(
+                        out,
+                        "    warning: the marched loop's closure is NOT proven (no certificate)"
+                    );
+                }
+                _ => {}
             }
         }
         if let Some(s) = &traced.straying {

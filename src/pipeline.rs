@@ -8,13 +8,15 @@ use crate::io::result_json::ResultMeta;
 use crate::io::scene::{Method, Scene, SceneOptions, ShellScene};
 use crate::march::branch::Intersection;
 use crate::shell::{intersect_shells, ShellIntersection};
-use crate::solve::{intersect, Options, SurfaceIntersection, DEFAULT_MAX_STEPS};
+use crate::solve::{intersect, Engine, Options, SurfaceIntersection, DEFAULT_MAX_STEPS};
 
 /// What to run on a scene: the scene's own options, possibly overridden on the command line.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunOptions {
     /// The tracing method.
     pub method: Method,
+    /// The certification engine of transversal branches.
+    pub engine: Engine,
     /// The marching step L.
     pub step: f64,
     /// The model-space tolerance a certified branch should meet (reported, not enforced).
@@ -37,6 +39,7 @@ impl RunOptions {
     pub fn from_scene_options(o: &SceneOptions) -> Self {
         RunOptions {
             method: o.method,
+            engine: Engine::default(),
             step: o.step,
             required_tolerance: o.required_tolerance,
             max_steps: DEFAULT_MAX_STEPS,
@@ -49,6 +52,7 @@ impl RunOptions {
     pub fn options(&self) -> Options {
         Options {
             method: self.method,
+            engine: self.engine,
             step: self.step,
             required_tolerance: self.required_tolerance,
             max_steps: self.max_steps,

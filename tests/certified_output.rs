@@ -22,6 +22,7 @@ use ssitrace::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
 use ssitrace::numeric::scalar::{interval, point};
 use ssitrace::pipeline::{run, RunOptions, RunReport};
 use ssitrace::solve::certify_marched_branch;
+use ssitrace::Engine;
 
 /// z = x² + y² over [−1/32, 1/32]² against the plane y = 1/64: the arc
 /// `(x, 1/64, x² + 1/4096)`, `x ∈ [−1/32, 1/32]`, from P's boundary to P's boundary; on Q
@@ -40,8 +41,10 @@ fn sphere_scene() -> Scene {
     scene("sphere_patch_plane.json")
 }
 
+/// These tests read the Taylor engine's certificate (proven arc lengths, steps): they run it.
 fn run_with(scene: &Scene, method: Method, max_steps: usize) -> RunReport {
     let mut opts = RunOptions::from_scene(scene);
+    opts.engine = Engine::Taylor;
     opts.method = method;
     opts.max_steps = max_steps;
     run(scene, &opts).expect("runs")
@@ -376,6 +379,7 @@ fn command_line_prints_the_certificate_and_draws_its_boxes() {
     let scene = scene_path("sphere_patch_plane.json").display().to_string();
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_ssitrace"))
         .args(["trace", &scene, "--method", "both", "--max-steps", "10"])
+        .args(["--engine", "taylor"])
         .args(["--tolerance", "1e-300", "--tubes", "--out"])
         .arg(&out)
         .arg("--svg")

@@ -11,6 +11,13 @@ use inari::Interval;
 /// no gaps. (A re-anchored step's nominal arc lengths are off by at most its
 /// [`TubePiece::s0_error`]; the box holds the curve over its nominal range widened by that error on
 /// both sides, and the published range is the part of it that makes the ranges touch.)
+///
+/// In a cover-chain certificate ([`crate::certify::chain`], where
+/// [`CertifiedBranch::arc_length_proven`] is false) `s` is the arc length of the reported curve,
+/// not a proven one, and the guarantee is stated in parameters instead: the certified arc is a
+/// graph over its link's along coordinate ([`TubePiece::along`]), the box holds the part of it
+/// whose along coordinate lies in the box's interval of that coordinate, and consecutive boxes
+/// share a point of it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnclosureBox {
     /// Arc-length range `[s0, s1]` from the branch's start point (negative backwards).
@@ -62,9 +69,35 @@ pub struct TubePiece {
     /// Proven bound on the error of `s0` as the arc length of the piece's start point (0 on
     /// steps that were not re-anchored since the branch's start point).
     pub s0_error: f64,
+    /// `None`: `τ` is arc length, as above. `Some` (a cover-chain link): `τ` measures
+    /// parameter `j` (its `index`), which the reported curve moves at unit rate (`y_j(τ) = y_j(0) ± τ`), and
+    /// the guarantee is the same with "the true curve at arc length `s* ± τ`" read as "the true
+    /// curve point with the same parameter `j`": every true curve point with `y_j` in the
+    /// piece's range is within the radii of the reported point with that `y_j`, and the reverse.
+    /// The arc lengths `s0`, `h` are then those of the reported curve (nominal) and `s0_error`
+    /// is 0.
+    pub along: Option<AlongParameter>,
+}
+
+/// The parameter of a cover-chain tube piece ([`TubePiece::along`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AlongParameter {
+    /// Which parameter `τ` measures (0..4 for σ, t, u, v).
+    pub index: usize,
+    /// Arc length of the reported curve over the piece (nominal, not a bound).
+    pub arc_length: f64,
 }
 
 impl TubePiece {
+    /// The (nominal, for a cover-chain piece) arc length at `τ`: `s0 ± τ`, or on a cover-chain
+    /// piece `τ` scaled by the piece's arc length over its range `h`.
+    pub fn arc_length_at(&self, tau: f64) -> f64 {
+        match self.along {
+            Some(a) if self.h > 0.0 => self.s0 + self.direction * tau * (a.arc_length / self.h),
+            _ => self.s0 + self.direction * tau,
+        }
+    }
+
     /// The reported parameters `(σ, t, u, v)` at `τ ∈ [0, h]`.
     pub fn eval(&self, tau: f64) -> [f64; 4] {
         let mut y = [0.0; 4];
@@ -174,5 +207,12 @@ impl CertifiedBranch {
     /// Number of validated steps.
     pub fn steps(&self) -> usize {
         self.boxes.len()
+    }
+
+    /// Whether the boxes' arc-length ranges are proven (Taylor-engine certificates), rather than
+    /// the nominal arc lengths of the reported curve (cover chains; their guarantee is in the
+    /// along coordinate of each tube piece, see [`TubePiece::along`]).
+    pub fn arc_length_proven(&self) -> bool {
+        self.tubes.iter().all(|t| t.along.is_none())
     }
 }

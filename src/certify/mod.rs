@@ -9,16 +9,19 @@
 
 mod anchor;
 pub mod budget;
+pub mod chain;
 mod closing;
 pub mod contact;
 pub mod contact_cover;
 pub mod curve;
 pub mod ode;
+mod segment;
 pub mod tangential_ode;
 mod term_target;
 pub mod trace;
 
 pub use budget::StepBudget;
+pub use chain::{certify_chain, ChainOptions};
 pub use contact::{certify_contact, certify_contact_events, CertifiedContact, ContactOptions};
-pub use curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
+pub use curve::{AlongParameter, CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 pub use trace::{certify_branch, certify_branch_profiled, CertifyOptions, TraceProfile};

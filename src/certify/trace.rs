@@ -749,5 +749,6 @@ pub(crate) fn tube_piece(
         radius_param,
         radius_xyz,
         s0_error,
+        along: None,
     })
 }

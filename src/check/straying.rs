@@ -422,7 +422,7 @@ fn certified_span(
                 b = m;
             }
         }
-        Some(t.s0 + t.direction * a)
+        Some(t.arc_length_at(a))
     };
     let mut span = [lo, hi];
     if c.ends[1] == CertifiedEnd::ClosedLoop {
@@ -433,7 +433,7 @@ fn certified_span(
             .iter()
             .map(|t| {
                 let (tau, d) = closest(t, &start);
-                (d, t.s0 + t.direction * tau)
+                (d, t.arc_length_at(tau))
             })
             .min_by(|a, b| a.0.total_cmp(&b.0));
         if let Some((_, s)) = end {
@@ -535,7 +535,7 @@ fn locate(c: &CertifiedBranch, y: &[f64; 4], slack: f64) -> Verdict {
         }
         let (tau, est) = closest(t, y);
         if best.is_none_or(|(e, _)| est < e) {
-            best = Some((est, t.s0 + t.direction * tau));
+            best = Some((est, t.arc_length_at(tau)));
         }
         // The estimate bounds the distance from above (up to rounding): no proof beyond it.
         provable &= est - t.radius_param > slack;

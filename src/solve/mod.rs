@@ -11,7 +11,7 @@ mod result;
 mod run;
 
 pub use options::{
-    Method, Options, COVER_EVALUATIONS, COVER_LEAF, DEFAULT_MAX_STEPS, LENGTH_BUDGET_FACTOR,
+    Engine, Method, Options, COVER_EVALUATIONS, COVER_LEAF, DEFAULT_MAX_STEPS, LENGTH_BUDGET_FACTOR,
 };
 pub use result::{BranchCertificate, CertifyStats, Stats, SurfaceIntersection, TracedBranch};
 pub use run::{certify_marched_branch, intersect};

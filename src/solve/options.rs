@@ -37,6 +37,29 @@ impl Method {
     }
 }
 
+/// How a transversal branch is certified.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Engine {
+    /// A cover chain ([`crate::certify::chain`]): Krawczyk-proven tubes around cubic predictors
+    /// between the marched points, joined without gaps. Fast; its certificate's tube pieces are
+    /// parametrised by a parameter of the curve, its arc lengths are nominal (`"chain"`).
+    #[default]
+    Chain,
+    /// The validated Taylor ODE solver by arc length ([`crate::certify::trace`]): proven arc
+    /// lengths, one to three orders of magnitude slower (`"taylor"`).
+    Taylor,
+}
+
+impl Engine {
+    /// The name used on the command line and in the result JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Engine::Chain => "chain",
+            Engine::Taylor => "taylor",
+        }
+    }
+}
+
 /// Default certified step budget per half branch.
 pub const DEFAULT_MAX_STEPS: usize = 20_000;
 
@@ -56,6 +79,8 @@ pub const COVER_EVALUATIONS: usize = 50_000;
 pub struct Options {
     /// The tracing method (default [`Method::Both`]).
     pub method: Method,
+    /// The certification engine of transversal branches (default [`Engine::Chain`]).
+    pub engine: Engine,
     /// The marching step `L` (> 0, finite; default 0.05), see
     /// [`MarchOptions::step`](crate::march::MarchOptions::step).
     pub step: f64,
@@ -85,6 +110,7 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             method: Method::Both,
+            engine: Engine::default(),
             step: 0.05,
             required_tolerance: 1e-9,
             max_steps: DEFAULT_MAX_STEPS,

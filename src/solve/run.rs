@@ -6,12 +6,14 @@ use std::time::Instant;
 use inari::Interval;
 use rayon::prelude::*;
 
-use super::options::Options;
+use super::options::{Engine, Options};
 use super::result::{
     end_box, BranchCertificate, CertifyStats, Stats, SurfaceIntersection, TracedBranch,
 };
 use crate::certify::contact::certify_contact_events;
-use crate::certify::{certify_branch, CertifiedBranch, CertifyOptions, StepBudget};
+use crate::certify::{
+    certify_branch, certify_chain, CertifiedBranch, CertifyOptions, ChainOptions, StepBudget,
+};
 use crate::check::straying::{check_branches, StrayReport};
 use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
@@ -170,7 +172,13 @@ fn certify_within(
         parallel_halves: b.status != BranchStatus::Closed,
         ..CertifyOptions::default()
     };
+    let chain = ChainOptions {
+        required_tolerance: opts.required_tolerance,
+        max_links: opts.max_steps.saturating_mul(2),
+        deadline,
+    };
     let (start, result) = match choose_start(p, q, b) {
+        Some(y) if opts.engine == Engine::Chain => (y, certify_chain(p, q, b, y, &chain)),
         Some(y) => (y, certify_branch(p, q, y, &certify)),
         None => (
             [f64::NAN; 4],

@@ -103,5 +103,5 @@ pub use integrator::{
     Integrator, IntegratorOptions, IntegratorState, IntegratorWork, StepFailure, Trajectory,
 };
 pub use record::StepRecord;
-pub use series::Series;
+pub use series::{Series, SeriesN};
 pub use system::OdeSystem;

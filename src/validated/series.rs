@@ -24,24 +24,29 @@ pub const MAX_TERMS: usize = 32;
 
 const ZERO: Interval = const_interval!(0.0, 0.0);
 
-/// A truncated power series `Σ_{i<len} cᵢ tⁱ` with interval coefficients.
+/// A truncated power series `Σ_{i<len} cᵢ tⁱ` with interval coefficients: [`SeriesN`] with
+/// room for [`MAX_TERMS`] of them.
+pub type Series = SeriesN<MAX_TERMS>;
+
+/// A truncated power series `Σ_{i<len} cᵢ tⁱ` with interval coefficients, at most `N` of them
+/// (a small `N` makes copies cheaper).
 #[derive(Clone, Copy, Debug)]
-pub struct Series {
-    c: [Interval; MAX_TERMS],
+pub struct SeriesN<const N: usize> {
+    c: [Interval; N],
     len: u8,
 }
 
-impl Series {
-    /// The series with the given coefficients (at most [`MAX_TERMS`]; extra ones are dropped).
+impl<const N: usize> SeriesN<N> {
+    /// The series with the given coefficients (at most `N`; extra ones are dropped).
     pub fn new(coeffs: &[Interval]) -> Self {
-        let mut c = [ZERO; MAX_TERMS];
-        let len = coeffs.len().clamp(1, MAX_TERMS);
-        c[..coeffs.len().min(MAX_TERMS)].copy_from_slice(&coeffs[..coeffs.len().min(MAX_TERMS)]);
-        Series { c, len: len as u8 }
+        let mut c = [ZERO; N];
+        let len = coeffs.len().clamp(1, N);
+        c[..coeffs.len().min(N)].copy_from_slice(&coeffs[..coeffs.len().min(N)]);
+        SeriesN { c, len: len as u8 }
     }
     /// The constant `x` (length 1).
     pub fn constant(x: Interval) -> Self {
-        Series::new(&[x])
+        Self::new(&[x])
     }
     /// The coefficients.
     pub fn coeffs(&self) -> &[Interval] {
@@ -56,20 +61,20 @@ impl Series {
         }
     }
     fn undefined(len: usize) -> Self {
-        let mut s = Series::new(&[Interval::ENTIRE]);
+        let mut s = Self::new(&[Interval::ENTIRE]);
         s.c[..len].fill(Interval::ENTIRE);
         s.len = len as u8;
         s
     }
-    fn len2(a: &Series, b: &Series) -> usize {
+    fn len2(a: &Self, b: &Self) -> usize {
         a.len.max(b.len) as usize
     }
 }
 
-impl Add for Series {
-    type Output = Series;
-    fn add(self, rhs: Series) -> Series {
-        let n = Series::len2(&self, &rhs);
+impl<const N: usize> Add for SeriesN<N> {
+    type Output = Self;
+    fn add(self, rhs: Self) -> Self {
+        let n = Self::len2(&self, &rhs);
         let mut r = self;
         for i in 0..n {
             r.c[i] = self.coeff(i) + rhs.coeff(i);
@@ -78,15 +83,15 @@ impl Add for Series {
         r
     }
 }
-impl Sub for Series {
-    type Output = Series;
-    fn sub(self, rhs: Series) -> Series {
+impl<const N: usize> Sub for SeriesN<N> {
+    type Output = Self;
+    fn sub(self, rhs: Self) -> Self {
         self + (-rhs)
     }
 }
-impl Neg for Series {
-    type Output = Series;
-    fn neg(self) -> Series {
+impl<const N: usize> Neg for SeriesN<N> {
+    type Output = Self;
+    fn neg(self) -> Self {
         let mut r = self;
         for v in &mut r.c[..self.len as usize] {
             *v = -*v;
@@ -94,11 +99,11 @@ impl Neg for Series {
         r
     }
 }
-impl Mul for Series {
-    type Output = Series;
-    fn mul(self, rhs: Series) -> Series {
-        let n = Series::len2(&self, &rhs);
-        let mut r = Series::constant(ZERO);
+impl<const N: usize> Mul for SeriesN<N> {
+    type Output = Self;
+    fn mul(self, rhs: Self) -> Self {
+        let n = Self::len2(&self, &rhs);
+        let mut r = Self::constant(ZERO);
         for i in 0..n {
             let mut acc = ZERO;
             for m in 0..=i {
@@ -112,15 +117,15 @@ impl Mul for Series {
         r
     }
 }
-impl Div for Series {
-    type Output = Series;
-    fn div(self, rhs: Series) -> Series {
-        let n = Series::len2(&self, &rhs);
+impl<const N: usize> Div for SeriesN<N> {
+    type Output = Self;
+    fn div(self, rhs: Self) -> Self {
+        let n = Self::len2(&self, &rhs);
         let b0 = rhs.c[0];
         if b0.contains(0.0) || b0.is_empty() {
-            return Series::undefined(n);
+            return Self::undefined(n);
         }
-        let mut r = Series::constant(ZERO);
+        let mut r = Self::constant(ZERO);
         for i in 0..n {
             let mut acc = self.coeff(i);
             for m in 1..=i.min(rhs.len as usize - 1) {
@@ -133,16 +138,16 @@ impl Div for Series {
     }
 }
 
-impl Scalar for Series {
+impl<const N: usize> Scalar for SeriesN<N> {
     fn from_f64(x: f64) -> Self {
-        Series::constant(point(x))
+        Self::constant(point(x))
     }
     fn from_interval(x: Interval) -> Self {
-        Series::constant(x)
+        Self::constant(x)
     }
     fn sqr(self) -> Self {
         let n = self.len as usize;
-        let mut r = Series::constant(ZERO);
+        let mut r = Self::constant(ZERO);
         for i in 0..n {
             let mut acc = ZERO;
             for m in 0..i.div_ceil(2) {
@@ -161,9 +166,9 @@ impl Scalar for Series {
         let n = self.len as usize;
         let a0 = self.c[0];
         if a0.is_empty() || a0.inf() <= 0.0 {
-            return Series::undefined(n);
+            return Self::undefined(n);
         }
-        let mut r = Series::constant(a0.sqrt());
+        let mut r = Self::constant(a0.sqrt());
         let two_c0 = r.c[0] + r.c[0];
         for i in 1..n {
             let mut acc = ZERO;
@@ -181,11 +186,11 @@ impl Scalar for Series {
     }
     fn powi(self, n: i32) -> Self {
         if n == 0 {
-            return Series::one();
+            return Self::one();
         }
         let mut e = n.unsigned_abs();
         let mut base = self;
-        let mut acc = Series::one();
+        let mut acc = Self::one();
         while e > 0 {
             if e & 1 == 1 {
                 acc = acc * base;
@@ -196,7 +201,7 @@ impl Scalar for Series {
             }
         }
         if n < 0 {
-            Series::one() / acc
+            Self::one() / acc
         } else {
             acc
         }

@@ -183,6 +183,7 @@ mod tests {
             radius_param: 1e-12,
             radius_xyz: 1e-12,
             s0_error: 0.0,
+            along: None,
         };
         let y = [0.5, 1e-6, 0.0, 0.0];
         let (tau, est) = closest(&t, &y);
@@ -202,6 +203,7 @@ mod tests {
             radius_param: 0.0,
             radius_xyz: 0.0,
             s0_error: 0.0,
+            along: None,
         };
         let y = [0.5, 0.25 + 1e-5, 0.0, 0.0];
         let samples = 1_000_000;

@@ -1,0 +1,283 @@
+//! Cover-chain certification of a marched branch: proven segments (`certify/segment.rs`)
+//! between the marched points, joined without gaps.
+//!
+//! 1. **Nodes.** Each marched point is refined by Newton onto `P = Q` (holding its
+//!    fastest-moving parameter) and given its parameter velocity. The nodes only guide the
+//!    proofs; nothing about them is claimed.
+//! 2. **Links.** Between two nodes, a cubic Hermite predictor graphed over a coordinate that
+//!    moves monotonically between them is proven by the segment test. A link that cannot be
+//!    proven, or whose tube is wider than the requested tolerance allows, is split at a new
+//!    node (Newton at the middle value of the along coordinate); below a smallest length the
+//!    half stops, and the end says why.
+//! 3. **Joins.** The box where a link ends (its last slice, enclosed) must lie inside the next
+//!    link's tube: the curve point there is then the unique curve point of that tube's slice,
+//!    so the two arcs are one curve and the chain has no gap. When the along coordinate
+//!    changes, the next link starts a little before the node to take the box in.
+//! 4. **Ends.** A closed loop is walked once round; its last link must hold the first link's
+//!    start slice (the curve comes back to the start point: proven closed, traced once). An
+//!    open branch is walked both ways from its start node. At a boundary end the chain goes on
+//!    past the marched end point to a node outside the domain, and the end is proven when the
+//!    last slice lies wholly outside. A half that stops elsewhere reports a singular box (the
+//!    normals' cross product cannot be bounded away from zero near it), close branches, or an
+//!    unproven end with the reason.
+//!
+//! What a chain reports, and how it differs from the Taylor engine's certificate: every tube
+//! piece is parametrised by its along coordinate ([`TubePiece::along`]), so its guarantee is
+//! stated in terms of that coordinate, and the boxes' arc lengths are those of the reported
+//! curve, not proven ones (see [`CertifiedBranch::arc_length_proven`]).
+
+use crate::certify::curve::{
+    AlongParameter, CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece,
+};
+use crate::certify::segment::{
+    hull, others, prove_segment, Jet, Predictor, SegmentProof, PREDICTOR_DEGREE,
+};
+use crate::error::{Error, Result};
+use crate::geometry::surface::{pair_bounds, pair_widths};
+use crate::geometry::RationalBezierPatch;
+use crate::march::branch::{Branch, BranchStatus, EndReason};
+use crate::numeric::scalar::point;
+use crate::numeric::vec3::cross;
+use crate::pair::field::transversal_velocity;
+use crate::pair::krawczyk::{krawczyk, KrawczykResult};
+use crate::pair::newton::{refine, Constraint, Refined};
+use inari::Interval;
+use std::time::Instant;
+
+mod output;
+mod walker;
+
+use output::assemble;
+use walker::{newton, point_box, scaled_dist, tight_slice, velocity, Walker};
+
+/// Parameters of [`certify_chain`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChainOptions {
+    /// The model-space tolerance every link's tube must meet (a link wider than this is split).
+    pub required_tolerance: f64,
+    /// Most links per branch (both halves together); more ends the chain unproven.
+    pub max_links: usize,
+    /// Stop (unproven) once this instant has passed.
+    pub deadline: Option<Instant>,
+}
+
+impl Default for ChainOptions {
+    fn default() -> Self {
+        ChainOptions {
+            required_tolerance: 1e-9,
+            max_links: 200_000,
+            deadline: None,
+        }
+    }
+}
+
+/// Boxes reported per link (consecutive sub-intervals of its along coordinate; the straying
+/// check pairs each box with one tube piece, so one).
+const BOXES_PER_LINK: usize = 1;
+/// Splits of one marched interval before a half gives up there.
+const MAX_SPLITS: usize = 20_000;
+/// Below this scaled length a link whose tube halving did not narrow is kept although wider
+/// than the tolerance when its width is at rounding level or no singular box lies within 1e-4
+/// (the predictor's error, of order `L⁶`, is negligible there, so the width is rounding or the
+/// conditioning): the certificate then says the tolerance is not met. Near a singular box the
+/// half stops instead, within the tolerance.
+const FLOOR_LINK: f64 = 1e-4;
+/// Shortest link tried, in scaled parameters (below it a half gives up there).
+const MIN_LINK: f64 = 1e-10;
+
+/// Refined guide points of the marched branch (each on `P = Q` to rounding level; a point that
+/// does not refine is kept as marched).
+fn guide_points(p: &RationalBezierPatch, q: &RationalBezierPatch, b: &Branch) -> Vec<[f64; 4]> {
+    let scales = pair_widths(&p.domain(), &q.domain());
+    let mut out: Vec<[f64; 4]> = Vec::with_capacity(b.points.len());
+    for c in &b.points {
+        let x = [c.p[0], c.p[1], c.q[0], c.q[1]];
+        let v = velocity(p, q, &x);
+        let j = (0..4)
+            .max_by(|&a, &b| (v[a].abs() / scales[a]).total_cmp(&(v[b].abs() / scales[b])))
+            .unwrap_or(0);
+        let y = newton(p, q, x, j, x[j])
+            .map(|r| r.x)
+            .filter(|y| scaled_dist(y, &x, &scales) < 1e-6)
+            .unwrap_or(x);
+        if out.last().is_none_or(|l| scaled_dist(l, &y, &scales) > 0.0) {
+            out.push(y);
+        }
+    }
+    out
+}
+
+/// Certifies the marched branch `b` by a cover chain, starting at its point nearest `start`.
+///
+/// Errors: [`Error::Certification`] when not even the first link can be proven (the branch is
+/// singular there or not near a curve). Everything returned is proven; ends that are not are
+/// [`CertifiedEnd::Unproven`].
+pub fn certify_chain(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &Branch,
+    start: [f64; 4],
+    opts: &ChainOptions,
+) -> Result<CertifiedBranch> {
+    let mut xs = guide_points(p, q, b);
+    let scales = pair_widths(&p.domain(), &q.domain());
+    let fail = |reason: &str, near: [f64; 4]| Error::Certification {
+        reason: reason.into(),
+        near,
+    };
+    let closed = b.status == BranchStatus::Closed
+        || (b.ends[0] == EndReason::ClosedLoop && b.ends[1] == EndReason::ClosedLoop);
+    if closed && xs.len() > 2 && scaled_dist(&xs[0], &xs[xs.len() - 1], &scales) < 1e-9 {
+        xs.pop();
+    }
+    if xs.len() < 2 {
+        return Err(fail("the marched branch has fewer than two points", start));
+    }
+    if closed {
+        if let Some(c) = closed_chain(p, q, &xs, opts) {
+            return Ok(c);
+        }
+        // Not closed by proof: from the first point both ways round, each way until it stops.
+        return ring_chain(p, q, &xs, opts)
+            .ok_or_else(|| fail("no link of the loop could be proven", xs[0]));
+    }
+    let s = (0..xs.len())
+        .min_by(|&a, &c| {
+            scaled_dist(&xs[a], &start, &scales).total_cmp(&scaled_dist(&xs[c], &start, &scales))
+        })
+        .unwrap_or(0);
+    // Another start where no link from the chosen one can be proven (a start next to a
+    // singular point).
+    let n = xs.len();
+    let mut tried = Vec::new();
+    for k in [s, n / 2, n / 4, 3 * n / 4, n / 8, 7 * n / 8, 0, n - 1] {
+        if tried.contains(&k) {
+            continue;
+        }
+        tried.push(k);
+        if let Some(c) = open_chain(p, q, &xs, k, b.ends, opts) {
+            return Ok(c);
+        }
+    }
+    Err(fail(
+        "no link could be proven from any tried start point",
+        xs[s],
+    ))
+}
+
+/// A closed loop: links round from the first node back to it, the last one holding the first
+/// link's start slice. `None` if any link fails.
+fn closed_chain(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    xs: &[[f64; 4]],
+    opts: &ChainOptions,
+) -> Option<CertifiedBranch> {
+    let mut w = Walker::new(p, q, opts);
+    w.wants_closure = true;
+    let mut nodes = w.nodes(xs);
+    if nodes.len() < xs.len() {
+        return None;
+    }
+    w.advance(&nodes, None).ok()?;
+    if w.closed {
+        // The march went round more than once; the loop closed at the last link.
+        let links = std::mem::take(&mut w.links);
+        return assemble(
+            p,
+            q,
+            &[],
+            &links,
+            [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop],
+        );
+    }
+    let start_slice = w.close_at?;
+    let last = *nodes.last()?;
+    let back = w.node(xs[0], &last.t)?;
+    nodes.clear();
+    nodes.extend([last, back]);
+    w.advance(&nodes, Some(&start_slice)).ok()?;
+    let links = std::mem::take(&mut w.links);
+    assemble(
+        p,
+        q,
+        &[],
+        &links,
+        [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop],
+    )
+}
+
+/// A marched loop whose closure could not be proven: walked from its first point forwards
+/// round the loop and backwards round it, each way until it stops (both ends say why).
+fn ring_chain(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    xs: &[[f64; 4]],
+    opts: &ChainOptions,
+) -> Option<CertifiedBranch> {
+    let mut fwd_ring = xs.to_vec();
+    fwd_ring.push(xs[0]);
+    let mut bwd_ring: Vec<[f64; 4]> = xs.iter().rev().copied().collect();
+    bwd_ring.insert(0, xs[0]);
+    bwd_ring.pop();
+    bwd_ring.push(xs[0]);
+    let round = EndReason::NewtonFailed;
+    let mut fwd = Walker::new(p, q, opts);
+    fwd.wants_closure = true;
+    let fwd_end = fwd.walk(&fwd_ring, round);
+    if fwd.closed {
+        return assemble(
+            p,
+            q,
+            &[],
+            &fwd.links,
+            [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop],
+        );
+    }
+    let mut bwd = Walker::new(p, q, opts);
+    bwd.used = fwd.links.len();
+    bwd.join = fwd
+        .links
+        .first()
+        .map(|l| tight_slice(p, q, &l.proof, l.from));
+    let bwd_end = bwd.walk(&bwd_ring, round);
+    assemble(p, q, &bwd.links, &fwd.links, [bwd_end, fwd_end])
+}
+
+/// An open branch through node `s`: the forward half over `xs[s..]`, the backward half over
+/// `xs[..=s]` reversed, joined at the start slice.
+fn open_chain(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    xs: &[[f64; 4]],
+    s: usize,
+    ends: [EndReason; 2],
+    opts: &ChainOptions,
+) -> Option<CertifiedBranch> {
+    let mut fwd = Walker::new(p, q, opts);
+    let fwd_end = if s + 1 < xs.len() {
+        fwd.walk(&xs[s..], ends[1])
+    } else {
+        CertifiedEnd::Unproven {
+            reason: "start at the last marched point".into(),
+            near: point_box(&xs[s]),
+        }
+    };
+    let mut bwd = Walker::new(p, q, opts);
+    bwd.used = fwd.links.len();
+    // The backward half's first link must hold the forward half's start slice.
+    bwd.join = fwd
+        .links
+        .first()
+        .map(|l| tight_slice(p, q, &l.proof, l.from));
+    let back: Vec<[f64; 4]> = xs[..=s].iter().rev().copied().collect();
+    let bwd_end = if back.len() > 1 {
+        bwd.walk(&back, ends[0])
+    } else {
+        CertifiedEnd::Unproven {
+            reason: "start at the first marched point".into(),
+            near: point_box(&xs[s]),
+        }
+    };
+    assemble(p, q, &bwd.links, &fwd.links, [bwd_end, fwd_end])
+}

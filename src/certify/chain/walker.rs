@@ -1,0 +1,612 @@
+//! The walk of one half of a cover chain: links between guide points, split where needed,
+//! joined without gaps, and the end where the half stops.
+
+use super::*;
+
+/// A guide point on the curve and its parameter velocity, oriented along the walk.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Node {
+    pub(super) x: [f64; 4],
+    pub(super) t: [f64; 4],
+}
+
+/// One proven link and what it reports.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Link {
+    pub(super) proof: SegmentProof,
+    /// `x_j` at the link's start node (the predictor's origin).
+    pub(super) from: f64,
+    /// `x_j` where the link's reported curve ends.
+    pub(super) to: f64,
+    /// `x_j` where its boxes start (before `from` when it reaches back to take in a join).
+    pub(super) cover_from: f64,
+    pub(super) radius_param: f64,
+    pub(super) radius_xyz: f64,
+    /// The enclosed slice at `x_j = to`: where the next link must take over.
+    pub(super) end_slice: [Interval; 4],
+}
+
+impl Link {
+    fn end_slice(&self) -> [Interval; 4] {
+        self.end_slice
+    }
+}
+
+/// The slice `x_j = x` of a proven segment, enclosed tightly: the segment's enclosure there,
+/// narrowed by Krawczyk on the slice of its uniqueness tube (the curve point of the slice is the
+/// one zero of that box, so any enclosure of it from the narrowing is valid).
+pub(super) fn tight_slice(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    proof: &SegmentProof,
+    x: f64,
+) -> [Interval; 4] {
+    let loose = proof.box_over(x, x);
+    let tube = proof.tube_over(x, x);
+    match krawczyk(p, q, tube, proof.pred.along, 4) {
+        KrawczykResult::Proven { enclosure, .. } => {
+            let both: [Interval; 4] = std::array::from_fn(|i| enclosure[i].intersection(loose[i]));
+            if both.iter().any(|v| v.is_empty()) {
+                loose
+            } else {
+                both
+            }
+        }
+        KrawczykResult::NotProven(_) => loose,
+    }
+}
+
+/// The outcome of one link attempt.
+pub(super) enum Attempt {
+    /// Proven, within the tolerance.
+    Proven(Link),
+    /// Proven, but its tube is wider than the tolerance.
+    TooWide(Link),
+    /// Not proven.
+    Failed,
+}
+
+/// How a half stopped.
+#[derive(Debug, Clone)]
+pub(super) enum Stop {
+    /// Reached the end of its nodes.
+    Done,
+    /// Could not go on; the end to report.
+    Failed(CertifiedEnd),
+}
+
+pub(super) struct Walker<'a> {
+    pub(super) p: &'a RationalBezierPatch,
+    pub(super) q: &'a RationalBezierPatch,
+    pub(super) scales: [f64; 4],
+    pub(super) opts: &'a ChainOptions,
+    pub(super) links: Vec<Link>,
+    /// Boxes the next link's tube must hold (the previous link's end slice).
+    pub(super) join: Option<[Interval; 4]>,
+    /// Links made by the other half (shared budget).
+    pub(super) used: usize,
+    /// On a loop, the first link's start slice: a later link whose tube holds it closes the
+    /// loop (the curve passes through the start point there), and the walk stops.
+    pub(super) close_at: Option<[Interval; 4]>,
+    /// Whether a link closed the loop.
+    pub(super) closed: bool,
+    /// Whether to watch for the loop closing (set `close_at` from the first link).
+    pub(super) wants_closure: bool,
+}
+
+pub(super) fn velocity(p: &RationalBezierPatch, q: &RationalBezierPatch, x: &[f64; 4]) -> [f64; 4] {
+    transversal_velocity::<f64, _, _>(p, q, x, 1.0)
+}
+
+pub(super) fn scaled_dist(a: &[f64; 4], b: &[f64; 4], scales: &[f64; 4]) -> f64 {
+    (0..4)
+        .map(|i| (a[i] - b[i]).abs() / scales[i])
+        .fold(0.0, f64::max)
+}
+
+impl<'a> Walker<'a> {
+    pub(super) fn new(
+        p: &'a RationalBezierPatch,
+        q: &'a RationalBezierPatch,
+        opts: &'a ChainOptions,
+    ) -> Self {
+        Walker {
+            p,
+            q,
+            scales: pair_widths(&p.domain(), &q.domain()),
+            opts,
+            links: Vec::new(),
+            join: None,
+            used: 0,
+            close_at: None,
+            closed: false,
+            wants_closure: false,
+        }
+    }
+
+    pub(super) fn node(&self, x: [f64; 4], along: &[f64; 4]) -> Option<Node> {
+        let t = velocity(self.p, self.q, &x);
+        if !t.iter().all(|v| v.is_finite()) || t.iter().all(|v| *v == 0.0) {
+            return None;
+        }
+        let sign = if (0..4).map(|i| t[i] * along[i]).sum::<f64>() < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        Some(Node {
+            x,
+            t: t.map(|v| v * sign),
+        })
+    }
+
+    /// The along coordinate for a link from `a` to `b`: monotone between them with both
+    /// velocities agreeing, the largest scaled speed; the previous link's if nearly as good.
+    fn along(&self, a: &Node, b: &Node) -> Option<usize> {
+        let score = |i: usize| {
+            let d = b.x[i] - a.x[i];
+            let ok = d != 0.0 && d.signum() == a.t[i].signum() && d.signum() == b.t[i].signum();
+            ok.then(|| a.t[i].abs().min(b.t[i].abs()) / self.scales[i])
+        };
+        let top = (0..4)
+            .map(|i| a.t[i].abs() / self.scales[i])
+            .fold(0.0, f64::max);
+        let best = (0..4)
+            .filter_map(|i| score(i).map(|s| (i, s)))
+            .max_by(|x, y| x.1.total_cmp(&y.1))?;
+        if best.1 < 0.25 * top {
+            return None;
+        }
+        if let Some(prev) = self.links.last().map(|l| l.proof.pred.along) {
+            if score(prev).is_some_and(|s| s >= 0.6 * best.1) {
+                return Some(prev);
+            }
+        }
+        Some(best.0)
+    }
+
+    /// The Hermite predictor from `a` to `b` graphed over `j`.
+    fn predictor(&self, j: usize, a: &Node, b: &Node) -> Option<Predictor> {
+        let ja = Jet::new(self.p, self.q, &a.x, &a.t, j)?;
+        let jb = Jet::new(self.p, self.q, &b.x, &b.t, j)?;
+        Predictor::hermite(j, &ja, &jb)
+    }
+
+    /// Tries one link from `a` to `b`; `must_end` must also lie in its tube (the closing join).
+    pub(super) fn link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Attempt {
+        match self.try_link(a, b, must_end) {
+            Some(l) if l.radius_xyz > self.opts.required_tolerance => Attempt::TooWide(l),
+            Some(l) => Attempt::Proven(l),
+            None => Attempt::Failed,
+        }
+    }
+
+    fn try_link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Option<Link> {
+        let j = self.along(a, b)?;
+        let pred = self.predictor(j, a, b)?;
+        let musts: Vec<&[Interval; 4]> = self.join.iter().chain(must_end).collect();
+        let (mut lo, mut hi) = (a.x[j].min(b.x[j]), a.x[j].max(b.x[j]));
+        let mut need = [0.0f64; 3];
+        for m in &musts {
+            lo = lo.min(m[j].inf());
+            hi = hi.max(m[j].sup());
+            let o = pred.others_over(m[j] - point(pred.x0));
+            for (r, &i) in others(j).iter().enumerate() {
+                need[r] = need[r].max((m[i] - o[r]).mag());
+            }
+        }
+        let proof = prove_segment(self.p, self.q, pred, [lo, hi], need).ok()?;
+        if !musts.iter().all(|m| proof.tube_contains(m)) {
+            return None;
+        }
+        let dir = (b.x[j] - a.x[j]).signum();
+        // The reported curve runs from the start node to the end node, or on to the far end of
+        // the range when the link reaches past it to take in the closing join.
+        let to = if dir > 0.0 { hi } else { lo };
+        let cover_from = if dir > 0.0 { lo } else { hi };
+        let (radius_param, radius_xyz) = self.radii(&proof, a.x[j], cover_from)?;
+        Some(Link {
+            proof,
+            from: a.x[j],
+            to,
+            cover_from,
+            radius_param,
+            radius_xyz,
+            end_slice: tight_slice(self.p, self.q, &proof, to),
+        })
+    }
+
+    /// Proven deviations of the true curve from the reported one over the link: in parameters
+    /// (max norm) and in model space. The reported curve is the predictor from `from` to `to`;
+    /// the arc before `from` (a reach back to `cover_from`) is measured against the reported
+    /// start point.
+    fn radii(&self, proof: &SegmentProof, from: f64, cover_from: f64) -> Option<(f64, f64)> {
+        let j = proof.pred.along;
+        // P(true) − P(reported) = ∫ DP · Δ over the segment between them: the columns of σ and
+        // t among the offsets (P's part of the Jacobian of P − Q) times their offsets.
+        let mut v = [point(0.0); 3];
+        for (c, &i) in others(j).iter().enumerate() {
+            if i < 2 {
+                for (r, vr) in v.iter_mut().enumerate() {
+                    *vr += proof.jac[r][c] * proof.k[c];
+                }
+            }
+        }
+        let mut rx = (v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().sup();
+        let mut rp = proof.k.iter().map(|k| k.mag()).fold(0.0, f64::max);
+        if cover_from != from {
+            // True point at ξ ∈ [cover_from, from] against the reported point at `from`.
+            let xi = hull(cover_from, from) - point(proof.pred.x0);
+            let o = proof.pred.others_over(xi);
+            let o0 = proof.pred.others_over(point(from) - point(proof.pred.x0));
+            let mut e = [point(0.0); 4];
+            e[j] = xi - (point(from) - point(proof.pred.x0));
+            for (r, &i) in others(j).iter().enumerate() {
+                e[i] = o[r] - o0[r] + proof.k[r];
+            }
+            let back = proof.tube_over(cover_from, from);
+            let [_, bs, bt] = self.p.first_derivs(back[0], back[1]);
+            let v: [Interval; 3] = std::array::from_fn(|r| bs[r] * e[0] + bt[r] * e[1]);
+            rx = rx.max((v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().sup());
+            rp = rp.max(e.iter().map(|x| x.mag()).fold(0.0, f64::max));
+        }
+        (rp.is_finite() && rx.is_finite()).then_some((rp, rx))
+    }
+
+    /// A new node halfway (in the along coordinate of largest scaled change) from `a` to `b`.
+    fn midpoint(&self, a: &Node, b: &Node) -> Option<Node> {
+        let j = (0..4)
+            .max_by(|&x, &y| {
+                let dx = (b.x[x] - a.x[x]).abs() / self.scales[x];
+                let dy = (b.x[y] - a.x[y]).abs() / self.scales[y];
+                dx.total_cmp(&dy)
+            })
+            .unwrap_or(0);
+        let value = 0.5 * (a.x[j] + b.x[j]);
+        let guess = match self.predictor(j, a, b) {
+            Some(pr) => pr.eval(value - pr.x0),
+            None => std::array::from_fn(|i| 0.5 * (a.x[i] + b.x[i])),
+        };
+        // A Newton point far from the guess belongs to another curve.
+        let span = scaled_dist(&a.x, &b.x, &self.scales);
+        let near = |r: &Refined, g: &[f64; 4], d: f64| scaled_dist(&r.x, g, &self.scales) <= d;
+        if let Some(r) =
+            newton(self.p, self.q, guess, j, value).filter(|r| near(r, &guess, 0.5 * span))
+        {
+            return self.node(r.x, &a.t);
+        }
+        // The interpolant is a poor guess (a coarse march): a short step along the tangent.
+        let speed = (0..4)
+            .map(|i| a.t[i].abs() / self.scales[i])
+            .fold(0.0, f64::max);
+        if speed == 0.0 {
+            return None;
+        }
+        let h = 0.25 * span / speed;
+        let step: [f64; 4] = std::array::from_fn(|i| a.x[i] + h * a.t[i]);
+        let k = (0..4)
+            .max_by(|&x, &y| {
+                (a.t[x].abs() / self.scales[x]).total_cmp(&(a.t[y].abs() / self.scales[y]))
+            })
+            .unwrap_or(0);
+        let r = newton(self.p, self.q, step, k, step[k]).filter(|r| {
+            near(r, &step, 0.125 * span) && scaled_dist(&r.x, &a.x, &self.scales) > 0.0
+        })?;
+        self.node(r.x, &a.t)
+    }
+
+    /// The tube width that rounding alone can cause near `node`: 1e-12 of the model's size
+    /// there.
+    fn rounding_floor(&self, node: &Node) -> f64 {
+        let m = self.p.point_f64(node.x[0], node.x[1]);
+        1e-12 * (1.0 + m.iter().fold(0.0f64, |a, v| a.max(v.abs())))
+    }
+
+    /// Adds a proven link; on a loop, whether it closes the loop (then the walk stops).
+    fn push(&mut self, link: Link) -> bool {
+        self.join = Some(link.end_slice());
+        self.links.push(link);
+        if self.links.len() == 1 {
+            if self.close_at.is_none() && self.wants_closure {
+                let l0 = &self.links[0];
+                self.close_at = Some(tight_slice(self.p, self.q, &l0.proof, l0.from));
+            }
+            return false;
+        }
+        self.closed = self
+            .close_at
+            .is_some_and(|s| self.links.last().is_some_and(|l| l.proof.tube_contains(&s)));
+        self.closed
+    }
+
+    /// Why the link or time budget is spent, if it is (never before the first link of a half:
+    /// the start is always proven).
+    fn out_of_budget(&self) -> Option<String> {
+        if self.links.is_empty() {
+            return None;
+        }
+        if self.opts.deadline.is_some_and(|d| Instant::now() >= d) {
+            return Some("time limit reached".into());
+        }
+        (self.links.len() + self.used >= self.opts.max_links)
+            .then(|| format!("budget spent ({} links)", self.opts.max_links))
+    }
+
+    /// Links from `a` to `b`, splitting where needed; on failure the end to report there.
+    pub(super) fn span(&mut self, a: Node, b: Node, must_end: Option<&[Interval; 4]>) -> Stop {
+        let mut cur = a;
+        // Targets, with the radius of a too wide link that was split to reach them.
+        let mut stack: Vec<(Node, Option<f64>)> = vec![(b, None)];
+        let mut splits = 0;
+        while let Some(&(tgt, wider)) = stack.last() {
+            if let Some(reason) = self.out_of_budget() {
+                return Stop::Failed(CertifiedEnd::Unproven {
+                    reason,
+                    near: point_box(&cur.x),
+                });
+            }
+            let closing = (stack.len() == 1).then_some(must_end).flatten();
+            let too_wide = match self.link(&cur, &tgt, closing) {
+                Attempt::Proven(link) => Some(link),
+                // A short link that halving did not narrow: its width is rounding (a tolerance
+                // below rounding was asked for) or the conditioning away from any singular
+                // point; keep it (the certificate then reports a tolerance above the
+                // requested one instead of failing).
+                Attempt::TooWide(link)
+                    if wider.is_some_and(|w| link.radius_xyz > 0.5 * w)
+                        && scaled_dist(&cur.x, &tgt.x, &self.scales) < FLOOR_LINK
+                        && (link.radius_xyz <= self.rounding_floor(&cur)
+                            || self.singular_box(&cur.x, &tgt.x, 1e-4).is_none()) =>
+                {
+                    Some(link)
+                }
+                Attempt::TooWide(link) => {
+                    if let Some(top) = stack.last_mut() {
+                        top.1 = Some(link.radius_xyz);
+                    }
+                    None
+                }
+                Attempt::Failed => None,
+            };
+            if let Some(link) = too_wide {
+                if self.push(link) {
+                    return Stop::Done;
+                }
+                cur = tgt;
+                stack.pop();
+                continue;
+            }
+            splits += 1;
+            let long = scaled_dist(&cur.x, &tgt.x, &self.scales) > MIN_LINK;
+            let mid = (splits <= MAX_SPLITS && long)
+                .then(|| self.midpoint(&cur, &tgt))
+                .flatten();
+            let inherited = stack.last().and_then(|t| t.1);
+            match mid {
+                Some(m) => stack.push((m, inherited)),
+                None => return Stop::Failed(self.classify(&cur, &tgt)),
+            }
+        }
+        Stop::Done
+    }
+
+    /// Why no link could be proven between `a` and `b`: a singular box if the normals'
+    /// cross product cannot be bounded away from zero on a box around them (widened by up to
+    /// 1e-4 of the domains: a link fails some way before a singular point, where the proven
+    /// tube outgrows the tolerance), else close branches.
+    fn classify(&self, a: &Node, b: &Node) -> CertifiedEnd {
+        let h = scaled_dist(&a.x, &b.x, &self.scales);
+        match self.singular_box(&a.x, &b.x, 1e-4) {
+            Some(near) => CertifiedEnd::Singular { near },
+            None => CertifiedEnd::CloseBranches {
+                h,
+                near: std::array::from_fn(|i| hull(a.x[i], b.x[i])),
+            },
+        }
+    }
+
+    /// The end of a half stopped at `last` before the marched point `x` where the velocity
+    /// vanishes: a singular box if one is found near them, else unproven.
+    fn singular_end(&self, last: &Node, x: &[f64; 4]) -> CertifiedEnd {
+        let h = scaled_dist(&last.x, x, &self.scales);
+        match self.singular_box(&last.x, x, (4.0 * h).max(1e-4)) {
+            Some(near) => CertifiedEnd::Singular { near },
+            None => CertifiedEnd::Unproven {
+                reason: "the marched branch ends at a point without a velocity".into(),
+                near: std::array::from_fn(|i| hull(last.x[i], x[i])),
+            },
+        }
+    }
+
+    /// The smallest of the boxes around `hull(a, b)`, widened by up to `reach` (scaled), on
+    /// which every component of `N^P × N^Q` contains zero.
+    fn singular_box(&self, a: &[f64; 4], b: &[f64; 4], reach: f64) -> Option<[Interval; 4]> {
+        let mut pad = 0.0;
+        loop {
+            let near: [Interval; 4] = std::array::from_fn(|i| {
+                let w = pad * self.scales[i];
+                hull(a[i].min(b[i]) - w, a[i].max(b[i]) + w)
+            });
+            let [_, ps, pt] = self.p.first_derivs(near[0], near[1]);
+            let [_, qu, qv] = self.q.first_derivs(near[2], near[3]);
+            let m = cross(&cross(&ps, &pt), &cross(&qu, &qv));
+            if m.iter().all(|c| c.contains(0.0)) {
+                return Some(near);
+            }
+            if pad >= reach {
+                return None;
+            }
+            pad = if pad == 0.0 {
+                reach * 1e-6
+            } else {
+                (pad * 4.0).min(reach)
+            };
+        }
+    }
+
+    /// At a boundary end: a node past the boundary of `surface` along the curve, proven links
+    /// to it, and the end proven when the last slice lies wholly outside.
+    fn exit(&mut self, last: Node, surface: usize) -> CertifiedEnd {
+        let (dp, dq) = (self.p.domain(), self.q.domain());
+        let coords = if surface == 0 { [0, 1] } else { [2, 3] };
+        // The coordinate nearest its bound, moving outwards.
+        let mut best: Option<(usize, f64, f64)> = None;
+        for &i in &coords {
+            let [lo, hi] = pair_bounds(&dp, &dq, i);
+            for (bound, sign) in [(lo, -1.0), (hi, 1.0)] {
+                if last.t[i] * sign <= 0.0 {
+                    continue;
+                }
+                let gap = (bound - last.x[i]).abs() / self.scales[i];
+                if best.is_none_or(|b| gap < b.1) {
+                    best = Some((i, gap, bound));
+                }
+            }
+        }
+        let unproven = |reason: &str| CertifiedEnd::Unproven {
+            reason: reason.into(),
+            near: point_box(&last.x),
+        };
+        let Some((b, _, bound)) = best else {
+            return unproven("the curve does not leave the domain at the marched boundary end");
+        };
+        let margin = 1e-7 * self.scales[b] + 4.0 * self.join_width();
+        let dist = (bound - last.x[b]).abs() + margin;
+        let scale = dist / last.t[b].abs();
+        let guess: [f64; 4] = std::array::from_fn(|i| last.x[i] + scale * last.t[i]);
+        let j = (0..4)
+            .max_by(|&x, &y| {
+                (last.t[x].abs() / self.scales[x]).total_cmp(&(last.t[y].abs() / self.scales[y]))
+            })
+            .unwrap_or(b);
+        let Some(out) =
+            newton(self.p, self.q, guess, j, guess[j]).and_then(|r| self.node(r.x, &last.t))
+        else {
+            return unproven("no curve point found past the boundary");
+        };
+        if let Stop::Failed(end) = self.span(last, out, None) {
+            return end;
+        }
+        let end = self.links.last().map(|l| l.end_slice());
+        let [lo, hi] = pair_bounds(&dp, &dq, b);
+        match end {
+            Some(e) if e[b].sup() < lo || e[b].inf() > hi => CertifiedEnd::Boundary { surface },
+            _ => unproven("the last slice past the boundary is not wholly outside the domain"),
+        }
+    }
+
+    /// Largest half-width of the current join box (0 without one).
+    fn join_width(&self) -> f64 {
+        self.join
+            .map(|b| b.iter().map(|x| x.wid()).fold(0.0, f64::max))
+            .unwrap_or(0.0)
+    }
+
+    /// The nodes of the marched points `xs`, each velocity oriented along the march, up to the
+    /// first point without a velocity (a singular point: the normals are parallel there).
+    pub(super) fn nodes(&self, xs: &[[f64; 4]]) -> Vec<Node> {
+        let n = xs.len();
+        (0..n)
+            .map_while(|i| {
+                let (a, b) = if i + 1 < n {
+                    (i, i + 1)
+                } else {
+                    (i.saturating_sub(1), i)
+                };
+                let dir: [f64; 4] = std::array::from_fn(|k| xs[b][k] - xs[a][k]);
+                self.node(xs[i], &dir)
+            })
+            .collect()
+    }
+
+    /// Links from the first node to the last, skipping marched points while links hold (the
+    /// stride doubles after a success and halves after a failure; a single marched interval
+    /// that fails is split). The last link must also hold `closing` if given.
+    pub(super) fn advance(
+        &mut self,
+        nodes: &[Node],
+        closing: Option<&[Interval; 4]>,
+    ) -> std::result::Result<(), CertifiedEnd> {
+        let n = nodes.len();
+        let (mut i, mut stride) = (0, 1);
+        while i + 1 < n {
+            let k = stride.min(n - 1 - i);
+            let must = (i + k == n - 1).then_some(closing).flatten();
+            if k > 1 {
+                if let Some(reason) = self.out_of_budget() {
+                    return Err(CertifiedEnd::Unproven {
+                        reason,
+                        near: point_box(&nodes[i].x),
+                    });
+                }
+                match self.link(&nodes[i], &nodes[i + k], must) {
+                    Attempt::Proven(link) => {
+                        if self.push(link) {
+                            return Ok(());
+                        }
+                        i += k;
+                        stride = 2 * k;
+                    }
+                    _ => stride = k / 2,
+                }
+                continue;
+            }
+            if let Stop::Failed(e) = self.span(nodes[i], nodes[i + 1], must) {
+                return Err(e);
+            }
+            if self.closed {
+                return Ok(());
+            }
+            i += 1;
+            stride = 2;
+        }
+        Ok(())
+    }
+
+    /// Walks the marched points `xs` (the first one is the start) and handles the marched
+    /// `end`.
+    pub(super) fn walk(&mut self, xs: &[[f64; 4]], end: EndReason) -> CertifiedEnd {
+        let nodes = self.nodes(xs);
+        if let Err(e) = self.advance(&nodes, None) {
+            return e;
+        }
+        let Some(&cur) = nodes.last() else {
+            return CertifiedEnd::Unproven {
+                reason: "no velocity at the start".into(),
+                near: point_box(&xs[0]),
+            };
+        };
+        if nodes.len() < xs.len() {
+            // The next marched point has no velocity: a singular point. The half ends between.
+            return self.singular_end(&cur, &xs[nodes.len()]);
+        }
+        match end {
+            EndReason::Boundary { surface } => self.exit(cur, surface),
+            other => CertifiedEnd::Unproven {
+                // No proof of anything past the last marched point.
+                reason: format!("the marched branch ends here ({other})"),
+                near: point_box(&cur.x),
+            },
+        }
+    }
+}
+
+/// Newton onto `P = Q` with parameter `j` held at `value`: to rounding level where it converges
+/// there, else (ill-conditioned, near-tangent surfaces) to the smallest of 1e-13, 1e-12, 1e-11
+/// that it reaches.
+pub(super) fn newton(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    guess: [f64; 4],
+    j: usize,
+    value: f64,
+) -> Option<Refined> {
+    let fixed = Constraint::Fixed { index: j, value };
+    [1e-14, 1e-13, 1e-12, 1e-11]
+        .iter()
+        .find_map(|&tol| refine(p, q, guess, fixed, tol, 30).ok())
+}
+
+pub(super) fn point_box(x: &[f64; 4]) -> [Interval; 4] {
+    x.map(point)
+}

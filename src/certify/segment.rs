@@ -1,0 +1,562 @@
+//! One link of a cover chain: the curve over an interval of one parameter, proven to be a graph
+//! within a thin tube around a polynomial predictor.
+//!
+//! Write the four parameters as `x_j` (the *along* coordinate) and the other three `x_o`. A
+//! segment has an interval `Ξ` of `ξ = x_j − x0`, a predictor `o(ξ)` (cubic in `ξ`, `f64`
+//! coefficients, exact as written) and a box `Y` of offsets around it. With
+//! `F = P(σ,t) − Q(u,v)`, `g(ξ) = F(x0 + ξ, o(ξ))`, a preconditioner `C` and the Jacobian
+//! `J_o = ∂F/∂x_o` enclosed over the tube's hull `B = (x0 + Ξ) × (o(Ξ) + Y)`:
+//!
+//! ```text
+//! K = −C·g(Ξ) + (I − C·J_o(B))·Y ⊂ int Y
+//! ```
+//!
+//! proves that for every `ξ ∈ Ξ` the curve meets the slice `x_j = x0 + ξ` of the tube
+//! `{(x0 + ξ, o(ξ) + y) : y ∈ Y}` in exactly one point, and that its offset lies in `K`. (For
+//! fixed `ξ` this is Krawczyk's operator of `y ↦ F(x0 + ξ, o(ξ) + y)` with centre 0, and every
+//! term is enclosed over all of `Ξ`.) So inside the tube the curve is one arc, a graph over
+//! `x_j`, from the first slice to the last, within `K` of the predictor.
+//!
+//! The width of `g(Ξ)` decides everything: evaluated directly it would be as wide as `F` varies
+//! over the tube's diagonal. It is enclosed instead by a Taylor form in `ξ`: the coefficients of
+//! `g` at the centre of `Ξ` up to order [`ORDER`] ([`SeriesN`] arithmetic on the patches), and the
+//! Lagrange remainder with the next coefficient enclosed over all of `Ξ`. The predictor
+//! interpolates two curve points and their tangents, so the low coefficients nearly cancel and
+//! `g(Ξ)` is about as wide as the predictor's error, not the segment's length.
+//!
+//! This replaces, for transversal branches, the validated ODE step of [`crate::validated`]: no
+//! solution series, no a-priori box over the diagonal in all four parameters, no Lohner
+//! wrapping; one Taylor form of `F` along a known polynomial and one interval Jacobian.
+
+use crate::geometry::RationalBezierPatch;
+use crate::numeric::scalar::point;
+use crate::validated::SeriesN;
+use inari::Interval;
+use nalgebra::Matrix3;
+
+/// Order of the Taylor form of `g` (the remainder uses the next coefficient).
+pub(crate) const ORDER: usize = 6;
+
+/// The three coordinates other than `j`, ascending.
+pub(crate) fn others(j: usize) -> [usize; 3] {
+    match j {
+        0 => [1, 2, 3],
+        1 => [0, 2, 3],
+        2 => [0, 1, 3],
+        _ => [0, 1, 2],
+    }
+}
+
+/// Degree of the predictor.
+pub(crate) const PREDICTOR_DEGREE: usize = 5;
+
+/// A curve point seen as a point of the graph over coordinate `along`: the other coordinates'
+/// values, first and second derivatives with respect to `x_along` (`f64`, guidance only).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Jet {
+    /// The point `(σ, t, u, v)`.
+    pub(crate) x: [f64; 4],
+    /// `d x_o / d x_along` for the three others.
+    pub(crate) d1: [f64; 3],
+    /// `d² x_o / d x_along²` for the three others.
+    pub(crate) d2: [f64; 3],
+}
+
+impl Jet {
+    /// The jet of the curve through `x` with parameter velocity `t`, graphed over `along`:
+    /// `o' = t_o / t_j`, and `o'' = −F_o⁻¹·F''[d, d]` with `d = (1, o')` (implicit
+    /// differentiation of `F(x_j, o(x_j)) = 0`). `None` if `t_j = 0` or `F_o` is singular.
+    pub(crate) fn new(
+        p: &RationalBezierPatch,
+        q: &RationalBezierPatch,
+        x: &[f64; 4],
+        t: &[f64; 4],
+        along: usize,
+    ) -> Option<Jet> {
+        if t[along] == 0.0 {
+            return None;
+        }
+        let o = others(along);
+        let d: [f64; 4] = std::array::from_fn(|i| t[i] / t[along]);
+        let dp = p.derivs_f64(x[0], x[1]);
+        let dq = q.derivs_f64(x[2], x[3]);
+        let cols = [dp.su, dp.sv, dq.su.map(|v| -v), dq.sv.map(|v| -v)];
+        let fo = Matrix3::from_fn(|r, c| cols[o[c]][r]);
+        let second: [f64; 3] = std::array::from_fn(|r| {
+            dp.suu[r] * d[0] * d[0] + 2.0 * dp.suv[r] * d[0] * d[1] + dp.svv[r] * d[1] * d[1]
+                - (dq.suu[r] * d[2] * d[2]
+                    + 2.0 * dq.suv[r] * d[2] * d[3]
+                    + dq.svv[r] * d[3] * d[3])
+        });
+        let inv = fo.try_inverse()?;
+        let d2v = -(inv * nalgebra::Vector3::from(second));
+        let jet = Jet {
+            x: *x,
+            d1: o.map(|i| d[i]),
+            d2: [d2v[0], d2v[1], d2v[2]],
+        };
+        jet.d1
+            .iter()
+            .chain(&jet.d2)
+            .all(|v| v.is_finite())
+            .then_some(jet)
+    }
+}
+
+/// A polynomial predictor of the three other coordinates as functions of `ξ = x_j − x0`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Predictor {
+    /// The along coordinate `j`.
+    pub(crate) along: usize,
+    /// Origin of `ξ`.
+    pub(crate) x0: f64,
+    /// `o_r(ξ) = Σₖ c[k][r]·ξᵏ`, `r` over [`others`]`(along)`.
+    pub(crate) c: [[f64; 3]; PREDICTOR_DEGREE + 1],
+}
+
+impl Predictor {
+    /// The quintic Hermite predictor matching the jets `a` and `b` (graphed over the same
+    /// coordinate `along`); `None` if `along` does not move between them.
+    pub(crate) fn hermite(along: usize, a: &Jet, b: &Jet) -> Option<Predictor> {
+        let l = b.x[along] - a.x[along];
+        if l == 0.0 || !l.is_finite() {
+            return None;
+        }
+        let o = others(along);
+        let mut c = [[0.0; 3]; PREDICTOR_DEGREE + 1];
+        let l2 = l * l;
+        for (r, &i) in o.iter().enumerate() {
+            let (va, vb) = (a.x[i], b.x[i]);
+            let (da, db) = (l * a.d1[r], l * b.d1[r]);
+            let (dda, ddb) = (l2 * a.d2[r], l2 * b.d2[r]);
+            // Coefficients in s = ξ/L of the quintic Hermite interpolant.
+            let s = [
+                va,
+                da,
+                0.5 * dda,
+                -10.0 * va - 6.0 * da - 1.5 * dda + 0.5 * ddb - 4.0 * db + 10.0 * vb,
+                15.0 * va + 8.0 * da + 1.5 * dda - ddb + 7.0 * db - 15.0 * vb,
+                -6.0 * va - 3.0 * da - 0.5 * dda + 0.5 * ddb - 3.0 * db + 6.0 * vb,
+            ];
+            let mut lk = 1.0;
+            for k in 0..=PREDICTOR_DEGREE {
+                c[k][r] = s[k] / lk;
+                lk *= l;
+            }
+        }
+        let p = Predictor {
+            along,
+            x0: a.x[along],
+            c,
+        };
+        p.c.iter().flatten().all(|v| v.is_finite()).then_some(p)
+    }
+
+    /// The predicted point `(σ, t, u, v)` at `x_j = x0 + ξ` (`f64`, not a bound).
+    pub(crate) fn eval(&self, xi: f64) -> [f64; 4] {
+        let mut y = [0.0; 4];
+        y[self.along] = self.x0 + xi;
+        for (r, &i) in others(self.along).iter().enumerate() {
+            y[i] = self.c.iter().rev().fold(0.0, |acc, c| acc * xi + c[r]);
+        }
+        y
+    }
+
+    /// Enclosure of the predicted other coordinates over `ξ ∈ xi`.
+    pub(crate) fn others_over(&self, xi: Interval) -> [Interval; 3] {
+        std::array::from_fn(|r| {
+            self.c
+                .iter()
+                .rev()
+                .fold(point(0.0), |acc, c| acc * xi + point(c[r]))
+        })
+    }
+
+    /// The coefficients of `o(ζ + τ)` in `τ`, enclosed for every `ζ ∈ centre`
+    /// (`Σ_{i≥k} C(i,k)·c_i·ζ^{i−k}`).
+    fn shifted(&self, centre: Interval) -> [[Interval; 3]; PREDICTOR_DEGREE + 1] {
+        let mut pow = [point(1.0); PREDICTOR_DEGREE + 1];
+        for m in 1..=PREDICTOR_DEGREE {
+            pow[m] = pow[m - 1] * centre;
+        }
+        let binom = |n: usize, k: usize| -> f64 {
+            (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+        };
+        std::array::from_fn(|k| {
+            std::array::from_fn(|r| {
+                (k..=PREDICTOR_DEGREE).fold(point(0.0), |acc, i| {
+                    acc + point(binom(i, k)) * point(self.c[i][r]) * pow[i - k]
+                })
+            })
+        })
+    }
+
+    /// The four coordinates as series in `τ` around `ζ ∈ centre`, of length `len ≤ N`.
+    fn series<const N: usize>(&self, centre: Interval, len: usize) -> [SeriesN<N>; 4] {
+        let sh = self.shifted(centre);
+        let zero = point(0.0);
+        let mut out = [SeriesN::<N>::constant(zero); 4];
+        let mut coeffs = [zero; 16];
+        coeffs[0] = point(self.x0) + centre;
+        coeffs[1] = point(1.0);
+        out[self.along] = SeriesN::new(&coeffs[..len]);
+        for (r, &i) in others(self.along).iter().enumerate() {
+            let mut c = [zero; 16];
+            for k in 0..=PREDICTOR_DEGREE {
+                c[k] = sh[k][r];
+            }
+            out[i] = SeriesN::new(&c[..len]);
+        }
+        out
+    }
+}
+
+/// The series type of the residual: coefficients up to the remainder's order.
+type Long = SeriesN<{ ORDER + 2 }>;
+/// The series type of the Jacobian: coefficients up to its remainder's order (3).
+type Short = SeriesN<4>;
+
+/// `P − Q` along `y` (series arguments).
+#[inline(never)]
+fn residual(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Long; 4]) -> [Long; 3] {
+    let a = p.eval(y[0], y[1]);
+    let b = q.eval(y[2], y[3]);
+    std::array::from_fn(|r| a[r] - b[r])
+}
+
+/// The Jacobian columns of `P − Q` for the coordinates `free` along `y` (`jac[col][row]`).
+#[inline(never)]
+fn jacobian(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y: &[Short; 4],
+    free: &[usize; 3],
+) -> [[Short; 3]; 3] {
+    let [_, a_s, a_t] = p.first_derivs(y[0], y[1]);
+    let [_, b_u, b_v] = q.first_derivs(y[2], y[3]);
+    let neg = |v: [Short; 3]| v.map(|x| -x);
+    let cols = [a_s, a_t, neg(b_u), neg(b_v)];
+    free.map(|k| cols[k])
+}
+
+/// Interval 3×3 matrices, `m[row][col]`.
+type IMat = [[Interval; 3]; 3];
+
+fn imat(m: &Matrix3<f64>) -> IMat {
+    std::array::from_fn(|r| std::array::from_fn(|c| point(m[(r, c)])))
+}
+
+/// `a·b`.
+fn mul(a: &IMat, b: &IMat) -> IMat {
+    std::array::from_fn(|r| {
+        std::array::from_fn(|c| a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c])
+    })
+}
+
+/// The Jacobian's Taylor coefficient `k` as a matrix `[row][col]`.
+fn coeff_mat(jac: &[[Short; 3]; 3], k: usize) -> IMat {
+    std::array::from_fn(|r| std::array::from_fn(|c| jac[c][r].coeff(k)))
+}
+
+fn combine(a: &IMat, b: &IMat, f: impl Fn(Interval, Interval) -> Interval) -> IMat {
+    std::array::from_fn(|r| std::array::from_fn(|c| f(a[r][c], b[r][c])))
+}
+
+/// Enclosure of the change of the Jacobian columns `free` over the offsets `y` from the
+/// predictor, `Σ_c' ∂²F/∂x_free[col]∂x_free[c'] · y_c'` (second derivatives over `b`), as a
+/// matrix `[row][col]`.
+#[inline(never)]
+fn jacobian_change(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &[Interval; 4],
+    free: &[usize; 3],
+    y: &[Interval; 3],
+) -> IMat {
+    let dp = p.eval_derivs(b[0], b[1]);
+    let dq = q.eval_derivs(b[2], b[3]);
+    let zero = [point(0.0); 3];
+    let second = |i: usize, k: usize| -> [Interval; 3] {
+        match (i, k) {
+            (0, 0) => dp.suu,
+            (0, 1) | (1, 0) => dp.suv,
+            (1, 1) => dp.svv,
+            (2, 2) => dq.suu.map(|x| -x),
+            (2, 3) | (3, 2) => dq.suv.map(|x| -x),
+            (3, 3) => dq.svv.map(|x| -x),
+            _ => zero,
+        }
+    };
+    std::array::from_fn(|r| {
+        std::array::from_fn(|col| {
+            (0..3).fold(point(0.0), |acc, c2| {
+                acc + second(free[col], free[c2])[r] * y[c2]
+            })
+        })
+    })
+}
+
+/// `A(τ) = I − C(τ)·J_o(τ)` on the predictor over `τ ∈ tau`, as
+/// `A0 + A1·τ + A2·τ² + A3(η)·τ³` (`Aₖ = δₖ₀·I − Σ_{a+b=k} C_a·J_b`, the last with the Taylor
+/// coefficients of `C` and `J` at any `η` of the segment).
+#[inline(never)]
+fn contraction_along(
+    j_c: &[[Short; 3]; 3],
+    j_o: &[[Short; 3]; 3],
+    cs: &[IMat; 3],
+    tau: Interval,
+) -> IMat {
+    let jc: [IMat; 3] = std::array::from_fn(|k| coeff_mat(j_c, k));
+    let jo: [IMat; 4] = std::array::from_fn(|k| coeff_mat(j_o, k));
+    let add = |a: &IMat, b: &IMat| combine(a, b, |x, y| x + y);
+    let neg = |a: &IMat| combine(a, a, |x, _| -x);
+    let eye: IMat =
+        std::array::from_fn(|r| std::array::from_fn(|c| point(if r == c { 1.0 } else { 0.0 })));
+    let a0 = add(&eye, &neg(&mul(&cs[0], &jc[0])));
+    let a1 = neg(&add(&mul(&cs[0], &jc[1]), &mul(&cs[1], &jc[0])));
+    let a2 = neg(&add(
+        &add(&mul(&cs[0], &jc[2]), &mul(&cs[1], &jc[1])),
+        &mul(&cs[2], &jc[0]),
+    ));
+    // Taylor coefficients of C at η = centre + τ, τ ∈ tau.
+    let c_eta0: IMat = std::array::from_fn(|r| {
+        std::array::from_fn(|c| cs[0][r][c] + tau * (cs[1][r][c] + tau * cs[2][r][c]))
+    });
+    let c_eta1: IMat = std::array::from_fn(|r| {
+        std::array::from_fn(|c| cs[1][r][c] + point(2.0) * cs[2][r][c] * tau)
+    });
+    let a3 = neg(&add(
+        &add(&mul(&c_eta0, &jo[3]), &mul(&c_eta1, &jo[2])),
+        &mul(&cs[2], &jo[1]),
+    ));
+    std::array::from_fn(|r| {
+        std::array::from_fn(|c| a0[r][c] + tau * (a1[r][c] + tau * (a2[r][c] + tau * a3[r][c])))
+    })
+}
+
+/// The Jacobian columns along the predictor over `τ ∈ tau`: `J0 + J1·τ + J2·τ² + J3(η)·τ³`.
+fn jacobian_along(j_c: &[[Short; 3]; 3], j_o: &[[Short; 3]; 3], tau: Interval) -> IMat {
+    let jc: [IMat; 3] = std::array::from_fn(|k| coeff_mat(j_c, k));
+    let j3 = coeff_mat(j_o, 3);
+    std::array::from_fn(|r| {
+        std::array::from_fn(|c| {
+            jc[0][r][c] + tau * (jc[1][r][c] + tau * (jc[2][r][c] + tau * j3[r][c]))
+        })
+    })
+}
+
+/// `C(τ)·g(τ)` over `τ ∈ tau`, coefficient by coefficient so that the components'
+/// cancellation is kept: `h_k = Σ_a C_a·g_{k−a}` up to the order, and the top term (times
+/// `τ^{n+1}`) `C0·R + C1·(g_n + R·τ) + C2·(g_{n−1} + g_n·τ + R·τ²)` with `R` the next
+/// coefficient over Ξ.
+#[inline(never)]
+fn preconditioned_residual(
+    g_c: &[Long; 3],
+    g_o: &[Long; 3],
+    cs: &[IMat; 3],
+    tau: Interval,
+) -> [Interval; 3] {
+    let gk = |k: usize, i: usize| g_c[i].coeff(k);
+    let rem = |i: usize| g_o[i].coeff(ORDER + 1);
+    std::array::from_fn(|r| {
+        let dot = |m: &IMat, v: &dyn Fn(usize) -> Interval| {
+            m[r][0] * v(0) + m[r][1] * v(1) + m[r][2] * v(2)
+        };
+        let mut acc = dot(&cs[0], &rem)
+            + dot(&cs[1], &|i| gk(ORDER, i) + rem(i) * tau)
+            + dot(&cs[2], &|i| {
+                gk(ORDER - 1, i) + tau * (gk(ORDER, i) + rem(i) * tau)
+            });
+        for k in (0..=ORDER).rev() {
+            let mut h = point(0.0);
+            for (a, m) in cs.iter().enumerate() {
+                if k >= a {
+                    h += dot(m, &|i| gk(k - a, i));
+                }
+            }
+            acc = acc * tau + h;
+        }
+        acc
+    })
+}
+
+/// The Krawczyk image `−C·g + (A − C·ΔJ(x))·x` of the offsets `x`; `None` if unbounded.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn krawczyk_image(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &[Interval; 4],
+    free: &[usize; 3],
+    x: &[Interval; 3],
+    a_over: &IMat,
+    c_over: &IMat,
+    cg: &[Interval; 3],
+) -> Option<[Interval; 3]> {
+    let dj = jacobian_change(p, q, b, free, x);
+    let m = combine(a_over, &mul(c_over, &dj), |a, b| a - b);
+    let k: [Interval; 3] =
+        std::array::from_fn(|r| -cg[r] + m[r][0] * x[0] + m[r][1] * x[1] + m[r][2] * x[2]);
+    k.iter()
+        .all(|v| !v.is_empty() && v.inf().is_finite() && v.sup().is_finite())
+        .then_some(k)
+}
+
+/// Why a segment could not be proven.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum SegmentFailure {
+    /// The Jacobian at the centre is singular or an enclosure is unbounded.
+    Singular,
+    /// The Krawczyk image does not fit inside the box (segment too long, or near-singular).
+    NotContracting,
+}
+
+/// A proven segment: for every `x_j ∈ x0 + xi` the curve meets the tube in exactly one point,
+/// with offsets from the predictor in `k` (uniquely within `y`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SegmentProof {
+    /// The predictor.
+    pub(crate) pred: Predictor,
+    /// The interval of `ξ = x_j − x0` covered (outward-rounded from `f64` ends `x_range`).
+    pub(crate) xi: Interval,
+    /// The covered values of `x_j` (`f64` ends, increasing).
+    pub(crate) x_range: [f64; 2],
+    /// The uniqueness box of the offsets.
+    pub(crate) y: [Interval; 3],
+    /// The enclosure of the offsets, for every `ξ ∈ xi`.
+    pub(crate) k: [Interval; 3],
+    /// The Jacobian columns `∂(P − Q)/∂x_o` (`[row][col]`, columns in [`others`] order),
+    /// enclosed over every point between the predictor and the curve within the segment.
+    pub(crate) jac: [[Interval; 3]; 3],
+}
+
+impl SegmentProof {
+    /// The box `(σ, t, u, v)` holding the curve for `x_j ∈ [lo, hi]` (a part of `x_range`).
+    pub(crate) fn box_over(&self, lo: f64, hi: f64) -> [Interval; 4] {
+        self.box_with(lo, hi, &self.k)
+    }
+
+    /// The box of the tube (offsets `y`) over `x_j ∈ [lo, hi]`.
+    pub(crate) fn tube_over(&self, lo: f64, hi: f64) -> [Interval; 4] {
+        self.box_with(lo, hi, &self.y)
+    }
+
+    fn box_with(&self, lo: f64, hi: f64, off: &[Interval; 3]) -> [Interval; 4] {
+        let j = self.pred.along;
+        let xj = hull(lo, hi);
+        let xi = xj - point(self.pred.x0);
+        let o = self.pred.others_over(xi);
+        let mut b = [xj; 4];
+        for (r, &i) in others(j).iter().enumerate() {
+            b[i] = o[r] + off[r];
+        }
+        b
+    }
+
+    /// Whether every point of `bx` lies in the tube (so the curve through any curve point of
+    /// `bx` is the arc this segment proves).
+    pub(crate) fn tube_contains(&self, bx: &[Interval; 4]) -> bool {
+        let j = self.pred.along;
+        let xj = hull(self.x_range[0], self.x_range[1]);
+        if !bx[j].subset(xj) {
+            return false;
+        }
+        let o = self.pred.others_over(bx[j] - point(self.pred.x0));
+        others(j)
+            .iter()
+            .enumerate()
+            .all(|(r, &i)| (bx[i] - o[r]).subset(self.y[r]))
+    }
+}
+
+/// The interval `[min(a, b), max(a, b)]`.
+pub(crate) fn hull(a: f64, b: f64) -> Interval {
+    inari::interval!(a.min(b), a.max(b)).unwrap_or(Interval::ENTIRE)
+}
+
+/// Proves the segment of `pred` over `x_j ∈ x_range` (increasing `f64` ends), with a uniqueness
+/// box at least `need` wide in each offset (half-widths; so that boxes that must lie in the tube
+/// do).
+pub(crate) fn prove_segment(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    pred: Predictor,
+    x_range: [f64; 2],
+    need: [f64; 3],
+) -> Result<SegmentProof, SegmentFailure> {
+    let j = pred.along;
+    let free = others(j);
+    let xi = hull(x_range[0], x_range[1]) - point(pred.x0);
+    let centre = xi.mid();
+    let tau = xi - point(centre);
+    // F and J_o along the predictor: Taylor coefficients at the centre, and over all of Ξ (for
+    // the Lagrange remainders).
+    let g_c = residual(p, q, &pred.series(point(centre), ORDER + 1));
+    let g_o = residual(p, q, &pred.series(xi, ORDER + 2));
+    let j_c = jacobian(p, q, &pred.series(point(centre), 3), &free);
+    let j_o = jacobian(p, q, &pred.series(xi, 4), &free);
+    // The preconditioner follows the Jacobian along the segment: C(τ) = C0 + C1·τ + C2·τ², the
+    // inverse of J0 + J1·τ + J2·τ² to second order (midpoints; any C(τ) is rigorous, this one
+    // keeps I − C·J third order in τ).
+    let mid = |m: &IMat| Matrix3::from_fn(|r, c| m[r][c].mid());
+    let c0 = mid(&coeff_mat(&j_c, 0))
+        .try_inverse()
+        .ok_or(SegmentFailure::Singular)?;
+    let (j1, j2) = (mid(&coeff_mat(&j_c, 1)), mid(&coeff_mat(&j_c, 2)));
+    let c1 = -(c0 * j1 * c0);
+    let c2 = c0 * j1 * c0 * j1 * c0 - c0 * j2 * c0;
+    let cs = [imat(&c0), imat(&c1), imat(&c2)];
+    let c_over: IMat = std::array::from_fn(|r| {
+        std::array::from_fn(|c| cs[0][r][c] + tau * (cs[1][r][c] + tau * cs[2][r][c]))
+    });
+    let a_over = contraction_along(&j_c, &j_o, &cs, tau);
+    let cg = preconditioned_residual(&g_c, &g_o, &cs, tau);
+    if cg
+        .iter()
+        .chain(a_over.iter().flatten())
+        .any(|v| v.is_empty() || !v.inf().is_finite() || !v.sup().is_finite())
+    {
+        return Err(SegmentFailure::Singular);
+    }
+    // The uniqueness box: room for twice the residual's image and for what must fit inside.
+    let rad: [f64; 3] = std::array::from_fn(|r| {
+        let e = cg[r].mag();
+        (2.0 * e + 1.25 * need[r]) * (1.0 + 1e-9) + f64::MIN_POSITIVE
+    });
+    let y: [Interval; 3] = std::array::from_fn(|r| inari::interval!(-rad[r], rad[r]).unwrap());
+    let mut proof = SegmentProof {
+        pred,
+        xi,
+        x_range,
+        y,
+        k: y,
+        jac: [[Interval::ENTIRE; 3]; 3],
+    };
+    let b = proof.tube_over(x_range[0], x_range[1]);
+    // K = −C·g + (A − C·ΔJ(x))·x for the offsets x (ΔJ: the Jacobian's change off the
+    // predictor, over the segment from 0 to x, inside Y and so inside B).
+    let image = |x: &[Interval; 3]| krawczyk_image(p, q, &b, &free, x, &a_over, &c_over, &cg);
+    let k = image(&y).ok_or(SegmentFailure::Singular)?;
+    let inside = (0..3).all(|r| k[r].interior(y[r]));
+    if !inside {
+        return Err(SegmentFailure::NotContracting);
+    }
+    // Every zero in Y lies in K; the image of K encloses them too.
+    if let Some(k2) = image(&k) {
+        proof.k = std::array::from_fn(|r| {
+            let both = k[r].intersection(k2[r]);
+            if both.is_empty() {
+                k[r]
+            } else {
+                both
+            }
+        });
+    } else {
+        proof.k = k;
+    }
+    // The Jacobian along the predictor (Taylor form) plus its change off it, over K.
+    let j_pred = jacobian_along(&j_c, &j_o, tau);
+    let dj = jacobian_change(p, q, &b, &free, &proof.k);
+    proof.jac = combine(&j_pred, &dj, |a, b| a + b);
+    Ok(proof)
+}
