@@ -10,8 +10,12 @@
 //! scheduling.
 //!
 //! Each piece pair is traced on its own: a curve that crosses a knot line or passes from one
-//! face to another comes back as one branch per piece pair. Joining those branches across knot
-//! lines, seams and shared edges is not done here.
+//! face to another comes back as one branch per piece pair. Those branches are then joined end
+//! to end across knot lines, periodic seams and edges shared by two faces ([`join`]): the
+//! result also lists one [`JoinedCurve`] per connected curve, each join proven or flagged.
+
+pub mod edges;
+pub mod join;
 
 use rayon::prelude::*;
 
@@ -22,6 +26,10 @@ use crate::geometry::nurbs::NurbsSurface;
 use crate::geometry::surface::Domain;
 use crate::solve::{intersect, Options, SurfaceIntersection};
 use inari::Interval;
+use std::time::Instant;
+
+pub use join::{BranchEnd, CurvePart, Join, JoinStatus, JoinedCurve};
+use crate::solve::TracedBranch;
 
 /// One face of a shell: its rational Bézier pieces and their rigorous bounding boxes.
 #[derive(Debug, Clone, PartialEq)]
@@ -96,6 +104,12 @@ pub struct ShellIntersection {
     pub piece_pairs: usize,
     /// How many the bounding-box pre-filter proved disjoint (not traced).
     pub skipped_pairs: usize,
+    /// The branches of all pairs joined into connected curves ([`join::join_branches`]); every
+    /// branch is a part of exactly one curve. Branches are numbered shell-wide, pair after
+    /// pair ([`ShellIntersection::branch`]).
+    pub curves: Vec<JoinedCurve>,
+    /// Wall-clock seconds spent joining.
+    pub join_seconds: f64,
 }
 
 impl ShellIntersection {
@@ -108,10 +122,23 @@ impl ShellIntersection {
     pub fn branch_count(&self) -> usize {
         self.pairs.iter().map(|p| p.result.branches.len()).sum()
     }
+
+    /// The branch with shell-wide index `g` (the branches of [`Self::pairs`] numbered in
+    /// order, as in the result document) and its piece pair.
+    pub fn branch(&self, g: usize) -> Option<(&PieceIntersection, &TracedBranch)> {
+        let mut g = g;
+        for p in &self.pairs {
+            match p.result.branches.get(g) {
+                Some(b) => return Some((p, b)),
+                None => g -= p.result.branches.len(),
+            }
+        }
+        None
+    }
 }
 
 /// Intersect every Bézier piece of every face of `a` with every piece of every face of `b`
-/// (see the module documentation).
+/// (see the module documentation), and join the branches into curves.
 ///
 /// Errors: the first error of [`intersect`] in pair order (bad options).
 pub fn intersect_shells(a: &[Face], b: &[Face], opts: &Options) -> Result<ShellIntersection> {
@@ -144,10 +171,14 @@ pub fn intersect_shells(a: &[Face], b: &[Face], opts: &Options) -> Result<ShellI
             })
         })
         .collect::<Result<Vec<_>>>()?;
+    let started = Instant::now();
+    let curves = join::join_branches(a, b, &pairs);
     Ok(ShellIntersection {
         options: *opts,
         pairs,
         piece_pairs,
         skipped_pairs,
+        curves,
+        join_seconds: started.elapsed().as_secs_f64(),
     })
 }

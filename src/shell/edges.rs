@@ -1,0 +1,245 @@
+//! Which Bézier pieces of a shell share an edge.
+//!
+//! Two kinds of shared edge are recognised:
+//!
+//! - **knot lines**: two pieces of one face whose knot spans touch (the same span in one
+//!   direction, neighbouring spans in the other). Both pieces are the same NURBS surface on the
+//!   knot line and use the face's own parameters, so the edge parameter is the same on both
+//!   sides.
+//! - **matched edges**: a boundary row of one piece's control net equal to a boundary row of
+//!   another piece's (the same degree; every homogeneous control interval equal, in the same or
+//!   the reverse order). This finds periodic seams (a closed NURBS surface whose first and last
+//!   control rows coincide) and edges shared by two faces. The two edges are then the same
+//!   rational Bézier curve, and the edge parameters correspond affinely (each edge's parameter
+//!   normalised to `[0, 1]`, reversed when the rows are). Rows whose points all coincide (a
+//!   pole) are not edges and are never matched. For interval control data, equal intervals
+//!   are read as the same data on both sides (the scene's topology); nothing else is inferred.
+//!
+//! The side of a piece is `0` for `u = u0`, `1` for `u = u1`, `2` for `v = v0`, `3` for
+//! `v = v1`.
+
+use inari::Interval;
+
+use super::Face;
+use crate::geometry::bezier::RationalBezierPatch;
+use crate::geometry::surface::Domain;
+use crate::numeric::scalar::point;
+
+/// How two pieces came to share an edge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EdgeKind {
+    /// A knot line inside one NURBS face.
+    KnotLine,
+    /// Equal boundary control rows in one face (a periodic seam).
+    Seam,
+    /// Equal boundary control rows in two faces.
+    FaceEdge,
+}
+
+impl EdgeKind {
+    /// `"knot_line"`, `"seam"` or `"face_edge"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            EdgeKind::KnotLine => "knot_line",
+            EdgeKind::Seam => "seam",
+            EdgeKind::FaceEdge => "face_edge",
+        }
+    }
+}
+
+/// One side of one piece of a shell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct PieceSide {
+    /// The face.
+    pub face: usize,
+    /// The piece of that face.
+    pub piece: usize,
+    /// The side: 0 `u = u0`, 1 `u = u1`, 2 `v = v0`, 3 `v = v1`.
+    pub side: usize,
+}
+
+/// A shared edge seen from one of its two sides.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeLink {
+    /// The side this link starts from.
+    pub from: PieceSide,
+    /// The side of the neighbouring piece across the edge.
+    pub to: PieceSide,
+    /// Whether the edge parameter runs the other way on `to`.
+    pub reversed: bool,
+    /// How the edge was recognised.
+    pub kind: EdgeKind,
+}
+
+/// The parameter index (0 for u, 1 for v) held fixed on `side`, and its value.
+pub fn side_coordinate(d: &Domain, side: usize) -> (usize, f64) {
+    match side {
+        0 => (0, d.u[0]),
+        1 => (0, d.u[1]),
+        2 => (1, d.v[0]),
+        _ => (1, d.v[1]),
+    }
+}
+
+/// The range `[lo, hi]` of the parameter that runs along `side`.
+pub fn along_range(d: &Domain, side: usize) -> [f64; 2] {
+    if side < 2 {
+        d.v
+    } else {
+        d.u
+    }
+}
+
+/// The side of `d` that the parameter point `x` lies on, within `tol` (the nearest one when
+/// several are that close); `None` when it is on none.
+pub fn side_of(d: &Domain, x: [f64; 2], tol: f64) -> Option<usize> {
+    (0..4)
+        .map(|side| {
+            let (k, value) = side_coordinate(d, side);
+            (side, (x[k] - value).abs())
+        })
+        .filter(|&(_, gap)| gap <= tol)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(side, _)| side)
+}
+
+impl EdgeLink {
+    /// The parameter along `to` of the parameter `t` along `from` (as an interval, rounded
+    /// outward), given the two pieces' domains.
+    pub fn map_along(&self, t: Interval, from: &Domain, to: &Domain) -> Interval {
+        let [a0, a1] = along_range(from, self.from.side);
+        let [b0, b1] = along_range(to, self.to.side);
+        if self.kind == EdgeKind::KnotLine {
+            return t;
+        }
+        let pt = point;
+        let lambda = (t - pt(a0)) / (pt(a1) - pt(a0));
+        let lambda = if self.reversed {
+            pt(1.0) - lambda
+        } else {
+            lambda
+        };
+        pt(b0) + lambda * (pt(b1) - pt(b0))
+    }
+}
+
+/// The homogeneous control points of `side` of `p`, in the order of increasing edge parameter.
+fn side_row(p: &RationalBezierPatch, side: usize) -> Vec<[Interval; 4]> {
+    let [m, n] = p.degree();
+    let h = p.homogeneous();
+    match side {
+        0 => (0..=n).map(|j| h[j]).collect(),
+        1 => (0..=n).map(|j| h[m * (n + 1) + j]).collect(),
+        2 => (0..=m).map(|i| h[i * (n + 1)]).collect(),
+        _ => (0..=m).map(|i| h[i * (n + 1) + n]).collect(),
+    }
+}
+
+/// Whether two homogeneous control intervals are the same set.
+fn same(a: &[Interval; 4], b: &[Interval; 4]) -> bool {
+    a.iter()
+        .zip(b)
+        .all(|(x, y)| x.inf() == y.inf() && x.sup() == y.sup())
+}
+
+/// Every shared edge of the shell `faces`, from both of its sides, sorted by `from`.
+pub fn shared_edges(faces: &[Face]) -> Vec<EdgeLink> {
+    let mut links = Vec::new();
+    // Knot lines: pieces of one face whose spans touch.
+    for (f, face) in faces.iter().enumerate() {
+        for (i, a) in face.pieces().iter().enumerate() {
+            for (j, b) in face.pieces().iter().enumerate() {
+                let (da, db) = (a.domain(), b.domain());
+                let touch = if da.v == db.v && da.u[1] == db.u[0] {
+                    Some((1, 0))
+                } else if da.u == db.u && da.v[1] == db.v[0] {
+                    Some((3, 2))
+                } else {
+                    None
+                };
+                if let Some((sa, sb)) = touch {
+                    let (from, to) = (
+                        PieceSide {
+                            face: f,
+                            piece: i,
+                            side: sa,
+                        },
+                        PieceSide {
+                            face: f,
+                            piece: j,
+                            side: sb,
+                        },
+                    );
+                    for (x, y) in [(from, to), (to, from)] {
+                        links.push(EdgeLink {
+                            from: x,
+                            to: y,
+                            reversed: false,
+                            kind: EdgeKind::KnotLine,
+                        });
+                    }
+                }
+            }
+        }
+    }
+    // Matched edges: equal boundary rows (not poles).
+    let mut rows = Vec::new();
+    for (f, face) in faces.iter().enumerate() {
+        for (k, p) in face.pieces().iter().enumerate() {
+            for side in 0..4 {
+                let row = side_row(p, side);
+                let pole = row.windows(2).all(|w| {
+                    (0..3).all(|c| {
+                        // The Cartesian points coincide when w·x/w agree as intervals.
+                        let a = w[0][c] / w[0][3];
+                        let b = w[1][c] / w[1][3];
+                        a.inf() == b.inf() && a.sup() == b.sup()
+                    })
+                });
+                if !pole {
+                    rows.push((
+                        PieceSide {
+                            face: f,
+                            piece: k,
+                            side,
+                        },
+                        row,
+                    ));
+                }
+            }
+        }
+    }
+    for (x, (a, ra)) in rows.iter().enumerate() {
+        for (b, rb) in &rows[x + 1..] {
+            if ra.len() != rb.len() || (a.face == b.face && a.piece == b.piece) {
+                continue;
+            }
+            let direct = ra.iter().zip(rb).all(|(p, q)| same(p, q));
+            let reversed = !direct && ra.iter().zip(rb.iter().rev()).all(|(p, q)| same(p, q));
+            if !(direct || reversed) {
+                continue;
+            }
+            let knot_line = links
+                .iter()
+                .any(|l: &EdgeLink| l.from == *a && l.to == *b);
+            if knot_line {
+                continue;
+            }
+            let kind = if a.face == b.face {
+                EdgeKind::Seam
+            } else {
+                EdgeKind::FaceEdge
+            };
+            for (from, to) in [(*a, *b), (*b, *a)] {
+                links.push(EdgeLink {
+                    from,
+                    to,
+                    reversed,
+                    kind,
+                });
+            }
+        }
+    }
+    links.sort_by_key(|l| (l.from, l.to));
+    links
+}

@@ -1,0 +1,536 @@
+//! Joining the branches of all piece pairs into one curve per connected intersection curve.
+//!
+//! Each piece pair is traced on its own, so a curve that crosses a knot line, a periodic seam
+//! or an edge shared by two faces comes back as one branch per piece pair, each ending on a
+//! piece boundary. [`join_branches`] glues them back together:
+//!
+//! 1. Every branch end that the marcher ended on the boundary of one surface is placed on a side
+//!    of that surface's piece. When the branch is certified, its certified end on that boundary
+//!    is pulled onto the side: the parametric Krawczyk test on the end's enclosure box (the box
+//!    that straddles the side), with the side's coordinate held at the side's value, proves that
+//!    exactly one curve point of the piece pair on the side lies in a region (the end box,
+//!    slightly widened) and encloses it tightly: the *exit box*.
+//! 2. Two ends are candidates for a join when their pieces share that side (see
+//!    [`super::edges`]: a knot line of one face, a periodic seam, or an edge of two faces), the
+//!    other surface's piece is the same, and the end points coincide: the two exit boxes (mapped
+//!    across the edge) are within the sum of the branches' certified tolerances in model space,
+//!    or, failing that, the marched end points are within [`MARCH_JOIN_TOLERANCE`] (relative to
+//!    the model's size) in model space and their parameters along the edge and on the other
+//!    surface agree to [`SIDE_TOLERANCE`] (relative to the piece's size). Candidates are accepted
+//!    nearest first, each end joined at most once.
+//! 3. A join of two certified ends is [`JoinStatus::Proven`] when the two exit boxes overlap in
+//!    model space and in all four parameters (the shared face's, mapped across the edge, and the
+//!    other surface's), and one exit box lies inside the other end's uniqueness region: both
+//!    true end points then lie in that region, where the curve meets the edge only once, so
+//!    they are the same point. Otherwise the join is [`JoinStatus::Unproven`] with the reason;
+//!    with the marching method it is [`JoinStatus::Marched`].
+//! 4. The joins chain the branches into [`JoinedCurve`]s: ordered parts with orientations,
+//!    closed when the chain comes back to its first part. Every branch is in exactly one curve
+//!    (a branch that nothing joins is a curve of one part).
+
+use std::collections::HashMap;
+
+use inari::Interval;
+
+use super::edges::{along_range, shared_edges, side_coordinate, side_of, EdgeKind, EdgeLink};
+use super::edges::PieceSide;
+use super::{Face, PieceIntersection};
+use crate::certify::CertifiedEnd;
+use crate::geometry::bezier::RationalBezierPatch;
+use crate::geometry::surface::Domain;
+use crate::march::branch::{BranchStatus, CurvePoint, EndReason};
+use crate::numeric::scalar::point;
+use crate::pair::krawczyk::{krawczyk, KrawczykResult, ParamBox};
+use crate::solve::TracedBranch;
+
+/// Model-space tolerance for joining marched end points, relative to `1 + |x|∞` of the point:
+/// a hundred times the marcher's parameter tolerance on domain boundaries (1e-9).
+pub const MARCH_JOIN_TOLERANCE: f64 = 1e-7;
+
+/// Parameter tolerance for "on a side of the piece" and "the parameters agree", relative to the
+/// piece's size (the marcher puts boundary ends within 1e-7 of it).
+pub const SIDE_TOLERANCE: f64 = 1e-6;
+
+/// One end of one branch: the branch's index in the shell's branch sequence
+/// ([`super::ShellIntersection::branch`]) and `0` for its first point, `1` for its last.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BranchEnd {
+    /// The branch (shell-wide index, the `"id"` of the result document).
+    pub branch: usize,
+    /// 0: the first marched point; 1: the last.
+    pub end: usize,
+}
+
+/// Whether a join is proven.
+#[derive(Debug, Clone, PartialEq)]
+pub enum JoinStatus {
+    /// Both ends certified, their exit boxes overlap in model space and in the parameters, and
+    /// one lies in the other's uniqueness region: the two branches meet at one true point.
+    Proven,
+    /// The method certifies, but this join could not be proven; the branches are glued on the
+    /// evidence of their end points only.
+    Unproven {
+        /// Why not.
+        reason: &'static str,
+    },
+    /// The method does not certify: joined because the marched end points coincide.
+    Marched,
+}
+
+impl JoinStatus {
+    /// Whether the join is proven.
+    pub fn is_proven(&self) -> bool {
+        matches!(self, JoinStatus::Proven)
+    }
+}
+
+/// Two branch ends glued across a shared edge.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Join {
+    /// The two ends, in the order of the curve (the end of one part, the start of the next).
+    pub ends: [BranchEnd; 2],
+    /// The kind of edge crossed.
+    pub edge: EdgeKind,
+    /// Whether the join is proven.
+    pub status: JoinStatus,
+    /// The model-space gap the ends were matched with (distance of the exit boxes, or of the
+    /// marched points).
+    pub gap: f64,
+}
+
+/// One part of a joined curve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CurvePart {
+    /// The branch (shell-wide index).
+    pub branch: usize,
+    /// Whether the curve runs through the branch from its last point to its first.
+    pub reversed: bool,
+}
+
+/// One connected intersection curve made of branches of several piece pairs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JoinedCurve {
+    /// The parts in order along the curve.
+    pub parts: Vec<CurvePart>,
+    /// Whether the curve is closed (the last part joins the first, or one closed branch).
+    pub closed: bool,
+    /// The joins: `joins[k]` between `parts[k]` and `parts[k + 1]`, and for a closed curve of
+    /// joined parts, last the one from the last part back to the first.
+    pub joins: Vec<Join>,
+    /// The largest certified tolerance of the parts, when every part is certified and every join
+    /// proven; `None` otherwise.
+    pub certified_tolerance: Option<f64>,
+}
+
+/// A boundary end of a branch, placed on a side of its piece.
+struct EndSite {
+    at: BranchEnd,
+    /// The pair the branch belongs to.
+    pair: usize,
+    /// The surface (0 or 1) whose piece boundary the end is on.
+    surface: usize,
+    side: PieceSide,
+    /// The marched end point.
+    point: CurvePoint,
+    /// The certified exit, when the branch is certified and its exit could be proven.
+    exit: Option<Exit>,
+    /// The branch's certified tolerance, when it is certified.
+    tolerance: Option<f64>,
+}
+
+/// A proven end of a certified branch on a side: the exact end point lies in `exit`, and it is
+/// the only curve point of the piece pair on the side inside `region`.
+struct Exit {
+    exit: ParamBox,
+    region: ParamBox,
+    xyz: [Interval; 3],
+}
+
+/// The branch sequence of `pairs`: `(pair, index in the pair)` per shell-wide branch.
+fn branch_index(pairs: &[PieceIntersection]) -> Vec<(usize, usize)> {
+    pairs
+        .iter()
+        .enumerate()
+        .flat_map(|(k, p)| (0..p.result.branches.len()).map(move |i| (k, i)))
+        .collect()
+}
+
+/// The pieces of the pair: `[piece of A, piece of B]`.
+fn patches<'a>(
+    a: &'a [Face],
+    b: &'a [Face],
+    pi: &PieceIntersection,
+) -> [&'a RationalBezierPatch; 2] {
+    [
+        &a[pi.faces[0]].pieces()[pi.pieces[0]],
+        &b[pi.faces[1]].pieces()[pi.pieces[1]],
+    ]
+}
+
+/// Join the branches of all piece pairs (see the module documentation). `a` and `b` are the
+/// two shells the pairs were traced on.
+pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec<JoinedCurve> {
+    let index = branch_index(pairs);
+    let links = [shared_edges(a), shared_edges(b)];
+    let mut sites = Vec::new();
+    for (g, &(k, i)) in index.iter().enumerate() {
+        let pi = &pairs[k];
+        let traced = &pi.result.branches[i];
+        for end in 0..2 {
+            if let Some(site) = end_site(a, b, pi, k, traced, BranchEnd { branch: g, end }) {
+                sites.push(site);
+            }
+        }
+    }
+    let by_pair: HashMap<([usize; 2], [usize; 2]), usize> = pairs
+        .iter()
+        .enumerate()
+        .map(|(k, p)| ((p.faces, p.pieces), k))
+        .collect();
+    let mut candidates = Vec::new();
+    for (x, s1) in sites.iter().enumerate() {
+        for link in links[s1.surface].iter().filter(|l| l.from == s1.side) {
+            let p1 = &pairs[s1.pair];
+            let (mut faces, mut pieces) = (p1.faces, p1.pieces);
+            faces[s1.surface] = link.to.face;
+            pieces[s1.surface] = link.to.piece;
+            let Some(&k2) = by_pair.get(&(faces, pieces)) else {
+                continue;
+            };
+            for (y, s2) in sites.iter().enumerate() {
+                if y <= x || s2.pair != k2 || s2.surface != s1.surface || s2.side != link.to {
+                    continue;
+                }
+                if let Some(c) = candidate(a, b, pairs, s1, s2, link) {
+                    candidates.push((c.0, x, y, c.1, link.kind));
+                }
+            }
+        }
+    }
+    // Proven joins first, then the nearest.
+    candidates.sort_by(|p, q| {
+        (!p.3.is_proven())
+            .cmp(&!q.3.is_proven())
+            .then(p.0.total_cmp(&q.0))
+    });
+    let mut used = vec![false; sites.len()];
+    let mut joins: HashMap<BranchEnd, (BranchEnd, EdgeKind, JoinStatus, f64)> = HashMap::new();
+    for (gap, x, y, status, kind) in candidates {
+        if used[x] || used[y] {
+            continue;
+        }
+        used[x] = true;
+        used[y] = true;
+        let (e1, e2) = (sites[x].at, sites[y].at);
+        joins.insert(e1, (e2, kind, status.clone(), gap));
+        joins.insert(e2, (e1, kind, status, gap));
+    }
+    let tolerance = |g: usize| {
+        let (k, i) = index[g];
+        pairs[k].result.branches[i].certified_tolerance()
+    };
+    let closed_branch = |g: usize| {
+        let (k, i) = index[g];
+        pairs[k].result.branches[i].marched.status == BranchStatus::Closed
+    };
+    chain(index.len(), &joins, &tolerance, &closed_branch)
+}
+
+/// The [`EndSite`] of `at` when the marcher ended it on a piece boundary that is a side of the
+/// piece.
+fn end_site(
+    a: &[Face],
+    b: &[Face],
+    pi: &PieceIntersection,
+    pair: usize,
+    traced: &TracedBranch,
+    at: BranchEnd,
+) -> Option<EndSite> {
+    let m = &traced.marched;
+    let EndReason::Boundary { surface } = m.ends[at.end] else {
+        return None;
+    };
+    let point = *if at.end == 0 {
+        m.points.first()?
+    } else {
+        m.points.last()?
+    };
+    let pieces = patches(a, b, pi);
+    let dom = pieces[surface].domain();
+    let x = if surface == 0 { point.p } else { point.q };
+    let side = side_of(&dom, x, SIDE_TOLERANCE * dom.size())?;
+    let side = PieceSide {
+        face: pi.faces[surface],
+        piece: pi.pieces[surface],
+        side,
+    };
+    let exit = traced
+        .certified()
+        .and_then(|c| certified_exit(pieces, surface, side.side, &point, c));
+    Some(EndSite {
+        at,
+        pair,
+        surface,
+        side,
+        point,
+        exit,
+        tolerance: traced.certified_tolerance(),
+    })
+}
+
+/// The proven exit of the certified branch `c` through `side` of `surface`'s piece, at the
+/// certified end nearest the marched end point `near`.
+fn certified_exit(
+    pieces: [&RationalBezierPatch; 2],
+    surface: usize,
+    side: usize,
+    near: &CurvePoint,
+    c: &crate::certify::CertifiedBranch,
+) -> Option<Exit> {
+    let dom = pieces[surface].domain();
+    let (k, value) = side_coordinate(&dom, side);
+    let fixed = 2 * surface + k;
+    let target = [near.p[0], near.p[1], near.q[0], near.q[1]];
+    let distance = |y: &ParamBox| {
+        (0..4)
+            .map(|i| {
+                let (lo, hi) = (y[i].inf(), y[i].sup());
+                (lo - target[i]).max(target[i] - hi).max(0.0)
+            })
+            .fold(0.0, f64::max)
+    };
+    let (first, last) = (c.boxes.first()?, c.boxes.last()?);
+    let end = [first, last]
+        .into_iter()
+        .zip(&c.ends)
+        .filter(|(bx, e)| {
+            matches!(e, CertifiedEnd::Boundary { surface: s } if *s == surface)
+                && bx.params()[fixed].contains(value)
+        })
+        .map(|(bx, _)| bx.params())
+        .min_by(|x, y| distance(x).total_cmp(&distance(y)))?;
+    let mut region = end;
+    for (i, r) in region.iter_mut().enumerate() {
+        if i == fixed {
+            *r = point(value);
+        } else {
+            let pad = point(0.125 * r.wid() + 1e-12 * (1.0 + r.mag()));
+            *r = *r + Interval::try_from((-pad.sup(), pad.sup())).ok()?;
+        }
+    }
+    let KrawczykResult::Proven { enclosure, .. } =
+        krawczyk(pieces[0], pieces[1], region, fixed, 30)
+    else {
+        return None;
+    };
+    let xp = pieces[0].enclose(enclosure[0], enclosure[1]);
+    let xq = pieces[1].enclose(enclosure[2], enclosure[3]);
+    let mut xyz = xp;
+    for i in 0..3 {
+        let both = xp[i].intersection(xq[i]);
+        if both.is_empty() {
+            return None;
+        }
+        xyz[i] = both;
+    }
+    Some(Exit {
+        exit: enclosure,
+        region,
+        xyz,
+    })
+}
+
+/// Map a parameter box of the pair of `from` (its `surface` coordinates on side `link.from`)
+/// across the edge into the pair of `link.to`.
+fn map_box(y: &ParamBox, surface: usize, link: &EdgeLink, doms: [&Domain; 2]) -> ParamBox {
+    let (k_from, _) = side_coordinate(doms[0], link.from.side);
+    let (k_to, value) = side_coordinate(doms[1], link.to.side);
+    let along = y[2 * surface + 1 - k_from];
+    let mut out = *y;
+    out[2 * surface + k_to] = point(value);
+    out[2 * surface + 1 - k_to] = link.map_along(along, doms[0], doms[1]);
+    out
+}
+
+/// Euclidean distance between two boxes (0 when they overlap).
+fn box_gap(x: &[Interval], y: &[Interval]) -> f64 {
+    x.iter()
+        .zip(y)
+        .map(|(a, b)| (a.inf() - b.sup()).max(b.inf() - a.sup()).max(0.0).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Whether every interval of `x` lies in the matching one of `y`.
+fn inside(x: &ParamBox, y: &ParamBox) -> bool {
+    x.iter().zip(y).all(|(a, b)| a.subset(*b))
+}
+
+/// Whether `s1` (on `link.from`) and `s2` (on `link.to`) may be joined: the gap and the status.
+fn candidate(
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+    s1: &EndSite,
+    s2: &EndSite,
+    link: &EdgeLink,
+) -> Option<(f64, JoinStatus)> {
+    let s = s1.surface;
+    let d1 = patches(a, b, &pairs[s1.pair])[s].domain();
+    let d2 = patches(a, b, &pairs[s2.pair])[s].domain();
+    let back = EdgeLink {
+        from: link.to,
+        to: link.from,
+        reversed: link.reversed,
+        kind: link.kind,
+    };
+    let certifies = pairs[s1.pair].result.options.method.certifies();
+    // The certified evidence: exit boxes within the sum of the certified tolerances.
+    if let (Some(x1), Some(x2), Some(t1), Some(t2)) = (&s1.exit, &s2.exit, s1.tolerance, s2.tolerance)
+    {
+        let gap = box_gap(&x1.xyz, &x2.xyz);
+        if gap <= t1 + t2 {
+            let y2 = map_box(&x2.exit, s, &back, [&d2, &d1]);
+            let y1 = map_box(&x1.exit, s, link, [&d1, &d2]);
+            let overlap = box_gap(&x1.exit, &y2) == 0.0 && gap == 0.0;
+            let status = if !overlap {
+                JoinStatus::Unproven {
+                    reason: "the end boxes do not overlap",
+                }
+            } else if inside(&y2, &x1.region) || inside(&y1, &x2.region) {
+                JoinStatus::Proven
+            } else {
+                JoinStatus::Unproven {
+                    reason: "neither end box lies in the other's uniqueness region",
+                }
+            };
+            return Some((gap, status));
+        }
+    }
+    // The marched evidence.
+    let (p1, p2) = (&s1.point, &s2.point);
+    let scale = 1.0 + p1.xyz.iter().chain(&p2.xyz).fold(0.0f64, |m, x| m.max(x.abs()));
+    let gap = (0..3)
+        .map(|i| (p1.xyz[i] - p2.xyz[i]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    if gap > MARCH_JOIN_TOLERANCE * scale {
+        return None;
+    }
+    let x1 = if s == 0 { p1.p } else { p1.q };
+    let x2 = if s == 0 { p2.p } else { p2.q };
+    let (k1, _) = side_coordinate(&d1, link.from.side);
+    let (k2, _) = side_coordinate(&d2, link.to.side);
+    let mapped = link.map_along(point(x1[1 - k1]), &d1, &d2).mid();
+    let [lo, hi] = along_range(&d2, link.to.side);
+    if (mapped - x2[1 - k2]).abs() > SIDE_TOLERANCE * (hi - lo) {
+        return None;
+    }
+    let (o1, o2) = if s == 0 { (p1.q, p2.q) } else { (p1.p, p2.p) };
+    let other = patches(a, b, &pairs[s1.pair])[1 - s].domain();
+    if (0..2).any(|i| (o1[i] - o2[i]).abs() > SIDE_TOLERANCE * other.size()) {
+        return None;
+    }
+    let status = if !certifies {
+        JoinStatus::Marched
+    } else if s1.exit.is_none() || s2.exit.is_none() {
+        JoinStatus::Unproven {
+            reason: "an end is not certified on the shared edge",
+        }
+    } else {
+        JoinStatus::Unproven {
+            reason: "the certified end boxes are farther apart than the certified tolerances",
+        }
+    };
+    Some((gap, status))
+}
+
+/// The joined curves of `count` branches under `joins` (see the module documentation).
+fn chain(
+    count: usize,
+    joins: &HashMap<BranchEnd, (BranchEnd, EdgeKind, JoinStatus, f64)>,
+    tolerance: &dyn Fn(usize) -> Option<f64>,
+    closed_branch: &dyn Fn(usize) -> bool,
+) -> Vec<JoinedCurve> {
+    let mut seen = vec![false; count];
+    let mut curves = Vec::new();
+    for g in 0..count {
+        if seen[g] {
+            continue;
+        }
+        // Walk back from g's first end to the start of its chain (or once round a cycle).
+        let mut start = CurvePart {
+            branch: g,
+            reversed: false,
+        };
+        loop {
+            let entry = BranchEnd {
+                branch: start.branch,
+                end: usize::from(start.reversed),
+            };
+            let Some((prev, ..)) = joins.get(&entry) else {
+                break;
+            };
+            if prev.branch == g {
+                // A cycle: start it at g, forwards.
+                start = CurvePart {
+                    branch: g,
+                    reversed: false,
+                };
+                break;
+            }
+            start = CurvePart {
+                branch: prev.branch,
+                reversed: prev.end == 0,
+            };
+        }
+        let mut parts = vec![start];
+        let mut links = Vec::new();
+        let mut closed = false;
+        seen[start.branch] = true;
+        let mut current = start;
+        loop {
+            let exit = BranchEnd {
+                branch: current.branch,
+                end: usize::from(!current.reversed),
+            };
+            let Some((next, edge, status, gap)) = joins.get(&exit) else {
+                break;
+            };
+            links.push(Join {
+                ends: [exit, *next],
+                edge: *edge,
+                status: status.clone(),
+                gap: *gap,
+            });
+            if next.branch == start.branch {
+                closed = true;
+                break;
+            }
+            current = CurvePart {
+                branch: next.branch,
+                reversed: next.end == 1,
+            };
+            seen[current.branch] = true;
+            parts.push(current);
+        }
+        if parts.len() == 1 && links.is_empty() && closed_branch(start.branch) {
+            closed = true;
+        }
+        let certified_tolerance = if links.iter().all(|j| j.status.is_proven()) {
+            parts
+                .iter()
+                .map(|p| tolerance(p.branch))
+                .try_fold(0.0f64, |m, t| t.map(|t| m.max(t)))
+        } else {
+            None
+        };
+        curves.push(JoinedCurve {
+            parts,
+            closed,
+            joins: links,
+            certified_tolerance,
+        });
+    }
+    curves
+}
