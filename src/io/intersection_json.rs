@@ -13,7 +13,7 @@ use super::result_json::{
 use super::topology_json::{boundary_ends_to_json, node_to_json};
 use crate::check::straying::StrayReport;
 use crate::march::branch::Intersection;
-use crate::shell::ShellIntersection;
+use crate::shell::{JoinStatus, JoinedCurve, ShellIntersection};
 use crate::solve::{BranchCertificate, SurfaceIntersection};
 
 /// Everything of `r` that goes into the result document besides the marched curves
@@ -202,7 +202,10 @@ fn shift(v: &mut Value, key: &str, delta: usize) {
 /// carries `"pair": [i, j]` (the faces of A and B) and `"pieces"` (the Bézier pieces of those
 /// faces). The stats hold `"piece_pairs"`, `"skipped_pairs"` (proven disjoint by their
 /// bounding boxes), `"branches"`, `"search_complete"` (every traced pair settled) and
-/// `"pairs"`, the [`stats_json`] of each traced pair with its `"pair"` and `"pieces"`.
+/// `"pairs"`, the [`stats_json`] of each traced pair with its `"pair"` and `"pieces"`, and
+/// `"joined_curves"` (their count) and `"join_seconds"`. The document gets the top-level member
+/// `"joined_curves"` ([`joined_curve_json`] of each [`ShellIntersection::curves`]) and every
+/// branch the index of its joined curve, `"curve"`.
 pub fn shell_result(
     scene: Option<String>,
     s: &ShellIntersection,
@@ -265,5 +268,62 @@ pub fn shell_result(
     stats.insert("branches".into(), json!(all.branches.len()));
     stats.insert("search_complete".into(), json!(s.is_complete()));
     stats.insert("pairs".into(), Value::Array(pair_stats));
+    stats.insert("joined_curves".into(), json!(s.curves.len()));
+    stats.insert("join_seconds".into(), json!(s.join_seconds));
+    for (k, c) in s.curves.iter().enumerate() {
+        for part in &c.parts {
+            meta.branch_notes
+                .entry(part.branch)
+                .or_default()
+                .insert("curve".into(), json!(k));
+        }
+    }
+    meta.members.insert(
+        "joined_curves".into(),
+        Value::Array(s.curves.iter().map(joined_curve_json).collect()),
+    );
     (all, meta)
+}
+
+/// One entry of `"joined_curves"`: `parts` (objects with the shell-wide `branch` id and
+/// `reversed`), `closed`, `joins` (objects with the two branch ends `from` and `to`, each
+/// `{"branch", "end"}`, the `edge` kind, the `status` `"proven"`, `"unproven"` (with a
+/// `reason`) or `"marched"`, and the matched `gap`) and `certified_tolerance` (`null` unless
+/// every part is certified and every join proven).
+pub fn joined_curve_json(c: &JoinedCurve) -> Value {
+    let end = |e: &crate::shell::BranchEnd| json!({"branch": e.branch, "end": e.end});
+    let joins: Vec<Value> = c
+        .joins
+        .iter()
+        .map(|j| {
+            let mut v = json!({
+                "from": end(&j.ends[0]),
+                "to": end(&j.ends[1]),
+                "edge": j.edge.name(),
+                "gap": j.gap,
+            });
+            if let Value::Object(m) = &mut v {
+                let (status, reason) = match &j.status {
+                    JoinStatus::Proven => ("proven", None),
+                    JoinStatus::Unproven { reason } => ("unproven", Some(*reason)),
+                    JoinStatus::Marched => ("marched", None),
+                };
+                m.insert("status".into(), json!(status));
+                if let Some(r) = reason {
+                    m.insert("reason".into(), json!(r));
+                }
+            }
+            v
+        })
+        .collect();
+    json!({
+        "parts": c
+            .parts
+            .iter()
+            .map(|p| json!({"branch": p.branch, "reversed": p.reversed}))
+            .collect::<Vec<_>>(),
+        "closed": c.closed,
+        "joins": joins,
+        "certified_tolerance": c.certified_tolerance,
+    })
 }

@@ -56,12 +56,20 @@ pub struct ResultMeta {
     /// Further members of the marcher's event objects (e.g. `"boundary"`, `"node"`), keyed by
     /// the event's index in [`Intersection::events`]; written and read back like `branch_notes`.
     pub event_notes: BTreeMap<usize, Map<String, Value>>,
+    /// Further top-level members of the document (e.g. a shell result's `"joined_curves"`);
+    /// written after the defined ones and read back from any top-level member the format does
+    /// not define.
+    pub members: Map<String, Value>,
 }
 
 /// Members of a branch object that the format defines (anything else is a note).
 const BRANCH_MEMBERS: [&str; 5] = ["id", "status", "ends", "points", "certified"];
 /// Members of a marcher event object that the format defines (anything else is a note).
 const EVENT_MEMBERS: [&str; 4] = ["kind", "p", "q", "xyz"];
+/// Top-level members that the format defines (anything else is one of [`ResultMeta::members`]).
+const DOCUMENT_MEMBERS: [&str; 7] = [
+    "format", "version", "scene", "method", "branches", "events", "stats",
+];
 
 /// The members of `v` (an object) whose names are not in `known`.
 fn notes_of(v: &Value, known: &[&str]) -> Map<String, Value> {
@@ -141,7 +149,7 @@ pub fn result_to_json(result: &Intersection, meta: &ResultMeta) -> Value {
         })
         .chain(meta.certified_events.iter().cloned())
         .collect();
-    json!({
+    let mut doc = json!({
         "format": FORMAT_NAME,
         "version": FORMAT_VERSION,
         "scene": meta.scene,
@@ -149,7 +157,13 @@ pub fn result_to_json(result: &Intersection, meta: &ResultMeta) -> Value {
         "branches": branches,
         "events": events,
         "stats": Value::Object(meta.stats.clone()),
-    })
+    });
+    if let Value::Object(obj) = &mut doc {
+        for (k, v) in &meta.members {
+            obj.entry(k.clone()).or_insert_with(|| v.clone());
+        }
+    }
+    doc
 }
 
 /// Writes the result document for `result` to `path` (pretty-printed, trailing newline).
@@ -248,6 +262,7 @@ pub fn result_from_json(doc: &Value) -> Result<ResultDocument> {
             certified_events,
             branch_notes,
             event_notes,
+            members: notes_of(doc, &DOCUMENT_MEMBERS),
         },
     })
 }

@@ -35,7 +35,7 @@ use inari::Interval;
 use super::edges::{along_range, shared_edges, side_coordinate, side_of, EdgeKind, EdgeLink};
 use super::edges::PieceSide;
 use super::{Face, PieceIntersection};
-use crate::certify::CertifiedEnd;
+use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::geometry::bezier::RationalBezierPatch;
 use crate::geometry::surface::Domain;
 use crate::march::branch::{BranchStatus, CurvePoint, EndReason};
@@ -280,16 +280,25 @@ fn end_site(
 
 /// The proven exit of the certified branch `c` through `side` of `surface`'s piece, at the
 /// certified end nearest the marched end point `near`.
+///
+/// The end's last tube piece proves the true curve point at its outer end beyond the side (its
+/// reported point, evaluated in interval arithmetic, is farther beyond than the piece's
+/// parameter radius); walking the chain of enclosure boxes inwards from that end, the first box
+/// wholly on the inner side proves a curve point inside. The curve is continuous along the
+/// chain, so it meets the side in the boxes in between; their hull on the side, slightly
+/// widened, is the region where the parametric Krawczyk test (the side's coordinate held at
+/// its value) proves that the piece pair's curve meets the side exactly once.
 fn certified_exit(
     pieces: [&RationalBezierPatch; 2],
     surface: usize,
     side: usize,
     near: &CurvePoint,
-    c: &crate::certify::CertifiedBranch,
+    c: &CertifiedBranch,
 ) -> Option<Exit> {
     let dom = pieces[surface].domain();
     let (k, value) = side_coordinate(&dom, side);
     let fixed = 2 * surface + k;
+    let lower = side % 2 == 0;
     let target = [near.p[0], near.p[1], near.q[0], near.q[1]];
     let distance = |y: &ParamBox| {
         (0..4)
@@ -300,22 +309,67 @@ fn certified_exit(
             .fold(0.0, f64::max)
     };
     let (first, last) = (c.boxes.first()?, c.boxes.last()?);
-    let end = [first, last]
-        .into_iter()
-        .zip(&c.ends)
-        .filter(|(bx, e)| {
-            matches!(e, CertifiedEnd::Boundary { surface: s } if *s == surface)
-                && bx.params()[fixed].contains(value)
-        })
-        .map(|(bx, _)| bx.params())
-        .min_by(|x, y| distance(x).total_cmp(&distance(y)))?;
-    let mut region = end;
+    // The certified end at the marched end: 0 (smallest arc length) or 1.
+    let end = usize::from(distance(&last.params()) < distance(&first.params()));
+    if !matches!(c.ends[end], CertifiedEnd::Boundary { surface: s } if s == surface) {
+        return None;
+    }
+    let tube = if end == 0 {
+        c.tubes.first()?
+    } else {
+        c.tubes.last()?
+    };
+    // The outer end of the end piece is at τ = h on both halves.
+    if (tube.direction < 0.0) != (end == 0) {
+        return None;
+    }
+    let h = point(tube.h);
+    let reported = tube
+        .coeffs
+        .iter()
+        .rev()
+        .fold(point(0.0), |acc, c| acc * h + point(c[fixed]));
+    let radius = point(tube.radius_param);
+    let beyond = if lower {
+        (reported + radius).sup() < value
+    } else {
+        (reported - radius).inf() > value
+    };
+    if !beyond {
+        return None;
+    }
+    let inner = |y: &ParamBox| {
+        if lower {
+            y[fixed].inf() > value
+        } else {
+            y[fixed].sup() < value
+        }
+    };
+    let mut region: Option<ParamBox> = None;
+    let mut reached_inside = false;
+    let walk: Box<dyn Iterator<Item = _>> = if end == 0 {
+        Box::new(c.boxes.iter())
+    } else {
+        Box::new(c.boxes.iter().rev())
+    };
+    for bx in walk {
+        let y = bx.params();
+        if inner(&y) {
+            reached_inside = true;
+            break;
+        }
+        region = Some(match region {
+            None => y,
+            Some(r) => std::array::from_fn(|i| r[i].convex_hull(y[i])),
+        });
+    }
+    let mut region = region.filter(|_| reached_inside)?;
     for (i, r) in region.iter_mut().enumerate() {
         if i == fixed {
             *r = point(value);
         } else {
-            let pad = point(0.125 * r.wid() + 1e-12 * (1.0 + r.mag()));
-            *r = *r + Interval::try_from((-pad.sup(), pad.sup())).ok()?;
+            let pad = (point(0.125 * r.wid()) + point(1e-12 * (1.0 + r.mag()))).sup();
+            *r = *r + Interval::try_from((-pad, pad)).ok()?;
         }
     }
     let KrawczykResult::Proven { enclosure, .. } =
