@@ -219,9 +219,7 @@ pub fn shared_edges(faces: &[Face]) -> Vec<EdgeLink> {
             if !(direct || reversed) {
                 continue;
             }
-            let knot_line = links
-                .iter()
-                .any(|l: &EdgeLink| l.from == *a && l.to == *b);
+            let knot_line = links.iter().any(|l: &EdgeLink| l.from == *a && l.to == *b);
             if knot_line {
                 continue;
             }

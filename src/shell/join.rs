@@ -5,11 +5,14 @@
 //! piece boundary. [`join_branches`] glues them back together:
 //!
 //! 1. Every branch end that the marcher ended on the boundary of one surface is placed on a side
-//!    of that surface's piece. When the branch is certified, its certified end on that boundary
-//!    is pulled onto the side: the parametric Krawczyk test on the end's enclosure box (the box
-//!    that straddles the side), with the side's coordinate held at the side's value, proves that
-//!    exactly one curve point of the piece pair on the side lies in a region (the end box,
-//!    slightly widened) and encloses it tightly: the *exit box*.
+//!    of that surface's piece. When the branch is certified, its certified end there gets a
+//!    proven *exit box* on the side: the end's last tube piece proves a true curve point beyond
+//!    the side, the chain of enclosure boxes a curve point inside (the first box, walking
+//!    inwards, that lies wholly on the inner side), so the curve meets the side in the boxes
+//!    between; on their hull, slightly widened (the *uniqueness region*), the parametric
+//!    Krawczyk test with the side's coordinate held at its value (after cutting the region
+//!    into boxes proven empty or holding one zero) proves that the piece pair's curve meets the
+//!    side there exactly once, and encloses that point tightly.
 //! 2. Two ends are candidates for a join when their pieces share that side (see
 //!    [`super::edges`]: a knot line of one face, a periodic seam, or an edge of two faces), the
 //!    other surface's piece is the same, and the end points coincide: the two exit boxes (mapped
@@ -32,8 +35,8 @@ use std::collections::HashMap;
 
 use inari::Interval;
 
-use super::edges::{along_range, shared_edges, side_coordinate, side_of, EdgeKind, EdgeLink};
 use super::edges::PieceSide;
+use super::edges::{along_range, shared_edges, side_coordinate, side_of, EdgeKind, EdgeLink};
 use super::{Face, PieceIntersection};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::geometry::bezier::RationalBezierPatch;
@@ -298,7 +301,7 @@ fn certified_exit(
     let dom = pieces[surface].domain();
     let (k, value) = side_coordinate(&dom, side);
     let fixed = 2 * surface + k;
-    let lower = side % 2 == 0;
+    let lower = side.is_multiple_of(2);
     let target = [near.p[0], near.p[1], near.q[0], near.q[1]];
     let distance = |y: &ParamBox| {
         (0..4)
@@ -369,14 +372,10 @@ fn certified_exit(
             *r = point(value);
         } else {
             let pad = (point(0.125 * r.wid()) + point(1e-12 * (1.0 + r.mag()))).sup();
-            *r = *r + Interval::try_from((-pad, pad)).ok()?;
+            *r += Interval::try_from((-pad, pad)).ok()?;
         }
     }
-    let KrawczykResult::Proven { enclosure, .. } =
-        krawczyk(pieces[0], pieces[1], region, fixed, 30)
-    else {
-        return None;
-    };
+    let enclosure = unique_zero(pieces, region, fixed)?;
     let xp = pieces[0].enclose(enclosure[0], enclosure[1]);
     let xq = pieces[1].enclose(enclosure[2], enclosure[3]);
     let mut xyz = xp;
@@ -392,6 +391,79 @@ fn certified_exit(
         region,
         xyz,
     })
+}
+
+/// Most boxes [`unique_zero`] looks at.
+const MAX_ZERO_BOXES: usize = 256;
+
+/// The enclosure of the only zero of `P − Q` in `region` with coordinate `fixed` held (a
+/// point), proven: `region` is cut into boxes (bisecting the free coordinate that is longest in
+/// model space) until each is proven empty (disjoint model-space enclosures, or a Krawczyk image
+/// disjoint from it) or proven to hold exactly one zero (the Krawczyk test); the answer is that
+/// zero's enclosure when exactly one box holds one. `None` when the cutting gives up, or there
+/// are several (or no) such boxes.
+fn unique_zero(
+    pieces: [&RationalBezierPatch; 2],
+    region: ParamBox,
+    fixed: usize,
+) -> Option<ParamBox> {
+    let mut todo = vec![region];
+    let mut found: Option<ParamBox> = None;
+    let mut looked = 0;
+    while let Some(y) = todo.pop() {
+        looked += 1;
+        if looked > MAX_ZERO_BOXES {
+            return None;
+        }
+        let xp = pieces[0].enclose(y[0], y[1]);
+        let xq = pieces[1].enclose(y[2], y[3]);
+        if xp.iter().zip(&xq).any(|(a, b)| a.disjoint(*b)) {
+            continue;
+        }
+        match krawczyk(pieces[0], pieces[1], y, fixed, 30) {
+            KrawczykResult::Proven { enclosure, .. } => {
+                if found.replace(enclosure).is_some() {
+                    return None;
+                }
+            }
+            KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
+            KrawczykResult::NotProven(_) => {
+                let k = widest(pieces, &y, fixed);
+                let m = y[k].mid();
+                let (lo, hi) = (y[k].inf(), y[k].sup());
+                if !(lo < m && m < hi) {
+                    return None;
+                }
+                let (mut a, mut b) = (y, y);
+                a[k] = Interval::try_from((lo, m)).ok()?;
+                b[k] = Interval::try_from((m, hi)).ok()?;
+                todo.push(a);
+                todo.push(b);
+            }
+        }
+    }
+    found
+}
+
+/// The free coordinate of `y` (not `fixed`) whose width is largest in model space (times the
+/// length of the surface's partial derivative at the box's midpoint).
+fn widest(pieces: [&RationalBezierPatch; 2], y: &ParamBox, fixed: usize) -> usize {
+    let mid = y.map(|c| c.mid());
+    let speed = |k: usize| {
+        let s = &pieces[k / 2];
+        let d = s.derivs_f64(mid[2 * (k / 2)], mid[2 * (k / 2) + 1]);
+        let col = if k.is_multiple_of(2) { d.su } else { d.sv };
+        let n = col.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if n.is_finite() {
+            n.max(1e-300)
+        } else {
+            1.0
+        }
+    };
+    (0..4)
+        .filter(|&k| k != fixed)
+        .max_by(|&a, &b| (y[a].wid() * speed(a)).total_cmp(&(y[b].wid() * speed(b))))
+        .unwrap_or((fixed + 1) % 4)
 }
 
 /// Map a parameter box of the pair of `from` (its `surface` coordinates on side `link.from`)
@@ -440,7 +512,8 @@ fn candidate(
     };
     let certifies = pairs[s1.pair].result.options.method.certifies();
     // The certified evidence: exit boxes within the sum of the certified tolerances.
-    if let (Some(x1), Some(x2), Some(t1), Some(t2)) = (&s1.exit, &s2.exit, s1.tolerance, s2.tolerance)
+    if let (Some(x1), Some(x2), Some(t1), Some(t2)) =
+        (&s1.exit, &s2.exit, s1.tolerance, s2.tolerance)
     {
         let gap = box_gap(&x1.xyz, &x2.xyz);
         if gap <= t1 + t2 {
@@ -463,7 +536,11 @@ fn candidate(
     }
     // The marched evidence.
     let (p1, p2) = (&s1.point, &s2.point);
-    let scale = 1.0 + p1.xyz.iter().chain(&p2.xyz).fold(0.0f64, |m, x| m.max(x.abs()));
+    let scale = 1.0
+        + p1.xyz
+            .iter()
+            .chain(&p2.xyz)
+            .fold(0.0f64, |m, x| m.max(x.abs()));
     let gap = (0..3)
         .map(|i| (p1.xyz[i] - p2.xyz[i]).powi(2))
         .sum::<f64>()

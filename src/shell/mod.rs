@@ -28,8 +28,8 @@ use crate::solve::{intersect, Options, SurfaceIntersection};
 use inari::Interval;
 use std::time::Instant;
 
-pub use join::{BranchEnd, CurvePart, Join, JoinStatus, JoinedCurve};
 use crate::solve::TracedBranch;
+pub use join::{BranchEnd, CurvePart, Join, JoinStatus, JoinedCurve};
 
 /// One face of a shell: its rational Bézier pieces and their rigorous bounding boxes.
 #[derive(Debug, Clone, PartialEq)]
