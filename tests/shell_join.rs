@@ -387,3 +387,38 @@ fn joins_of_ends_that_are_not_certified_are_flagged_not_proven() {
     }
     assert_eq!(c.certified_tolerance, None);
 }
+
+/// The cost of the join on the NURBS sphere scene (run by hand: `cargo test --release --test
+/// shell_join join_time -- --ignored --nocapture`): the median over 20 runs of the whole shell
+/// intersection and of the join alone, with both methods. No timed assertion.
+#[test]
+#[ignore]
+fn join_time_on_the_nurbs_sphere() {
+    let s = ShellScene::from_json_value(&scene_value("nurbs_sphere_plane.json")).unwrap();
+    for method in [Method::March, Method::Both] {
+        let opts = Options {
+            method,
+            ..Options::default()
+        };
+        let mut total = Vec::new();
+        let mut join = Vec::new();
+        for _ in 0..20 {
+            let t = std::time::Instant::now();
+            let r = intersect_shells(&s.shells[0], &s.shells[1], &opts).unwrap();
+            total.push(t.elapsed().as_secs_f64());
+            let t = std::time::Instant::now();
+            let again = ssitrace::shell::join::join_branches(&s.shells[0], &s.shells[1], &r.pairs);
+            join.push(t.elapsed().as_secs_f64());
+            assert_eq!(again, r.curves);
+        }
+        total.sort_by(f64::total_cmp);
+        join.sort_by(f64::total_cmp);
+        let (t, j) = (total[10], join[10]);
+        println!(
+            "{method:?}: shell intersection {:.2} ms (join included), join alone {:.3} ms ({:.2} %)",
+            t * 1e3,
+            j * 1e3,
+            100.0 * j / t
+        );
+    }
+}
