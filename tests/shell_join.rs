@@ -235,8 +235,13 @@ fn a_plane_across_a_knot_line_gives_one_open_curve() {
 
 #[test]
 fn two_faces_sharing_an_edge_give_one_joined_curve() {
-    for flip in [false, true] {
-        let r = run(&two_faces_scene(flip), Method::Both);
+    for (flip, swap) in [(false, false), (true, false), (true, true)] {
+        let mut scene = two_faces_scene(flip);
+        if swap {
+            // The two faces as the second shell: the ends lie on the boundary of surface 1.
+            scene["surfaces"].as_array_mut().unwrap().reverse();
+        }
+        let r = run(&scene, Method::Both);
         assert_eq!(r.branch_count(), 2, "flip {flip}");
         check_cover(&r);
         assert_eq!(r.curves.len(), 1, "flip {flip}: {:?}", r.curves);

@@ -51,7 +51,7 @@ use crate::solve::TracedBranch;
 pub const MARCH_JOIN_TOLERANCE: f64 = 1e-7;
 
 /// Parameter tolerance for "on a side of the piece" and "the parameters agree", relative to the
-/// piece's size (the marcher puts boundary ends within 1e-7 of it).
+/// pieces' size (the marcher puts boundary ends within 1e-7 of the larger of the two).
 pub const SIDE_TOLERANCE: f64 = 1e-6;
 
 /// One end of one branch: the branch's index in the shell's branch sequence
@@ -261,7 +261,8 @@ fn end_site(
     let pieces = patches(a, b, pi);
     let dom = pieces[surface].domain();
     let x = if surface == 0 { point.p } else { point.q };
-    let side = side_of(&dom, x, SIDE_TOLERANCE * dom.size())?;
+    let size = dom.size().max(pieces[1 - surface].domain().size());
+    let side = side_of(&dom, x, SIDE_TOLERANCE * size)?;
     let side = PieceSide {
         face: pi.faces[surface],
         piece: pi.pieces[surface],
