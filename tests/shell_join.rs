@@ -34,7 +34,12 @@ fn check_cover(r: &ShellIntersection) {
             seen[p.branch] += 1;
         }
         let n = c.parts.len();
-        let expected_joins = if c.closed && n > 1 { n } else { n - 1 };
+        let self_joined = n == 1 && c.joins.len() == 1;
+        let expected_joins = if c.closed && (n > 1 || self_joined) {
+            n
+        } else {
+            n - 1
+        };
         assert_eq!(c.joins.len(), expected_joins, "{c:?}");
         for (k, j) in c.joins.iter().enumerate() {
             let (a, b) = (c.parts[k], c.parts[(k + 1) % n]);
@@ -425,5 +430,37 @@ fn join_time_on_the_nurbs_sphere() {
             j * 1e3,
             100.0 * j / t
         );
+    }
+}
+
+#[test]
+fn a_closed_single_piece_surface_joins_its_branch_to_itself() {
+    // A cubic teardrop loop (first and last control points equal) extruded along z: one Bézier
+    // piece whose sides u = 0 and u = 1 are the same line. The plane z = 0.1 cuts it in one
+    // loop, traced as one branch from u = 0 to u = 1 and joined to itself across the seam.
+    let section = [[0.0, 0.0], [1.5, 1.5], [-1.5, 1.5], [0.0, 0.0]];
+    let mut points = Vec::new();
+    for xy in section {
+        for z in [-1.0, 1.0] {
+            points.push(json!([xy[0], xy[1], z]));
+        }
+    }
+    let tube = json!({"kind": "bezier", "degree": [3, 1], "points": points});
+    let scene = json!({"surfaces": [tube,
+                                    plane([-2.0, -1.0, 0.1], [4.0, 0.0, 0.0], [0.0, 3.0, 0.0])]});
+    for method in [Method::March, Method::Both] {
+        let r = run(&scene, method);
+        assert_eq!(r.branch_count(), 1, "{method:?}");
+        check_cover(&r);
+        assert_eq!(r.curves.len(), 1);
+        let c = &r.curves[0];
+        assert!(c.closed, "{method:?}: {c:?}");
+        assert_eq!(c.parts.len(), 1);
+        assert_eq!(c.joins.len(), 1);
+        assert_eq!(c.joins[0].edge, EdgeKind::Seam);
+        if method.certifies() {
+            assert!(all_proven(c), "{:?}", c.joins);
+            assert!(c.certified_tolerance.unwrap() <= 1e-9);
+        }
     }
 }

@@ -6,10 +6,11 @@
 //!   direction, neighbouring spans in the other). Both pieces are the same NURBS surface on the
 //!   knot line and use the face's own parameters, so the edge parameter is the same on both
 //!   sides.
-//! - **matched edges**: a boundary row of one piece's control net equal to a boundary row of
-//!   another piece's (the same degree; every homogeneous control interval equal, in the same or
-//!   the reverse order). This finds periodic seams (a closed NURBS surface whose first and last
-//!   control rows coincide) and edges shared by two faces. The two edges are then the same
+//! - **matched edges**: a boundary row of one piece's control net equal to another boundary row
+//!   of the same or another piece (the same degree; every homogeneous control interval equal,
+//!   in the same or the reverse order). This finds periodic seams (a closed NURBS surface whose
+//!   first and last control rows coincide, or one closed Bézier piece) and edges shared by two
+//!   faces. Rows are bucketed by their two end points, so the search is near linear. The two edges are then the same
 //!   rational Bézier curve, and the edge parameters correspond affinely (each edge's parameter
 //!   normalised to `[0, 1]`, reversed when the rows are). Rows whose points all coincide (a
 //!   pole) are not edges and are never matched. For interval control data, equal intervals
@@ -17,6 +18,8 @@
 //!
 //! The side of a piece is `0` for `u = u0`, `1` for `u = u1`, `2` for `v = v0`, `3` for
 //! `v = v1`.
+
+use std::collections::{HashMap, HashSet};
 
 use inari::Interval;
 
@@ -142,48 +145,83 @@ fn same(a: &[Interval; 4], b: &[Interval; 4]) -> bool {
         .all(|(x, y)| x.inf() == y.inf() && x.sup() == y.sup())
 }
 
+/// The bits of a homogeneous control interval (its bounds), for hashing.
+type PointKey = [u64; 8];
+
+fn point_key(h: &[Interval; 4]) -> PointKey {
+    std::array::from_fn(|k| {
+        let x = h[k / 2];
+        if k % 2 == 0 {
+            x.inf().to_bits()
+        } else {
+            x.sup().to_bits()
+        }
+    })
+}
+
+/// Both links of a shared edge between `a` and `b`.
+fn link_both(
+    links: &mut Vec<EdgeLink>,
+    a: PieceSide,
+    b: PieceSide,
+    reversed: bool,
+    kind: EdgeKind,
+) {
+    for (from, to) in [(a, b), (b, a)] {
+        links.push(EdgeLink {
+            from,
+            to,
+            reversed,
+            kind,
+        });
+    }
+}
+
 /// Every shared edge of the shell `faces`, from both of its sides, sorted by `from`.
 pub fn shared_edges(faces: &[Face]) -> Vec<EdgeLink> {
     let mut links = Vec::new();
-    // Knot lines: pieces of one face whose spans touch.
+    // Knot lines: pieces of one face whose spans touch (found by their domains' exact bounds).
     for (f, face) in faces.iter().enumerate() {
+        let side = |piece, side| PieceSide {
+            face: f,
+            piece,
+            side,
+        };
+        let bits = |x: [f64; 2]| x.map(f64::to_bits);
+        let mut left = HashMap::new();
+        let mut below = HashMap::new();
+        for (j, b) in face.pieces().iter().enumerate() {
+            let d = b.domain();
+            left.insert((d.u[0].to_bits(), bits(d.v)), j);
+            below.insert((d.v[0].to_bits(), bits(d.u)), j);
+        }
         for (i, a) in face.pieces().iter().enumerate() {
-            for (j, b) in face.pieces().iter().enumerate() {
-                let (da, db) = (a.domain(), b.domain());
-                let touch = if da.v == db.v && da.u[1] == db.u[0] {
-                    Some((1, 0))
-                } else if da.u == db.u && da.v[1] == db.v[0] {
-                    Some((3, 2))
-                } else {
-                    None
-                };
-                if let Some((sa, sb)) = touch {
-                    let (from, to) = (
-                        PieceSide {
-                            face: f,
-                            piece: i,
-                            side: sa,
-                        },
-                        PieceSide {
-                            face: f,
-                            piece: j,
-                            side: sb,
-                        },
-                    );
-                    for (x, y) in [(from, to), (to, from)] {
-                        links.push(EdgeLink {
-                            from: x,
-                            to: y,
-                            reversed: false,
-                            kind: EdgeKind::KnotLine,
-                        });
-                    }
-                }
+            let d = a.domain();
+            if let Some(&j) = left.get(&(d.u[1].to_bits(), bits(d.v))) {
+                link_both(
+                    &mut links,
+                    side(i, 1),
+                    side(j, 0),
+                    false,
+                    EdgeKind::KnotLine,
+                );
+            }
+            if let Some(&j) = below.get(&(d.v[1].to_bits(), bits(d.u))) {
+                link_both(
+                    &mut links,
+                    side(i, 3),
+                    side(j, 2),
+                    false,
+                    EdgeKind::KnotLine,
+                );
             }
         }
     }
-    // Matched edges: equal boundary rows (not poles).
+    let knot_lines: HashSet<(PieceSide, PieceSide)> =
+        links.iter().map(|l| (l.from, l.to)).collect();
+    // Matched edges: equal boundary rows (not poles), bucketed by their two end points.
     let mut rows = Vec::new();
+    let mut buckets: HashMap<(usize, PointKey, PointKey), Vec<usize>> = HashMap::new();
     for (f, face) in faces.iter().enumerate() {
         for (k, p) in face.pieces().iter().enumerate() {
             for side in 0..4 {
@@ -196,45 +234,44 @@ pub fn shared_edges(faces: &[Face]) -> Vec<EdgeLink> {
                         a.inf() == b.inf() && a.sup() == b.sup()
                     })
                 });
-                if !pole {
-                    rows.push((
-                        PieceSide {
-                            face: f,
-                            piece: k,
-                            side,
-                        },
-                        row,
-                    ));
+                if pole {
+                    continue;
                 }
+                let (first, last) = (point_key(&row[0]), point_key(&row[row.len() - 1]));
+                let key = (row.len(), first.min(last), first.max(last));
+                buckets.entry(key).or_default().push(rows.len());
+                rows.push((
+                    PieceSide {
+                        face: f,
+                        piece: k,
+                        side,
+                    },
+                    row,
+                ));
             }
         }
     }
-    for (x, (a, ra)) in rows.iter().enumerate() {
-        for (b, rb) in &rows[x + 1..] {
-            if ra.len() != rb.len() || (a.face == b.face && a.piece == b.piece) {
-                continue;
-            }
-            let direct = ra.iter().zip(rb).all(|(p, q)| same(p, q));
-            let reversed = !direct && ra.iter().zip(rb.iter().rev()).all(|(p, q)| same(p, q));
-            if !(direct || reversed) {
-                continue;
-            }
-            let knot_line = links.iter().any(|l: &EdgeLink| l.from == *a && l.to == *b);
-            if knot_line {
-                continue;
-            }
-            let kind = if a.face == b.face {
-                EdgeKind::Seam
-            } else {
-                EdgeKind::FaceEdge
-            };
-            for (from, to) in [(*a, *b), (*b, *a)] {
-                links.push(EdgeLink {
-                    from,
-                    to,
-                    reversed,
-                    kind,
-                });
+    let mut keys: Vec<_> = buckets.keys().copied().collect();
+    keys.sort_unstable();
+    for key in keys {
+        let bucket = &buckets[&key];
+        for (x, &i) in bucket.iter().enumerate() {
+            for &j in &bucket[x + 1..] {
+                let ((a, ra), (b, rb)) = (&rows[i], &rows[j]);
+                if knot_lines.contains(&(*a, *b)) {
+                    continue;
+                }
+                let direct = ra.iter().zip(rb).all(|(p, q)| same(p, q));
+                let reversed = !direct && ra.iter().zip(rb.iter().rev()).all(|(p, q)| same(p, q));
+                if !(direct || reversed) {
+                    continue;
+                }
+                let kind = if a.face == b.face {
+                    EdgeKind::Seam
+                } else {
+                    EdgeKind::FaceEdge
+                };
+                link_both(&mut links, *a, *b, reversed, kind);
             }
         }
     }

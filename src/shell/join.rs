@@ -190,9 +190,18 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
         .enumerate()
         .map(|(k, p)| ((p.faces, p.pieces), k))
         .collect();
+    let mut at_side: HashMap<(usize, usize, PieceSide), Vec<usize>> = HashMap::new();
+    for (y, site) in sites.iter().enumerate() {
+        at_side
+            .entry((site.pair, site.surface, site.side))
+            .or_default()
+            .push(y);
+    }
     let mut candidates = Vec::new();
     for (x, s1) in sites.iter().enumerate() {
-        for link in links[s1.surface].iter().filter(|l| l.from == s1.side) {
+        let from = &links[s1.surface];
+        let first = from.partition_point(|l| l.from < s1.side);
+        for link in from[first..].iter().take_while(|l| l.from == s1.side) {
             let p1 = &pairs[s1.pair];
             let (mut faces, mut pieces) = (p1.faces, p1.pieces);
             faces[s1.surface] = link.to.face;
@@ -200,11 +209,11 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
             let Some(&k2) = by_pair.get(&(faces, pieces)) else {
                 continue;
             };
-            for (y, s2) in sites.iter().enumerate() {
-                if y <= x || s2.pair != k2 || s2.surface != s1.surface || s2.side != link.to {
-                    continue;
-                }
-                if let Some(c) = candidate(a, b, pairs, s1, s2, link) {
+            let Some(others) = at_side.get(&(k2, s1.surface, link.to)) else {
+                continue;
+            };
+            for &y in others.iter().filter(|&&y| y > x) {
+                if let Some(c) = candidate(a, b, pairs, s1, &sites[y], link) {
                     candidates.push((c.0, x, y, c.1, link.kind));
                 }
             }
