@@ -410,8 +410,9 @@ const MAX_ZERO_BOXES: usize = 256;
 /// point), proven: `region` is cut into boxes (bisecting the free coordinate that is longest in
 /// model space) until each is proven empty (disjoint model-space enclosures, or a Krawczyk image
 /// disjoint from it) or proven to hold exactly one zero (the Krawczyk test); the answer is that
-/// zero's enclosure when exactly one box holds one. `None` when the cutting gives up, or there
-/// are several (or no) such boxes.
+/// zero's enclosure when exactly one box holds one. `None` when the cutting gives up, a box's
+/// model-space enclosure is unbounded (a weight may vanish there), or there are several (or no)
+/// such boxes.
 fn unique_zero(
     pieces: [&RationalBezierPatch; 2],
     region: ParamBox,
@@ -427,6 +428,11 @@ fn unique_zero(
         }
         let xp = pieces[0].enclose(y[0], y[1]);
         let xq = pieces[1].enclose(y[2], y[3]);
+        // Bounded enclosures: both weight functions are nonzero on the box, so every interval
+        // evaluation below is of a well-defined function. Otherwise give up.
+        if xp.iter().chain(&xq).any(|x| !x.is_common_interval()) {
+            return None;
+        }
         if xp.iter().zip(&xq).any(|(a, b)| a.disjoint(*b)) {
             continue;
         }
