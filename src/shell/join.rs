@@ -20,7 +20,7 @@
 //!    or, failing that, the marched end points are within [`MARCH_JOIN_TOLERANCE`] (relative to
 //!    the model's size) in model space and their parameters along the edge and on the other
 //!    surface agree to [`SIDE_TOLERANCE`] (relative to the piece's size). Candidates are accepted
-//!    nearest first, each end joined at most once.
+//!    proven ones first, then nearest first, each end joined at most once.
 //! 3. A join of two certified ends is [`JoinStatus::Proven`] when the two exit boxes overlap in
 //!    model space and in all four parameters (the shared face's, mapped across the edge, and the
 //!    other surface's), and one exit box lies inside the other end's uniqueness region: both
