@@ -35,7 +35,7 @@ use inari::Interval;
 use nalgebra::Matrix3;
 
 /// Order of the Taylor form of `g` (the remainder uses the next coefficient).
-pub(crate) const ORDER: usize = 6;
+pub(crate) const ORDER: usize = 7;
 
 /// The three coordinates other than `j`, ascending.
 pub(crate) fn others(j: usize) -> [usize; 3] {

@@ -40,6 +40,7 @@ use crate::pair::newton::{refine, Constraint};
 use crate::search::loop_exclusion::loop_test;
 use inari::Interval;
 use nalgebra::{Matrix3x4, Vector3};
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// Tuning of the start-point search.
@@ -238,57 +239,33 @@ fn pair_search(
     let mut searched = HashMap::new();
     while !frontier.is_empty() {
         let mut next = Vec::new();
-        let mut rest = frontier.into_iter();
-        for (a, b) in rest.by_ref() {
+        // The tests of a level are independent: run them in parallel, then act on them in
+        // order (the result is the one of the sequential loop; only work past a spent budget
+        // is wasted).
+        let verdicts: Vec<PairVerdict> = frontier
+            .par_iter()
+            .map(|(a, b)| classify_pair(ctx, p, q, a, b))
+            .collect();
+        let mut rest = frontier.into_iter().zip(verdicts);
+        for ((a, b), verdict) in rest.by_ref() {
             if !ctx.spend(report) {
                 undecided_pair(ctx, p, q, &a, &b, report);
                 break;
             }
             report.pairs += 1;
-            let (ea, eb) = (a.bounds(), b.bounds());
-            if boxes_disjoint(&ea, &eb) {
-                report.disjoint_pairs += 1;
-                continue;
-            }
-            let test = loop_test(p, &a, q, &b);
-            if test.proof.is_some() {
-                report.loop_free_pairs += 1;
-                if !face_search(ctx, p, q, &a, &b, &mut searched, report) {
-                    undecided_pair(ctx, p, q, &a, &b, report);
+            match verdict {
+                PairVerdict::Disjoint => report.disjoint_pairs += 1,
+                PairVerdict::LoopFree => {
+                    report.loop_free_pairs += 1;
+                    if !face_search(ctx, p, q, &a, &b, &mut searched, report) {
+                        undecided_pair(ctx, p, q, &a, &b, report);
+                    }
                 }
-                continue;
-            }
-            let (wa, wb) = (diameter(&ea), diameter(&eb));
-            if wa <= ctx.min_pair && wb <= ctx.min_pair {
-                undecided_pair(ctx, p, q, &a, &b, report);
-                continue;
-            }
-            // Split the piece whose size times normal spread is larger (the one that keeps the
-            // test from succeeding): a flat piece is never split for the loop test's sake.
-            let [sa, sb] = test.spread;
-            let (ka, kb) = (wa * sa.min(1e300), wb * sb.min(1e300));
-            let split_a = if ka == kb || !(ka.is_finite() && kb.is_finite()) {
-                wa >= wb
-            } else {
-                ka > kb
-            };
-            let split_a = if wa <= ctx.min_pair {
-                false
-            } else if wb <= ctx.min_pair {
-                true
-            } else {
-                split_a
-            };
-            if split_a {
-                for half in a.split(a.split_direction()) {
-                    next.push((half, b.clone()));
-                }
-            } else {
-                for half in b.split(b.split_direction()) {
-                    next.push((a.clone(), half));
-                }
+                PairVerdict::Undecided => undecided_pair(ctx, p, q, &a, &b, report),
+                PairVerdict::Split(halves) => next.extend(halves),
             }
         }
+        let rest = rest.map(|(pair, _)| pair);
         // Budget spent: everything not examined is undecided.
         for (a, b) in rest.chain(if report.truncated {
             std::mem::take(&mut next)
@@ -304,6 +281,68 @@ fn pair_search(
         }
         frontier = next;
     }
+}
+
+/// What the tests say of one pair of pieces.
+enum PairVerdict {
+    /// Their rigorous boxes are disjoint.
+    Disjoint,
+    /// The loop test proved the pair loop-free (its faces are searched next).
+    LoopFree,
+    /// Both pieces at the smallest size and still neither: undecided.
+    Undecided,
+    /// Split one piece: the two new pairs.
+    Split(Vec<(Piece, Piece)>),
+}
+
+/// Tests one pair of pieces (pure: no report, no budget).
+fn classify_pair(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    a: &Piece,
+    b: &Piece,
+) -> PairVerdict {
+    let (ea, eb) = (a.bounds(), b.bounds());
+    if boxes_disjoint(&ea, &eb) {
+        return PairVerdict::Disjoint;
+    }
+    let test = loop_test(p, a, q, b);
+    if test.proof.is_some() {
+        return PairVerdict::LoopFree;
+    }
+    let (wa, wb) = (diameter(&ea), diameter(&eb));
+    if wa <= ctx.min_pair && wb <= ctx.min_pair {
+        return PairVerdict::Undecided;
+    }
+    // Split the piece whose size times normal spread is larger (the one that keeps the test
+    // from succeeding): a flat piece is never split for the loop test's sake.
+    let [sa, sb] = test.spread;
+    let (ka, kb) = (wa * sa.min(1e300), wb * sb.min(1e300));
+    let split_a = if ka == kb || !(ka.is_finite() && kb.is_finite()) {
+        wa >= wb
+    } else {
+        ka > kb
+    };
+    let split_a = if wa <= ctx.min_pair {
+        false
+    } else if wb <= ctx.min_pair {
+        true
+    } else {
+        split_a
+    };
+    let halves = if split_a {
+        a.split(a.split_direction())
+            .into_iter()
+            .map(|half| (half, b.clone()))
+            .collect()
+    } else {
+        b.split(b.split_direction())
+            .into_iter()
+            .map(|half| (a.clone(), half))
+            .collect()
+    };
+    PairVerdict::Split(halves)
 }
 
 /// Records an undecided pair, and offers Newton projections from its centre and from the

@@ -92,6 +92,9 @@ pub(super) struct Walker<'a> {
     pub(super) closed: bool,
     /// Whether to watch for the loop closing (set `close_at` from the first link).
     pub(super) wants_closure: bool,
+    /// The scaled length the next link should have, learnt from the last attempts (the tube's
+    /// width grows like the sixth power of the length).
+    pub(super) l_pred: Option<f64>,
 }
 
 pub(super) fn velocity(p: &RationalBezierPatch, q: &RationalBezierPatch, x: &[f64; 4]) -> [f64; 4] {
@@ -121,6 +124,7 @@ impl<'a> Walker<'a> {
             close_at: None,
             closed: false,
             wants_closure: false,
+            l_pred: None,
         }
     }
 
@@ -158,7 +162,7 @@ impl<'a> Walker<'a> {
             return None;
         }
         if let Some(prev) = self.links.last().map(|l| l.proof.pred.along) {
-            if score(prev).is_some_and(|s| s >= 0.6 * best.1) {
+            if score(prev).is_some_and(|s| s >= 0.9 * best.1) {
                 return Some(prev);
             }
         }
@@ -254,7 +258,7 @@ impl<'a> Walker<'a> {
     }
 
     /// A new node halfway (in the along coordinate of largest scaled change) from `a` to `b`.
-    fn midpoint(&self, a: &Node, b: &Node) -> Option<Node> {
+    fn midpoint(&self, a: &Node, b: &Node, frac: f64) -> Option<Node> {
         let j = (0..4)
             .max_by(|&x, &y| {
                 let dx = (b.x[x] - a.x[x]).abs() / self.scales[x];
@@ -262,10 +266,10 @@ impl<'a> Walker<'a> {
                 dx.total_cmp(&dy)
             })
             .unwrap_or(0);
-        let value = 0.5 * (a.x[j] + b.x[j]);
+        let value = a.x[j] + frac * (b.x[j] - a.x[j]);
         let guess = match self.predictor(j, a, b) {
             Some(pr) => pr.eval(value - pr.x0),
-            None => std::array::from_fn(|i| 0.5 * (a.x[i] + b.x[i])),
+            None => std::array::from_fn(|i| a.x[i] + frac * (b.x[i] - a.x[i])),
         };
         // A Newton point far from the guess belongs to another curve.
         let span = scaled_dist(&a.x, &b.x, &self.scales);
@@ -300,6 +304,28 @@ impl<'a> Walker<'a> {
     fn rounding_floor(&self, node: &Node) -> f64 {
         let m = self.p.point_f64(node.x[0], node.x[1]);
         1e-12 * (1.0 + m.iter().fold(0.0f64, |a, v| a.max(v.abs())))
+    }
+
+    /// Learns the next link's length from an attempt of scaled length `len`: aim at a tube of a
+    /// third of the tolerance (`r ∝ L⁶`), at most doubling after a success, at least halving
+    /// after a failure without a width.
+    fn learn(&mut self, len: f64, attempt: &Attempt) {
+        let tol = self.opts.required_tolerance;
+        let aim = |r: f64| {
+            if r > 0.0 {
+                (tol / (3.0 * r)).powf(1.0 / 6.0)
+            } else {
+                2.0
+            }
+        };
+        let f = match attempt {
+            Attempt::Proven(l) => aim(l.radius_xyz).clamp(0.7, 2.0),
+            Attempt::TooWide(l) => aim(l.radius_xyz).clamp(0.25, 0.9),
+            Attempt::Failed => 0.5,
+        };
+        if len > 0.0 && f.is_finite() {
+            self.l_pred = Some(len * f);
+        }
     }
 
     /// Adds a proven link; on a loop, whether it closes the loop (then the walk stops).
@@ -346,7 +372,10 @@ impl<'a> Walker<'a> {
                 });
             }
             let closing = (stack.len() == 1).then_some(must_end).flatten();
-            let too_wide = match self.link(&cur, &tgt, closing) {
+            let len = scaled_dist(&cur.x, &tgt.x, &self.scales);
+            let attempt = self.link(&cur, &tgt, closing);
+            self.learn(len, &attempt);
+            let too_wide = match attempt {
                 Attempt::Proven(link) => Some(link),
                 // A short link that halving did not narrow: its width is rounding (a tolerance
                 // below rounding was asked for) or the conditioning away from any singular
@@ -378,8 +407,9 @@ impl<'a> Walker<'a> {
             }
             splits += 1;
             let long = scaled_dist(&cur.x, &tgt.x, &self.scales) > MIN_LINK;
+            let frac = self.l_pred.map_or(0.5, |l| (l / len).clamp(0.1, 0.5));
             let mid = (splits <= MAX_SPLITS && long)
-                .then(|| self.midpoint(&cur, &tgt))
+                .then(|| self.midpoint(&cur, &tgt, frac))
                 .flatten();
             let inherited = stack.last().and_then(|t| t.1);
             match mid {
@@ -528,9 +558,17 @@ impl<'a> Walker<'a> {
         closing: Option<&[Interval; 4]>,
     ) -> std::result::Result<(), CertifiedEnd> {
         let n = nodes.len();
-        let (mut i, mut stride) = (0, 1);
+        let mut i = 0;
         while i + 1 < n {
-            let k = stride.min(n - 1 - i);
+            // As many marched points ahead as the predicted length reaches (at least one).
+            let mut k = 1;
+            if let Some(l) = self.l_pred {
+                while i + k + 1 < n
+                    && scaled_dist(&nodes[i].x, &nodes[i + k + 1].x, &self.scales) <= l
+                {
+                    k += 1;
+                }
+            }
             let must = (i + k == n - 1).then_some(closing).flatten();
             if k > 1 {
                 if let Some(reason) = self.out_of_budget() {
@@ -539,15 +577,17 @@ impl<'a> Walker<'a> {
                         near: point_box(&nodes[i].x),
                     });
                 }
-                match self.link(&nodes[i], &nodes[i + k], must) {
-                    Attempt::Proven(link) => {
-                        if self.push(link) {
-                            return Ok(());
-                        }
-                        i += k;
-                        stride = 2 * k;
+                let len = scaled_dist(&nodes[i].x, &nodes[i + k].x, &self.scales);
+                let attempt = self.link(&nodes[i], &nodes[i + k], must);
+                self.learn(len, &attempt);
+                if let Attempt::Proven(link) = attempt {
+                    if self.push(link) {
+                        return Ok(());
                     }
-                    _ => stride = k / 2,
+                    i += k;
+                } else if self.l_pred.is_some_and(|l| l >= len) {
+                    // Not learnt anything that shortens the stride: take one interval.
+                    self.l_pred = Some(0.5 * len);
                 }
                 continue;
             }
@@ -558,7 +598,6 @@ impl<'a> Walker<'a> {
                 return Ok(());
             }
             i += 1;
-            stride = 2;
         }
         Ok(())
     }
