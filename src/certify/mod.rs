@@ -1,6 +1,8 @@
-//! Certified curves: the intersection ODE on the validated engine, gap-free boxes, tight tubes.
+//! Certified curves: gap-free boxes and tight tubes, by two engines.
 //!
-//! [`ode`] hands the intersection field ([`crate::pair::field`]) to the validated engine;
+//! [`chain`] (the default) certifies a marched branch as a chain of links, each one parametric
+//! Krawczyk test on a thin tube around a polynomial predictor (`segment.rs`); its arc lengths are
+//! nominal. The Taylor engine: [`ode`] hands the intersection field ([`crate::pair::field`]) to the validated engine;
 //! [`trace`] certifies a branch (its start and re-anchoring proven by
 //! [`crate::pair::krawczyk`]); [`curve`] is what a certified branch reports. Tangential
 //! contacts: [`tangential_ode`] (the tangential field, classified by

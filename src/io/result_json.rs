@@ -380,16 +380,22 @@ pub fn certified_end_to_json(e: &CertifiedEnd) -> Value {
 }
 
 /// One tube piece as `{"s0", "direction", "h", "coeffs": [[σ, t, u, v], ...], "radius_param",
-/// "radius_xyz"}` (see [`TubePiece`] for the meaning).
+/// "radius_xyz"}`, and on a cover-chain piece `"along"` (the parameter `τ` measures) and
+/// `"arc_length"` (see [`TubePiece`] for the meaning).
 pub fn tube_to_json(t: &TubePiece) -> Value {
-    json!({
+    let mut v = json!({
         "s0": t.s0,
         "direction": t.direction,
         "h": t.h,
         "coeffs": t.coeffs,
         "radius_param": t.radius_param,
         "radius_xyz": t.radius_xyz,
-    })
+    });
+    if let (Some(a), Some(obj)) = (t.along, v.as_object_mut()) {
+        obj.insert("along".into(), json!(a.index));
+        obj.insert("arc_length".into(), json!(a.arc_length));
+    }
+    v
 }
 
 /// A branch's `"certified"` object (layout in `docs/result-format.md`): the chain of enclosures, the
@@ -420,6 +426,7 @@ pub fn certified_to_json(c: &CertifiedBranch, tubes: bool) -> Value {
         intervals_to_json(&c.start_uniqueness),
     );
     obj.insert("max_width".into(), json!(max_width));
+    obj.insert("arc_length_proven".into(), json!(c.arc_length_proven()));
     if tubes {
         obj.insert(
             "tubes".into(),

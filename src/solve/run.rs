@@ -26,7 +26,7 @@ use crate::topology::intersect::intersect as march_all;
 /// every branch of `P ∩ Q`.
 ///
 /// The marcher finds and traces the branches. A certifying method then certifies each branch
-/// from one of its points (see [`certify_marched_branch`]; the branches are certified in
+/// with [`Options::engine`] (see [`certify_marched_branch`]; the branches are certified in
 /// parallel, on rayon's thread pool, and reported in branch order), checks the marched points
 /// against the certificates and certifies the tangential contacts behind the marcher's singular
 /// events. A branch whose certification fails keeps the error in its
@@ -130,8 +130,9 @@ pub fn intersect(
     })
 }
 
-/// Certifies one marched branch within the budgets of `opts`: from its middle point (or a more
-/// transversal point at a quarter or a third of the way), with `opts.max_steps` steps and
+/// Certifies one marched branch within the budgets of `opts`, with `opts.engine`: from its
+/// middle point (or a more transversal point at a quarter or a third of the way). The cover
+/// chain has at most `2·opts.max_steps` links; the Taylor engine `opts.max_steps` steps and
 /// `opts.length_budget` × the marched length of arc per half branch. Never fails as a whole: a
 /// certification failure is kept in [`BranchCertificate::result`].
 pub fn certify_marched_branch(
