@@ -182,14 +182,7 @@ fn closed_chain(
     w.advance(&nodes, None).ok()?;
     if w.closed {
         // The march went round more than once; the loop closed at the last link.
-        let links = std::mem::take(&mut w.links);
-        return assemble(
-            p,
-            q,
-            &[],
-            &links,
-            [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop],
-        );
+        return closed_loop(p, q, &w.links);
     }
     let start_slice = w.close_at?;
     let last = *nodes.last()?;
@@ -197,14 +190,17 @@ fn closed_chain(
     nodes.clear();
     nodes.extend([last, back]);
     w.advance(&nodes, Some(&start_slice)).ok()?;
-    let links = std::mem::take(&mut w.links);
-    assemble(
-        p,
-        q,
-        &[],
-        &links,
-        [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop],
-    )
+    closed_loop(p, q, &w.links)
+}
+
+/// The certificate of a loop proven closed by `links`.
+fn closed_loop(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    links: &[walker::Link],
+) -> Option<CertifiedBranch> {
+    let ends = [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop];
+    assemble(p, q, &[], links, ends)
 }
 
 /// A marched loop whose closure could not be proven: walked from its first point forwards
@@ -226,13 +222,7 @@ fn ring_chain(
     fwd.wants_closure = true;
     let fwd_end = fwd.walk(&fwd_ring, round);
     if fwd.closed {
-        return assemble(
-            p,
-            q,
-            &[],
-            &fwd.links,
-            [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop],
-        );
+        return closed_loop(p, q, &fwd.links);
     }
     let mut bwd = Walker::new(p, q, opts);
     bwd.used = fwd.links.len();
