@@ -254,3 +254,18 @@ fn chain_and_taylor_certificates_agree() {
         }
     }
 }
+
+/// A tolerance below rounding cannot be met: the chain still closes the loop, with links kept
+/// at rounding level, and says what it proved instead of failing or splitting without end.
+#[test]
+fn a_tolerance_below_rounding_is_reported_as_not_met() {
+    let s = scene("sphere_patch_plane.json");
+    let c = certify(&s, Engine::Chain, 1e-300);
+    assert_eq!(
+        c[0].ends,
+        [CertifiedEnd::ClosedLoop, CertifiedEnd::ClosedLoop]
+    );
+    let tol = c[0].certified_tolerance;
+    assert!(tol > 1e-300 && tol < 1e-12, "{tol}");
+    assert!(c[0].tubes.len() < 20_000, "{} links", c[0].tubes.len());
+}

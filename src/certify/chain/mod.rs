@@ -76,11 +76,12 @@ impl Default for ChainOptions {
 const BOXES_PER_LINK: usize = 1;
 /// Splits of one marched interval before a half gives up there.
 const MAX_SPLITS: usize = 20_000;
-/// Below this scaled length a link whose tube halving did not narrow is kept although wider
-/// than the tolerance when its width is at rounding level or no singular box lies within 1e-4
-/// (the predictor's error, of order `L⁶`, is negligible there, so the width is rounding or the
-/// conditioning): the certificate then says the tolerance is not met. Near a singular box the
-/// half stops instead, within the tolerance.
+/// A link whose tube halving did not narrow is kept although wider than the tolerance when its
+/// width is at rounding level (any length: a tolerance below rounding was asked for), or when
+/// it is shorter than this scaled length and no singular box lies within 1e-4 (the predictor's
+/// error, of order `L⁶`, is negligible there, so the width is the conditioning): the certificate
+/// then says the tolerance is not met. Near a singular box the half stops instead, within the
+/// tolerance.
 const FLOOR_LINK: f64 = 1e-4;
 /// Shortest link tried, in scaled parameters (below it a half gives up there).
 const MIN_LINK: f64 = 1e-10;

@@ -383,9 +383,9 @@ impl<'a> Walker<'a> {
                 // requested one instead of failing).
                 Attempt::TooWide(link)
                     if wider.is_some_and(|w| link.radius_xyz > 0.5 * w)
-                        && scaled_dist(&cur.x, &tgt.x, &self.scales) < FLOOR_LINK
                         && (link.radius_xyz <= self.rounding_floor(&cur)
-                            || self.singular_box(&cur.x, &tgt.x, 1e-4).is_none()) =>
+                            || (scaled_dist(&cur.x, &tgt.x, &self.scales) < FLOOR_LINK
+                                && self.singular_box(&cur.x, &tgt.x, 1e-4).is_none())) =>
                 {
                     Some(link)
                 }
