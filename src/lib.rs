@@ -50,11 +50,13 @@
 //! [`topology`] (all branches, the arc graph, branch ends) → [`validated`] (the validated Taylor
 //! ODE engine) → [`certify`] (certified branches and contacts) → [`check`] (straying and
 //! looping) → [`solve`] (the typed entry point [`intersect`]) → [`shell`] (many faces against
-//! many, NURBS faces by their Bézier pieces, in parallel) → [`io`] (scene files, result
+//! many, NURBS faces by their Bézier pieces, in parallel) → [`edge`] (certified curves as B-spline
+//! edges with p-curves and one proven tolerance) → [`io`] (scene files, result
 //! JSON, SVG) → [`pipeline`] (scene in, result document out, for the command line).
 
 pub mod certify;
 pub mod check;
+pub mod edge;
 pub mod error;
 pub mod geometry;
 pub mod io;

@@ -1,5 +1,6 @@
 //! Input and output: the scene format, result JSON, SVG pictures (with the `svg` feature).
 
+pub mod edge_json;
 pub mod intersection_json;
 pub mod result_json;
 pub mod scene;

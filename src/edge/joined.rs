@@ -1,0 +1,261 @@
+//! The edge of a joined shell curve ([`JoinedCurve`]): its parts' chains, each cut where it
+//! crosses the piece side of a join, end to end.
+//!
+//! A branch of one piece pair is certified a little past the side of its piece (the chain's
+//! last link proves a curve point outside), on the piece's polynomial extended beyond its
+//! domain, which is not the shell's surface there. So at each join the part is cut: on the link
+//! where the reported curve crosses the side coordinate's value, at the crossing `τ_c`; a range
+//! `T` of `τ` around it is proven to hold every `τ` where the true curve can meet the side
+//! (the reported side coordinate, widened by `radius_param`, is strictly inside the piece
+//! before `T` on that link and strictly outside after it, on that link and every later one).
+//! The true arc over `T` is the cut's share of the tolerance (see [`super`]). Every join must be
+//! [`JoinStatus::Proven`]: the two parts' true end points are then one point on the side.
+
+use super::poly::{eval, eval_mid, reparametrised};
+use super::{assemble, chain_segs, check_chain, Cut, Edge, EdgeError, Part, Seg};
+use crate::certify::{CertifiedBranch, CertifiedEnd};
+use crate::numeric::scalar::point;
+use crate::shell::{Face, JoinStatus, JoinedCurve, ShellIntersection};
+use inari::Interval;
+
+/// Samples of a link's reported curve when looking for the crossing.
+const SAMPLES: usize = 32;
+/// Sub-intervals of the interval checks before and after the crossing.
+const CHECKS: usize = 16;
+
+/// The edge of the joined curve `curve` of the shell intersection `shell` of shells `a`, `b`.
+///
+/// Errors: [`EdgeError::NotCertified`] for a part without a certificate,
+/// [`EdgeError::UnprovenJoin`] for a join that is not proven, [`EdgeError::Trim`] where a part
+/// cannot be cut at its side, and as [`super::edge_from_certified`].
+pub fn edge_from_joined(
+    a: &[Face],
+    b: &[Face],
+    shell: &ShellIntersection,
+    curve: &JoinedCurve,
+) -> Result<Edge, EdgeError> {
+    for (k, j) in curve.joins.iter().enumerate() {
+        match &j.status {
+            JoinStatus::Proven => {}
+            JoinStatus::Unproven { reason } => {
+                return Err(EdgeError::UnprovenJoin {
+                    join: k,
+                    reason: (*reason).into(),
+                })
+            }
+            JoinStatus::Marched => {
+                return Err(EdgeError::UnprovenJoin {
+                    join: k,
+                    reason: "joined on marched points only".into(),
+                })
+            }
+        }
+    }
+    let n = curve.parts.len();
+    let cyclic = curve.closed && !curve.joins.is_empty();
+    let mut parts = Vec::with_capacity(n);
+    for (k, part) in curve.parts.iter().enumerate() {
+        let g = part.branch;
+        let (pi, traced) = shell.branch(g).ok_or_else(|| EdgeError::NotCertified {
+            branch: g,
+            reason: "no such branch".into(),
+        })?;
+        let cert = match &traced.certificate {
+            Some(c) => c.result.as_ref().map_err(|e| EdgeError::NotCertified {
+                branch: g,
+                reason: e.to_string(),
+            })?,
+            None => {
+                return Err(EdgeError::NotCertified {
+                    branch: g,
+                    reason: "the method does not certify".into(),
+                })
+            }
+        };
+        check_chain(cert, g)?;
+        let p = &a[pi.faces[0]].pieces()[pi.pieces[0]];
+        let q = &b[pi.faces[1]].pieces()[pi.pieces[1]];
+        let mut segs = chain_segs(cert, part.reversed);
+        let mut cuts = Vec::new();
+        // The certified ends in the edge's direction.
+        let ends = if part.reversed {
+            [&cert.ends[1], &cert.ends[0]]
+        } else {
+            [&cert.ends[0], &cert.ends[1]]
+        };
+        let doms = [p.domain(), q.domain()];
+        if k > 0 || cyclic {
+            flip(&mut segs);
+            cuts.push(cut_at_side(cert, &mut segs, ends[0], &doms, g)?);
+            flip(&mut segs);
+        }
+        if k + 1 < n || cyclic {
+            cuts.push(cut_at_side(cert, &mut segs, ends[1], &doms, g)?);
+        }
+        if !cyclic && curve.closed {
+            // One closed branch, no joins: closed by its own certificate.
+            return super::edge_from_certified(p, q, cert, g).map(|mut e| {
+                e.pcurves.iter_mut().for_each(|c| {
+                    c.face = pi.faces[c.surface];
+                    c.piece = pi.pieces[c.surface];
+                });
+                e
+            });
+        }
+        parts.push(Part {
+            p,
+            q,
+            cert,
+            branch: g,
+            faces: pi.faces,
+            pieces: pi.pieces,
+            segs,
+            cuts,
+        });
+    }
+    assemble(&parts, curve.closed, false)
+}
+
+/// The segments run the other way.
+pub(super) fn flip(segs: &mut [Seg]) {
+    segs.reverse();
+    for s in segs.iter_mut() {
+        std::mem::swap(&mut s.ta, &mut s.tb);
+    }
+}
+
+/// Whether the sample point `x` is inside the domains of the coordinates `coords`.
+fn inside(x: &[f64; 4], coords: [usize; 2], lo: [f64; 2], hi: [f64; 2]) -> bool {
+    (0..2).all(|i| x[coords[i]] >= lo[i] && x[coords[i]] <= hi[i])
+}
+
+/// Cuts the last segments of `segs` at the side of the piece that the chain's end `end` (a
+/// boundary end) leaves through; the cut's `τ` range.
+pub(super) fn cut_at_side(
+    cert: &CertifiedBranch,
+    segs: &mut Vec<Seg>,
+    end: &CertifiedEnd,
+    doms: &[crate::geometry::Domain; 2],
+    branch: usize,
+) -> Result<Cut, EdgeError> {
+    let fail = |reason: &str| EdgeError::Trim {
+        branch,
+        reason: reason.into(),
+    };
+    let CertifiedEnd::Boundary { surface } = *end else {
+        return Err(fail(
+            "the part's end at the join is not a proven boundary end",
+        ));
+    };
+    let d = &doms[surface];
+    let coords = if surface == 0 { [0, 1] } else { [2, 3] };
+    let (lo, hi) = ([d.u[0], d.v[0]], [d.u[1], d.v[1]]);
+    let poly_of = |s: &Seg| reparametrised(&cert.tubes[s.tube].coeffs, s.ta, s.tb);
+    let last = segs.last().ok_or_else(|| fail("no links"))?;
+    let end_pt = eval_mid(&poly_of(last), 1.0);
+    // The side: the coordinate (and bound) the chain's end lies beyond.
+    let (c, bound, out_sign) = (0..2)
+        .find_map(|i| {
+            let x = end_pt[coords[i]];
+            if x < lo[i] {
+                Some((i, lo[i], -1.0))
+            } else if x > hi[i] {
+                Some((i, hi[i], 1.0))
+            } else {
+                None
+            }
+        })
+        .ok_or_else(|| fail("the chain ends inside the piece"))?;
+    let b = coords[c];
+    // The last segment with a sample inside the piece.
+    let (k, u_in) = segs
+        .iter()
+        .enumerate()
+        .rev()
+        .find_map(|(k, s)| {
+            let y = poly_of(s);
+            (0..=SAMPLES)
+                .rev()
+                .map(|m| m as f64 / SAMPLES as f64)
+                .find(|&u| inside(&eval_mid(&y, u), coords, lo, hi))
+                .map(|u| (k, u))
+        })
+        .ok_or_else(|| fail("no link reaches inside the piece"))?;
+    let seg = segs[k];
+    let tube = &cert.tubes[seg.tube];
+    let y = poly_of(&seg);
+    let f = |u: f64| out_sign * (eval_mid(&y, u)[b] - bound);
+    if f(1.0) <= 0.0 {
+        return Err(fail("the cut link does not cross the side"));
+    }
+    let (mut a0, mut a1) = (u_in, 1.0);
+    for _ in 0..80 {
+        let m = 0.5 * (a0 + a1);
+        if f(m) > 0.0 {
+            a1 = m;
+        } else {
+            a0 = m;
+        }
+    }
+    let uc = 0.5 * (a0 + a1);
+    let along = tube.along.map(|a| a.index).unwrap_or(0);
+    let rp = if b == along { 0.0 } else { tube.radius_param };
+    // Signed side distance of the true curve over `u`: out_sign·(y_b(u) − bound) ± rp.
+    let side = |y: &super::poly::Poly<4>, u: Interval| {
+        point(out_sign) * (eval(y, u, b) - point(bound))
+            + inari::interval!(-rp, rp).unwrap_or(Interval::ENTIRE)
+    };
+    let strictly = |y: &super::poly::Poly<4>, u0: f64, u1: f64, outside: bool| {
+        if u1 <= u0 {
+            return true;
+        }
+        (0..CHECKS).all(|m| {
+            let a = u0 + (u1 - u0) * m as f64 / CHECKS as f64;
+            let z = u0 + (u1 - u0) * (m + 1) as f64 / CHECKS as f64;
+            let s = side(y, inari::interval!(a, z).unwrap_or(Interval::ENTIRE));
+            if outside {
+                s.inf() > 0.0
+            } else {
+                s.sup() < 0.0
+            }
+        })
+    };
+    let later_outside = segs[k + 1..].iter().all(|s| {
+        let other = reparametrised(&cert.tubes[s.tube].coeffs, s.ta, s.tb);
+        let r = cert.tubes[s.tube].radius_param;
+        (0..CHECKS).all(|m| {
+            let u = inari::interval!(m as f64 / CHECKS as f64, (m + 1) as f64 / CHECKS as f64)
+                .unwrap_or(Interval::ENTIRE);
+            let v = point(out_sign) * (eval(&other, u, b) - point(bound))
+                - inari::interval!(-r, r).unwrap_or(Interval::ENTIRE);
+            v.inf() > 0.0
+        })
+    });
+    if !later_outside {
+        return Err(fail("a later link is not proven outside the piece"));
+    }
+    let mut w = 1e-9;
+    let proven = loop {
+        let (u0, u1) = ((uc - w).max(0.0), (uc + w).min(1.0));
+        if strictly(&y, 0.0, u0, false) && strictly(&y, u1, 1.0, true) {
+            break Some((u0, u1));
+        }
+        if w >= 0.25 {
+            break None;
+        }
+        w *= 4.0;
+    };
+    let (u0, u1) = proven.ok_or_else(|| fail("the crossing could not be isolated"))?;
+    let len = point(seg.tb) - point(seg.ta);
+    let at = seg.ta + (seg.tb - seg.ta) * uc;
+    let gap = (point(seg.ta) + len * inari::interval!(u0, u1).unwrap_or(Interval::ENTIRE))
+        .convex_hull(point(at));
+    segs.truncate(k + 1);
+    if let Some(s) = segs.last_mut() {
+        s.tb = at;
+    }
+    Ok(Cut {
+        tube: seg.tube,
+        gap,
+    })
+}

@@ -1,0 +1,415 @@
+//! Edges for a B-rep kernel: a certified branch (or a joined shell curve of several branches)
+//! as a 3D B-spline, two p-curves and one proven tolerance.
+//!
+//! A cover-chain certificate ([`crate::certify::chain`]) reports, per link, a quintic
+//! polynomial in one parameter `τ` ([`TubePiece::coeffs`], all four parameters `(σ, t, u, v)`)
+//! and proven radii: every true curve point is within `radius_param` (parameters, max norm)
+//! and `radius_xyz` (model space) of the reported point with the same along-coordinate, and the
+//! reverse. An edge is built from those polynomials:
+//!
+//! - **Spans.** Each link is one span, or a few (halved while the 3D curve's bound below exceeds
+//!   the certificate's tolerance). Knots of the common parameter `s` (an approximate arc
+//!   length, nominal) sit at the span ends.
+//! - **P-curves.** On each span the link's polynomial, re-expanded on `[0, 1]` and converted to
+//!   Bézier control points in interval arithmetic; the midpoints are reported. Consecutive
+//!   spans share their end control point (knots of multiplicity 5: C0); at a link join the
+//!   shared point is the next link's start, and the previous link's end differs from it by the
+//!   jump the chain allows there (the links join inside each other's tubes). Per span,
+//!   `δ = max |reported − exact control point|` (enclosed) bounds both the rounding and that
+//!   jump, since the Bernstein basis is a partition of unity.
+//! - **3D curve.** Per span, the quintic Hermite interpolant of `P(σ(τ), t(τ))` (value, first
+//!   and second derivative at both ends, of that span's own parametrisation), the value shared
+//!   at each knot: C0, and tangent-continuous in direction only (the links' parametrisations
+//!   differ in speed at a join). Its deviation from `P(σ(τ), t(τ))` is bounded by a Taylor form of order 8 with
+//!   a Lagrange remainder on four sub-intervals of each span, in interval arithmetic.
+//! - **Bounds**, per span: 3D curve to true ≤ that deviation + `radius_xyz`; `P(pcurve_P)` to
+//!   true ≤ `radius_xyz` + `|DP|·δ_P`; `Q(pcurve_Q)` to true ≤ `|DQ|·(radius_param + δ_Q)`,
+//!   the derivatives enclosed over the span's parameter box widened by those amounts. Where a
+//!   curve is cut (a closed loop's end, a joined curve's piece side), the true arc between the
+//!   cut and the true end point adds `2·radius_xyz` + the diameter of the reported curve over
+//!   the cut's `τ` range.
+//! - **Tolerance.** [`Edge::edge_tolerance`] is the largest of all those bounds and of the
+//!   certificates' own tolerances: every point of the 3D curve, and of each p-curve's image on
+//!   its surface, is within it of the true curve, and every true curve point is within it of
+//!   each of them.
+//!
+//! Certificates of the Taylor engine (arc-length tubes with re-anchoring gaps) are refused with
+//! [`EdgeError::NotCoverChain`].
+
+mod bspline;
+mod build;
+mod joined;
+mod poly;
+mod span;
+
+pub use bspline::BSpline;
+pub use joined::edge_from_joined;
+
+use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
+use crate::geometry::RationalBezierPatch;
+use crate::numeric::scalar::point;
+use crate::solve::TracedBranch;
+use build::assemble;
+use inari::Interval;
+use poly::DEGREE;
+
+/// Why no edge can be made.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EdgeError {
+    /// The branch has no certificate (the method does not certify, or certification failed).
+    NotCertified {
+        /// The branch.
+        branch: usize,
+        /// Why.
+        reason: String,
+    },
+    /// The certificate's boxes or tubes do not form one gap-free chain.
+    NotGapFree {
+        /// The branch.
+        branch: usize,
+        /// Where and why.
+        reason: String,
+    },
+    /// The certificate is not a cover chain (no along-parameter polynomials of degree ≤ 5).
+    NotCoverChain {
+        /// The branch.
+        branch: usize,
+    },
+    /// A join of a joined curve is not proven.
+    UnprovenJoin {
+        /// The index of the join in the curve.
+        join: usize,
+        /// Why.
+        reason: String,
+    },
+    /// A joined curve's part could not be cut at the piece side it crosses.
+    Trim {
+        /// The branch.
+        branch: usize,
+        /// Why.
+        reason: String,
+    },
+    /// An enclosure came out unbounded.
+    Unbounded {
+        /// The branch.
+        branch: usize,
+    },
+}
+
+impl std::fmt::Display for EdgeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EdgeError::NotCertified { branch, reason } => {
+                write!(f, "branch {branch} is not certified: {reason}")
+            }
+            EdgeError::NotGapFree { branch, reason } => {
+                write!(f, "branch {branch} is not a gap-free chain: {reason}")
+            }
+            EdgeError::NotCoverChain { branch } => {
+                write!(f, "branch {branch} is not a cover-chain certificate")
+            }
+            EdgeError::UnprovenJoin { join, reason } => {
+                write!(f, "join {join} is not proven: {reason}")
+            }
+            EdgeError::Trim { branch, reason } => {
+                write!(
+                    f,
+                    "branch {branch} could not be cut at its piece side: {reason}"
+                )
+            }
+            EdgeError::Unbounded { branch } => {
+                write!(f, "an enclosure of branch {branch} is unbounded")
+            }
+        }
+    }
+}
+
+impl std::error::Error for EdgeError {}
+
+/// A p-curve: the edge on one surface, over a part of the edge's parameter range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PCurve {
+    /// 0: on P (`(σ, t)`, shell A), 1: on Q (`(u, v)`, shell B).
+    pub surface: usize,
+    /// The face of that shell (0 for a two-surface scene).
+    pub face: usize,
+    /// The Bézier piece of that face (0 for a two-surface scene).
+    pub piece: usize,
+    /// The branch it comes from.
+    pub branch: usize,
+    /// The curve in the surface's parameters, on the same knots as the 3D curve over its range.
+    pub curve: BSpline<2>,
+    /// Proven max-norm distance in parameters from the true curve's parameters.
+    pub param_tolerance: f64,
+    /// Proven model-space distance of its image on the surface from the true curve.
+    pub image_tolerance: f64,
+}
+
+/// The proven bounds an edge's tolerance is the largest of (model space unless said).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeBounds {
+    /// 3D curve to the true curve.
+    pub curve_3d: f64,
+    /// 3D curve to the image of the reported link polynomials on P (the part of `curve_3d`
+    /// that the construction adds).
+    pub model_fit: f64,
+    /// 3D curve to `P(pcurve_P)` at the same parameter.
+    pub same_parameter: f64,
+    /// `P(pcurve_P)` to the true curve.
+    pub pcurve_p_image: f64,
+    /// `Q(pcurve_Q)` to the true curve.
+    pub pcurve_q_image: f64,
+    /// P-curves to the true curve's parameters (max norm, parameter units).
+    pub pcurve_p_param: f64,
+    /// The same on Q.
+    pub pcurve_q_param: f64,
+    /// The largest bound at a cut (closed loop's end, piece side); 0 without cuts.
+    pub cuts: f64,
+    /// The largest certified tolerance of the branches.
+    pub certified_tolerance: f64,
+}
+
+/// An edge: the 3D curve, the p-curves and the proven tolerance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Edge {
+    /// The 3D curve (degree 5, one Bézier segment per span).
+    pub curve: BSpline<3>,
+    /// The p-curves: for one branch, one on P then one on Q; for a joined curve, one per part
+    /// and surface.
+    pub pcurves: Vec<PCurve>,
+    /// Whether the edge is closed (its last point is its first).
+    pub closed: bool,
+    /// The proven two-sided tolerance: the largest of [`Edge::bounds`] (model space).
+    pub edge_tolerance: f64,
+    /// The bounds it is made of.
+    pub bounds: EdgeBounds,
+    /// The branches, in order along the edge.
+    pub branches: Vec<usize>,
+    /// Chain links used.
+    pub links: usize,
+}
+
+/// One piece of a link in the edge's direction: `τ` from `ta` to `tb`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Seg {
+    pub(crate) tube: usize,
+    pub(crate) ta: f64,
+    pub(crate) tb: f64,
+}
+
+/// A cut of the chain on `tube`: the true end point and the cut's `τ` lie in the range `gap`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Cut {
+    pub(crate) tube: usize,
+    pub(crate) gap: Interval,
+}
+
+/// One branch's share of an edge.
+pub(crate) struct Part<'a> {
+    pub(crate) p: &'a RationalBezierPatch,
+    pub(crate) q: &'a RationalBezierPatch,
+    pub(crate) cert: &'a CertifiedBranch,
+    pub(crate) branch: usize,
+    pub(crate) faces: [usize; 2],
+    pub(crate) pieces: [usize; 2],
+    pub(crate) segs: Vec<Seg>,
+    pub(crate) cuts: Vec<Cut>,
+}
+
+/// The edge of the traced branch `b` of `P ∩ Q`.
+///
+/// Errors: [`EdgeError::NotCertified`] without a certificate, else as
+/// [`edge_from_certified`].
+pub fn edge_from_branch(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &TracedBranch,
+) -> Result<Edge, EdgeError> {
+    let id = b.id();
+    let cert = match &b.certificate {
+        None => {
+            return Err(EdgeError::NotCertified {
+                branch: id,
+                reason: "the method does not certify".into(),
+            })
+        }
+        Some(c) => c.result.as_ref().map_err(|e| EdgeError::NotCertified {
+            branch: id,
+            reason: e.to_string(),
+        })?,
+    };
+    edge_from_certified(p, q, cert, id)
+}
+
+/// The edge of the certified branch `cert` (numbered `branch` in errors) of `P ∩ Q`. A branch
+/// whose ends are both [`CertifiedEnd::ClosedLoop`] gives a closed edge.
+///
+/// Errors: [`EdgeError::NotCoverChain`], [`EdgeError::NotGapFree`], [`EdgeError::Unbounded`].
+pub fn edge_from_certified(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    cert: &CertifiedBranch,
+    branch: usize,
+) -> Result<Edge, EdgeError> {
+    check_chain(cert, branch)?;
+    let mut segs = chain_segs(cert, false);
+    let closed = cert.ends.iter().all(|e| *e == CertifiedEnd::ClosedLoop);
+    let mut cuts = Vec::new();
+    if closed {
+        cuts.push(close_loop(cert, &mut segs, branch)?);
+    } else {
+        // A boundary end: the chain goes on a little past the domain's side (on the patch
+        // extended beyond it); cut it at the side.
+        let doms = [p.domain(), q.domain()];
+        if matches!(cert.ends[0], CertifiedEnd::Boundary { .. }) {
+            joined::flip(&mut segs);
+            cuts.push(joined::cut_at_side(
+                cert,
+                &mut segs,
+                &cert.ends[0],
+                &doms,
+                branch,
+            )?);
+            joined::flip(&mut segs);
+        }
+        if matches!(cert.ends[1], CertifiedEnd::Boundary { .. }) {
+            cuts.push(joined::cut_at_side(
+                cert,
+                &mut segs,
+                &cert.ends[1],
+                &doms,
+                branch,
+            )?);
+        }
+    }
+    let part = Part {
+        p,
+        q,
+        cert,
+        branch,
+        faces: [0, 0],
+        pieces: [0, 0],
+        segs,
+        cuts,
+    };
+    assemble(&[part], closed, closed)
+}
+
+/// Checks that `cert` is a gap-free cover chain this module can read.
+pub(crate) fn check_chain(cert: &CertifiedBranch, branch: usize) -> Result<(), EdgeError> {
+    let gap = |reason: String| EdgeError::NotGapFree { branch, reason };
+    if cert.tubes.is_empty() {
+        return Err(gap("no tube pieces".into()));
+    }
+    if cert.tubes.len() != cert.boxes.len() {
+        return Err(gap(format!(
+            "{} tube pieces for {} boxes",
+            cert.tubes.len(),
+            cert.boxes.len()
+        )));
+    }
+    for t in &cert.tubes {
+        if t.along.is_none() || t.coeffs.len() > DEGREE + 1 || t.coeffs.is_empty() {
+            return Err(EdgeError::NotCoverChain { branch });
+        }
+        let finite = t.radius_param.is_finite()
+            && t.radius_xyz.is_finite()
+            && t.h.is_finite()
+            && t.coeffs.iter().flatten().all(|c| c.is_finite());
+        if !finite {
+            return Err(EdgeError::Unbounded { branch });
+        }
+    }
+    for (k, w) in cert.boxes.windows(2).enumerate() {
+        if !w[0].overlaps(&w[1]) {
+            return Err(gap(format!("boxes {k} and {} do not overlap", k + 1)));
+        }
+    }
+    Ok(())
+}
+
+/// The chain's links in the order of increasing arc length (or decreasing, `reversed`), each
+/// from where it starts along that order to where it ends.
+pub(crate) fn chain_segs(cert: &CertifiedBranch, reversed: bool) -> Vec<Seg> {
+    let mut segs: Vec<Seg> = cert
+        .tubes
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let (ta, tb) = if t.direction > 0.0 {
+                (0.0, t.h)
+            } else {
+                (t.h, 0.0)
+            };
+            Seg { tube: k, ta, tb }
+        })
+        .collect();
+    if reversed {
+        segs.reverse();
+        for s in &mut segs {
+            std::mem::swap(&mut s.ta, &mut s.tb);
+        }
+    }
+    segs
+}
+
+/// The `τ` values of a tube piece at which its along coordinate takes the values `x`.
+pub(crate) fn tau_of(t: &TubePiece, x: Interval) -> Interval {
+    let j = t.along.map(|a| a.index).unwrap_or(0);
+    let from = t.coeffs[0][j];
+    let dir = t.coeffs.get(1).map(|c| c[j]).unwrap_or(1.0);
+    (x - point(from)) * point(dir)
+}
+
+/// A closed loop: the last link is cut where it meets the start box again (its tube holds the
+/// start box, so the true start point is its curve point at some `τ` of that box's range).
+fn close_loop(cert: &CertifiedBranch, segs: &mut [Seg], branch: usize) -> Result<Cut, EdgeError> {
+    let trim = |reason: &str| EdgeError::Trim {
+        branch,
+        reason: reason.into(),
+    };
+    let last = segs.last_mut().ok_or_else(|| trim("no links"))?;
+    let t = &cert.tubes[last.tube];
+    if last.ta != 0.0 {
+        return Err(trim("a closed chain ends on a backward link"));
+    }
+    let j = t.along.map(|a| a.index).unwrap_or(0);
+    let ts = tau_of(t, cert.start[j]);
+    if ts.is_empty() || !ts.sup().is_finite() {
+        return Err(trim("the start box does not meet the last link"));
+    }
+    let at = ts.mid().clamp(0.0, t.h);
+    last.tb = at;
+    let gap = ts
+        .convex_hull(point(at))
+        .intersection(inari::interval!(0.0, t.h).unwrap_or(Interval::ENTIRE));
+    Ok(Cut {
+        tube: last.tube,
+        gap: if gap.is_empty() { point(at) } else { gap },
+    })
+}
+
+/// Every branch of a two-surface result as an edge, or why not (branch id and outcome).
+pub fn edges_of(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    r: &crate::solve::SurfaceIntersection,
+) -> Vec<(usize, Result<Edge, EdgeError>)> {
+    r.branches
+        .iter()
+        .map(|b| (b.id(), edge_from_branch(p, q, b)))
+        .collect()
+}
+
+/// Every joined curve of a shell result as an edge, or why not (curve index and outcome).
+pub fn edges_of_shells(
+    a: &[crate::shell::Face],
+    b: &[crate::shell::Face],
+    r: &crate::shell::ShellIntersection,
+) -> Vec<(usize, Result<Edge, EdgeError>)> {
+    r.curves
+        .iter()
+        .enumerate()
+        .map(|(k, c)| (k, edge_from_joined(a, b, r, c)))
+        .collect()
+}
