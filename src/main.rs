@@ -56,6 +56,10 @@ struct Outputs {
     /// Write an SVG picture here.
     #[arg(long)]
     svg: Option<PathBuf>,
+    /// Write the certified curves as B-rep edges here (JSON: 3D B-spline, p-curves, proven
+    /// edge tolerance; docs/result-format.md).
+    #[arg(long, value_name = "FILE")]
+    edges: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -181,6 +185,43 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
         write_svg(path, &scene, &report)?;
         say(&format!("picture written to {}\n", path.display()));
     }
+    if let Some(path) = &outputs.edges {
+        let [p, q] = &scene.surfaces;
+        let edges = ssitrace::edge::edges_of(p, q, &report.result);
+        write_edges_file(path, scene.options.name.as_deref(), "branch", &edges)?;
+    }
+    Ok(())
+}
+
+/// Writes the edge document and says how many edges it holds.
+fn write_edges_file(
+    path: &std::path::Path,
+    name: Option<&str>,
+    source: &str,
+    edges: &[(
+        usize,
+        Result<ssitrace::edge::Edge, ssitrace::edge::EdgeError>,
+    )],
+) -> ssitrace::Result<()> {
+    let doc = ssitrace::io::edge_json::edges_document(name, source, edges);
+    ssitrace::io::edge_json::write_edges(path, &doc)?;
+    let made = edges.iter().filter(|(_, e)| e.is_ok()).count();
+    say(&format!(
+        "{made} edge(s) of {} written to {}\n",
+        edges.len(),
+        path.display()
+    ));
+    for (k, e) in edges {
+        match e {
+            Ok(e) => say(&format!(
+                "  {source} {k}: {} control points, edge tolerance {:.2e}{}\n",
+                e.curve.points.len(),
+                e.edge_tolerance,
+                if e.closed { ", closed" } else { "" }
+            )),
+            Err(err) => say(&format!("  {source} {k}: no edge ({err})\n")),
+        }
+    }
     Ok(())
 }
 
@@ -200,6 +241,11 @@ fn run_shells(scene: &ShellScene, opts: &RunOptions, outputs: &Outputs) -> ssitr
             "no picture written to {}: pictures of shell scenes are not drawn yet\n",
             path.display()
         ));
+    }
+    if let Some(path) = &outputs.edges {
+        let [a, b] = &scene.shells;
+        let edges = ssitrace::edge::edges_of_shells(a, b, &report.result);
+        write_edges_file(path, scene.options.name.as_deref(), "curve", &edges)?;
     }
     Ok(())
 }
