@@ -3,7 +3,8 @@
 //!
 //! A branch of one piece pair is certified a little past the side of its piece (the chain's
 //! last link proves a curve point outside), on the piece's polynomial extended beyond its
-//! domain, which is not the shell's surface there. So at each join the part is cut: on the link
+//! domain, which is not the shell's surface there. So at each join (and at a boundary end of
+//! the curve) the part is cut: on the link
 //! where the reported curve crosses the side coordinate's value, at the crossing `τ_c`; a range
 //! `T` of `τ` around it is proven to hold every `τ` where the true curve can meet the side
 //! (the reported side coordinate, widened by `radius_param`, is strictly inside the piece
@@ -76,7 +77,6 @@ pub fn edge_from_joined(
         let p = &a[pi.faces[0]].pieces()[pi.pieces[0]];
         let q = &b[pi.faces[1]].pieces()[pi.pieces[1]];
         let mut segs = chain_segs(cert, part.reversed);
-        let mut cuts = Vec::new();
         // The certified ends in the edge's direction.
         let ends = if part.reversed {
             [&cert.ends[1], &cert.ends[0]]
@@ -84,14 +84,8 @@ pub fn edge_from_joined(
             [&cert.ends[0], &cert.ends[1]]
         };
         let doms = [p.domain(), q.domain()];
-        if k > 0 || cyclic {
-            flip(&mut segs);
-            cuts.push(cut_at_side(cert, &mut segs, ends[0], &doms, g)?);
-            flip(&mut segs);
-        }
-        if k + 1 < n || cyclic {
-            cuts.push(cut_at_side(cert, &mut segs, ends[1], &doms, g)?);
-        }
+        let joined = [k > 0 || cyclic, k + 1 < n || cyclic];
+        let cuts = cut_ends(cert, &mut segs, ends, &doms, g, joined)?;
         if !cyclic && curve.closed {
             // One closed branch, no joins: closed by its own certificate.
             return super::edge_from_certified(p, q, cert, g).map(|mut e| {
@@ -116,8 +110,32 @@ pub fn edge_from_joined(
     assemble(&parts, curve.closed, false)
 }
 
+/// Cuts the chain `segs` (in the edge's direction, its certified ends `ends` in that order)
+/// at the piece side of each end that must be cut (`must`: a join) or is a boundary end.
+pub(super) fn cut_ends(
+    cert: &CertifiedBranch,
+    segs: &mut Vec<Seg>,
+    ends: [&CertifiedEnd; 2],
+    doms: &[crate::geometry::Domain; 2],
+    branch: usize,
+    must: [bool; 2],
+) -> Result<Vec<Cut>, EdgeError> {
+    let mut cuts = Vec::new();
+    let boundary = |e: &CertifiedEnd| matches!(e, CertifiedEnd::Boundary { .. });
+    if must[0] || boundary(ends[0]) {
+        flip(segs);
+        let c = cut_at_side(cert, segs, ends[0], doms, branch);
+        flip(segs);
+        cuts.push(c?);
+    }
+    if must[1] || boundary(ends[1]) {
+        cuts.push(cut_at_side(cert, segs, ends[1], doms, branch)?);
+    }
+    Ok(cuts)
+}
+
 /// The segments run the other way.
-pub(super) fn flip(segs: &mut [Seg]) {
+fn flip(segs: &mut [Seg]) {
     segs.reverse();
     for s in segs.iter_mut() {
         std::mem::swap(&mut s.ta, &mut s.tb);
@@ -131,7 +149,7 @@ fn inside(x: &[f64; 4], coords: [usize; 2], lo: [f64; 2], hi: [f64; 2]) -> bool 
 
 /// Cuts the last segments of `segs` at the side of the piece that the chain's end `end` (a
 /// boundary end) leaves through; the cut's `τ` range.
-pub(super) fn cut_at_side(
+fn cut_at_side(
     cert: &CertifiedBranch,
     segs: &mut Vec<Seg>,
     end: &CertifiedEnd,

@@ -20,14 +20,19 @@
 //! - **3D curve.** Per span, the quintic Hermite interpolant of `P(σ(τ), t(τ))` (value, first
 //!   and second derivative at both ends, of that span's own parametrisation), the value shared
 //!   at each knot: C0, and tangent-continuous in direction only (the links' parametrisations
-//!   differ in speed at a join). Its deviation from `P(σ(τ), t(τ))` is bounded by a Taylor form of order 8 with
-//!   a Lagrange remainder on four sub-intervals of each span, in interval arithmetic.
+//!   differ in speed at a join). Its deviation from `P(σ(τ), t(τ))` is bounded by a Taylor
+//!   form of order 8 with a Lagrange remainder on four sub-intervals of each span, in interval arithmetic.
 //! - **Bounds**, per span: 3D curve to true ≤ that deviation + `radius_xyz`; `P(pcurve_P)` to
 //!   true ≤ `radius_xyz` + `|DP|·δ_P`; `Q(pcurve_Q)` to true ≤ `|DQ|·(radius_param + δ_Q)`,
-//!   the derivatives enclosed over the span's parameter box widened by those amounts. Where a
-//!   curve is cut (a closed loop's end, a joined curve's piece side), the true arc between the
-//!   cut and the true end point adds `2·radius_xyz` + the diameter of the reported curve over
-//!   the cut's `τ` range.
+//!   the derivatives enclosed over the span's parameter box widened by those amounts (for Q also
+//!   `radius_xyz` + `|DQ|·δ_Q` + the residual `|P(σ, t) − Q(u, v)|` of the reported polynomial,
+//!   by its own Taylor form; the smaller is taken).
+//! - **Cuts.** A chain is cut where the edge must end: a closed loop where its last link meets
+//!   the start box again, a boundary end (the chain goes on a little past the domain's side, on
+//!   the patch extended beyond it) and a joined curve's piece side at the side. A range `T` of
+//!   the link's `τ` is proven to hold the true end point; every curve point over `T` is within
+//!   `radius_xyz` + the diameter of `P(σ, t)` over `T` + the three curves' distance from the
+//!   reported image of the end of the edge's curves there.
 //! - **Tolerance.** [`Edge::edge_tolerance`] is the largest of all those bounds and of the
 //!   certificates' own tolerances: every point of the 3D curve, and of each p-curve's image on
 //!   its surface, is within it of the true curve, and every true curve point is within it of
@@ -35,6 +40,11 @@
 //!
 //! Certificates of the Taylor engine (arc-length tubes with re-anchoring gaps) are refused with
 //! [`EdgeError::NotCoverChain`].
+//!
+//! Limits: a cut is proven in the one coordinate of the side it crosses (a curve leaving a piece
+//! through a corner is cut at the first side found); the links before the cut link are taken as
+//! inside the piece, as the certificate's chain between its ends is. The 3D curve is not
+//! rational and its knots are nominal; only the bounds are proven, the `f64` construction is not.
 
 mod bspline;
 mod build;
@@ -259,28 +269,10 @@ pub fn edge_from_certified(
         cuts.push(close_loop(cert, &mut segs, branch)?);
     } else {
         // A boundary end: the chain goes on a little past the domain's side (on the patch
-        // extended beyond it); cut it at the side.
+        // extended beyond it); it is cut at the side.
         let doms = [p.domain(), q.domain()];
-        if matches!(cert.ends[0], CertifiedEnd::Boundary { .. }) {
-            joined::flip(&mut segs);
-            cuts.push(joined::cut_at_side(
-                cert,
-                &mut segs,
-                &cert.ends[0],
-                &doms,
-                branch,
-            )?);
-            joined::flip(&mut segs);
-        }
-        if matches!(cert.ends[1], CertifiedEnd::Boundary { .. }) {
-            cuts.push(joined::cut_at_side(
-                cert,
-                &mut segs,
-                &cert.ends[1],
-                &doms,
-                branch,
-            )?);
-        }
+        let ends = [&cert.ends[0], &cert.ends[1]];
+        cuts = joined::cut_ends(cert, &mut segs, ends, &doms, branch, [false; 2])?;
     }
     let part = Part {
         p,
