@@ -161,6 +161,19 @@ fn the_sphere_plane_circle_is_within_the_edge_tolerance_both_ways() {
     if e.closed {
         assert_eq!(e.curve.points.first(), e.curve.points.last());
     }
+    // The document: one edge, numbered by its branch, the numbers as computed.
+    let doc = edges_document(Some("sphere"), "branch", &[(0, Ok(e.clone()))]);
+    let v = &doc["edges"][0];
+    assert_eq!(v["branch"], 0);
+    assert_eq!(v["edge_tolerance"].as_f64(), Some(tol));
+    assert_eq!(v["curve"]["degree"], 5);
+    assert_eq!(
+        v["curve"]["control_points"].as_array().unwrap().len(),
+        e.curve.points.len()
+    );
+    assert_eq!(v["pcurves"][0]["surface"], "P");
+    assert_eq!(v["pcurves"][1]["surface"], "Q");
+    assert!(doc["skipped"].as_array().unwrap().is_empty());
 }
 
 #[test]
@@ -297,6 +310,19 @@ fn the_nurbs_sphere_shell_gives_one_closed_edge() {
     let doc = edges_document(Some("nurbs_sphere_plane"), "curve", &out);
     assert_eq!(doc["format"], EDGE_FORMAT);
     assert_eq!(doc["edges"][0]["closed"], true);
+    assert_eq!(doc["edges"][0]["pcurves"].as_array().unwrap().len(), 8);
+    // Marched only: the joins rest on marched points, and no edge is made.
+    let march = Options {
+        method: Method::March,
+        ..opts
+    };
+    let m = intersect_shells(&s.shells[0], &s.shells[1], &march).unwrap();
+    let out = edges_of_shells(&s.shells[0], &s.shells[1], &m);
+    assert!(
+        matches!(out[0].1, Err(EdgeError::UnprovenJoin { .. })),
+        "{:?}",
+        out[0].1
+    );
 }
 
 #[test]

@@ -227,8 +227,10 @@ pub(crate) fn assemble(
     }
     let mut knots_s = vec![0.0];
     for sp in &spans {
-        let last = *knots_s.last().unwrap_or(&0.0);
-        knots_s.push(last + sp.ds.max(f64::EPSILON));
+        let last: f64 = *knots_s.last().unwrap_or(&0.0);
+        // Strictly increasing knots, also over a span of (nearly) zero length.
+        let floor = 4.0 * f64::EPSILON * last.abs().max(1.0);
+        knots_s.push(last + sp.ds.max(floor));
     }
     let (curve, hs) = curve_3d(parts, &spans, &knots_s, closed);
     let mut b = EdgeBounds {
