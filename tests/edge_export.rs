@@ -298,15 +298,18 @@ fn the_nurbs_sphere_shell_gives_one_closed_edge() {
     eprintln!("nurbs_sphere_plane: spline → circle {worst:.3e}, circle → spline {back:.3e}");
     assert!(back <= tol + SLACK, "{back:e} > {tol:e}");
     // P-curves on the pieces they name.
+    let mut seen = [0.0f64; 2];
     for c in &e.pcurves {
         let shell = &s.shells[c.surface];
         let patch = &shell[c.face].pieces()[c.piece];
         for sv in samples(&c.curve, 32) {
             let [a, b] = c.curve.eval(sv);
             let d = off(&patch.point_f64(a, b));
+            seen[c.surface] = seen[c.surface].max(d);
             assert!(d <= c.image_tolerance + SLACK, "{d:e}");
         }
     }
+    eprintln!("nurbs_sphere_plane: p-curve images off the circle by at most {seen:?} (sampled)");
     let doc = edges_document(Some("nurbs_sphere_plane"), "curve", &out);
     assert_eq!(doc["format"], EDGE_FORMAT);
     assert_eq!(doc["edges"][0]["closed"], true);

@@ -55,13 +55,13 @@ fn jet_in_s(j: [[f64; 3]; 3], ds: f64) -> [[f64; 3]; 3] {
 }
 
 /// The spans of one piece of a link, halved while its own Hermite fit is above `target`.
-fn split_seg(part: usize, pt: &Part, s: &Seg, target: f64, out: &mut Vec<Span>) {
+fn split_seg(part: usize, pt: &Part, s: &Seg, target: Option<f64>, out: &mut Vec<Span>) {
     let t = &pt.cert.tubes[s.tube];
     let mut stack = vec![(s.ta, s.tb, 0usize)];
     while let Some((ta, tb, depth)) = stack.pop() {
         let y = poly::reparametrised(&t.coeffs, ta, tb);
         let ds = chord_length(pt.p, &y);
-        if depth < MAX_DEPTH && ta != tb {
+        if let Some(target) = target.filter(|_| depth < MAX_DEPTH && ta != tb) {
             let a = jet_in_s(model_jet(pt.p, &y, 0.0), ds);
             let b = jet_in_s(model_jet(pt.p, &y, 1.0), ds);
             if model_deviation(pt.p, &y, &hermite(&a, &b, ds)) > target {
@@ -203,16 +203,39 @@ fn part_pcurves(
 /// The edge of the parts in order (each part's segments in the edge's direction). `closed`:
 /// the edge's last point is its first; `pcurve_closed`: so are the p-curves' (one part, closed
 /// by its own certificate rather than across a seam).
+///
+/// First one span per link; when the 3D curve's bound is then the largest, the links whose
+/// fit exceeds the other bounds (the certificate's tolerance and the p-curves' images, which
+/// the 3D curve cannot improve on) are halved and the edge is built again.
 pub(crate) fn assemble(
     parts: &[Part],
     closed: bool,
     pcurve_closed: bool,
 ) -> Result<Edge, EdgeError> {
+    let first = assemble_with(parts, closed, pcurve_closed, None)?;
+    let b = &first.bounds;
+    let floor = b
+        .certified_tolerance
+        .max(b.pcurve_p_image)
+        .max(b.pcurve_q_image)
+        .max(1e-13);
+    if b.curve_3d <= floor {
+        return Ok(first);
+    }
+    assemble_with(parts, closed, pcurve_closed, Some(floor))
+}
+
+/// [`assemble`] with links halved while their own fit exceeds `target` (`None`: not halved).
+fn assemble_with(
+    parts: &[Part],
+    closed: bool,
+    pcurve_closed: bool,
+    target: Option<f64>,
+) -> Result<Edge, EdgeError> {
     let cert_tol = parts
         .iter()
         .map(|p| p.cert.certified_tolerance)
         .fold(0.0, f64::max);
-    let target = cert_tol.max(1e-13);
     let mut spans = Vec::new();
     for (k, pt) in parts.iter().enumerate() {
         for s in &pt.segs {

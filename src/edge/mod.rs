@@ -7,8 +7,9 @@
 //! and `radius_xyz` (model space) of the reported point with the same along-coordinate, and the
 //! reverse. An edge is built from those polynomials:
 //!
-//! - **Spans.** Each link is one span, or a few (halved while the 3D curve's bound below exceeds
-//!   the certificate's tolerance). Knots of the common parameter `s` (an approximate arc
+//! - **Spans.** Each link is one span, or a few: when the 3D curve's bound below is the largest
+//!   one, links are halved while their fit exceeds the certificate's tolerance and the
+//!   p-curves' image bounds. Knots of the common parameter `s` (an approximate arc
 //!   length, nominal) sit at the span ends.
 //! - **P-curves.** On each span the link's polynomial, re-expanded on `[0, 1]` and converted to
 //!   Bézier control points in interval arithmetic; the midpoints are reported. Consecutive
