@@ -75,7 +75,8 @@ pub struct TubePiece {
     /// curve point with the same parameter `j`": every true curve point with `y_j` in the
     /// piece's range is within the radii of the reported point with that `y_j`, and the reverse.
     /// The arc lengths `s0`, `h` are then those of the reported curve (nominal) and `s0_error`
-    /// is 0.
+    /// is 0; `radius_xyz` then also bounds `Q(u(τ), v(τ))` against the true point, not only
+    /// `P(σ(τ), t(τ))`.
     pub along: Option<AlongParameter>,
 }
 

@@ -221,22 +221,27 @@ impl<'a> Walker<'a> {
     }
 
     /// Proven deviations of the true curve from the reported one over the link: in parameters
-    /// (max norm) and in model space. The reported curve is the predictor from `from` to `to`;
+    /// (max norm) and in model space, on both surfaces (`P` at the reported `σ, t` and `Q` at
+    /// the reported `u, v`). The reported curve is the predictor from `from` to `to`;
     /// the arc before `from` (a reach back to `cover_from`) is measured against the reported
     /// start point.
     fn radii(&self, proof: &SegmentProof, from: f64, cover_from: f64) -> Option<(f64, f64)> {
         let j = proof.pred.along;
         // P(true) − P(reported) = ∫ DP · Δ over the segment between them: the columns of σ and
-        // t among the offsets (P's part of the Jacobian of P − Q) times their offsets.
-        let mut v = [point(0.0); 3];
-        for (c, &i) in others(j).iter().enumerate() {
-            if i < 2 {
-                for (r, vr) in v.iter_mut().enumerate() {
-                    *vr += proof.jac[r][c] * proof.k[c];
+        // t among the offsets (P's part of the Jacobian of P − Q) times their offsets; the same
+        // for Q with the columns of u and v. The radius bounds both reported model curves.
+        let side = |surface: usize| {
+            let mut v = [point(0.0); 3];
+            for (c, &i) in others(j).iter().enumerate() {
+                if i / 2 == surface {
+                    for (r, vr) in v.iter_mut().enumerate() {
+                        *vr += proof.jac[r][c] * proof.k[c];
+                    }
                 }
             }
-        }
-        let mut rx = (v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().sup();
+            (v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().sup()
+        };
+        let mut rx = side(0).max(side(1));
         let mut rp = proof.k.iter().map(|k| k.mag()).fold(0.0, f64::max);
         if cover_from != from {
             // True point at ξ ∈ [cover_from, from] against the reported point at `from`.
@@ -250,8 +255,12 @@ impl<'a> Walker<'a> {
             }
             let back = proof.tube_over(cover_from, from);
             let [_, bs, bt] = self.p.first_derivs(back[0], back[1]);
-            let v: [Interval; 3] = std::array::from_fn(|r| bs[r] * e[0] + bt[r] * e[1]);
-            rx = rx.max((v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().sup());
+            let [_, bu, bv] = self.q.first_derivs(back[2], back[3]);
+            let vp: [Interval; 3] = std::array::from_fn(|r| bs[r] * e[0] + bt[r] * e[1]);
+            let vq: [Interval; 3] = std::array::from_fn(|r| bu[r] * e[2] + bv[r] * e[3]);
+            for v in [vp, vq] {
+                rx = rx.max((v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt().sup());
+            }
             rp = rp.max(e.iter().map(|x| x.mag()).fold(0.0, f64::max));
         }
         (rp.is_finite() && rx.is_finite()).then_some((rp, rx))
