@@ -23,14 +23,15 @@
 //!
 //! `cargo test --release --test oracle_random -- --nocapture` prints the figures. The soak runs
 //! the same check on many more pairs from one command (see the README): `SSITRACE_ORACLE_PAIRS=
-//! 100000 cargo test --release --test oracle_random soak -- --ignored --nocapture`.
+//! 100000 cargo test --release --test oracle_random soak -- --ignored --nocapture` (options: see
+//! [`soak`]; `SSITRACE_ORACLE_ENGINE=taylor` runs any of them with the Taylor engine).
 
 mod common;
 
 use common::rng::Rng;
 use inari::{interval, Interval};
 use ssitrace::geometry::{Domain, RationalBezierPatch};
-use ssitrace::{intersect, Method, Options, SurfaceIntersection};
+use ssitrace::{intersect, Engine, Method, Options, SurfaceIntersection};
 use std::time::Instant;
 
 /// A height field `z = Σ z_ij B_i(x) B_j(y)` of degree `m` in both directions.
@@ -256,6 +257,19 @@ struct Figures {
     unproven_ends: usize,
     times: Vec<f64>,
     notes: Vec<String>,
+    /// Pairs with at least one of each failure (the closing notes count pairs, not points).
+    pairs_with: PairsWith,
+}
+
+/// Per failure class, how many pairs had it at least once.
+#[derive(Default, Debug)]
+struct PairsWith {
+    soundness: usize,
+    missed: usize,
+    twice: usize,
+    above_tolerance: usize,
+    unproven_ends: usize,
+    not_certified: usize,
 }
 
 fn params_distance(b: &ssitrace::march::branch::Branch, r: &RefPoint) -> f64 {
@@ -266,7 +280,36 @@ fn params_distance(b: &ssitrace::march::branch::Branch, r: &RefPoint) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// The certification engine: the default, or `SSITRACE_ORACLE_ENGINE=taylor` (for comparing
+/// the two engines on the same seeds).
+fn engine() -> Engine {
+    match std::env::var("SSITRACE_ORACLE_ENGINE").as_deref() {
+        Ok("taylor") => Engine::Taylor,
+        Ok("chain") => Engine::Chain,
+        _ => Engine::default(),
+    }
+}
+
 fn check_pair(seed: u64, fig: &mut Figures) {
+    let before = (
+        fig.soundness_violations,
+        fig.missed_points,
+        fig.twice,
+        fig.above_tolerance,
+        fig.unproven_ends,
+        fig.not_certified,
+    );
+    check_pair_inner(seed, fig);
+    let w = &mut fig.pairs_with;
+    w.soundness += usize::from(fig.soundness_violations > before.0);
+    w.missed += usize::from(fig.missed_points > before.1);
+    w.twice += usize::from(fig.twice > before.2);
+    w.above_tolerance += usize::from(fig.above_tolerance > before.3);
+    w.unproven_ends += usize::from(fig.unproven_ends > before.4);
+    w.not_certified += usize::from(fig.not_certified > before.5);
+}
+
+fn check_pair_inner(seed: u64, fig: &mut Figures) {
     let mut rng = Rng::new(seed);
     let f = HeightField::random(&mut rng, 3, 0.3);
     let degree = if rng.uniform(0.0, 1.0) < 0.5 { 2 } else { 3 };
@@ -276,6 +319,7 @@ fn check_pair(seed: u64, fig: &mut Figures) {
     let (p, q) = (f.patch(motion.as_ref()), g.patch(motion.as_ref()));
     let opts = Options {
         method: Method::Validated,
+        engine: engine(),
         ..Options::default()
     };
     let clock = Instant::now();
@@ -397,19 +441,45 @@ fn check_pair(seed: u64, fig: &mut Figures) {
 }
 
 fn run(seeds: impl Iterator<Item = u64>) -> Figures {
-    let mut fig = Figures::default();
-    for seed in seeds {
-        check_pair(seed, &mut fig);
-    }
-    fig.times.sort_by(f64::total_cmp);
-    let median = fig.times.get(fig.times.len() / 2).copied().unwrap_or(0.0);
-    let worst = fig.times.last().copied().unwrap_or(0.0);
+    run_with_progress(seeds, 0)
+}
+
+/// The figures line: counts of points / branches, then of pairs per class, then times.
+fn print_figures(fig: &Figures) {
+    let mut times = fig.times.clone();
+    times.sort_by(f64::total_cmp);
+    let median = times.get(times.len() / 2).copied().unwrap_or(0.0);
+    let worst = times.last().copied().unwrap_or(0.0);
+    let total: f64 = times.iter().sum();
     println!(
         "pairs {} branches {} reference points {} | soundness violations {} | missed {} | in undecided regions {} | arcs twice {} | above tolerance {} | unproven or singular ends {} | not certified {} | time median {:.3} s worst {:.3} s",
         fig.pairs, fig.branches, fig.reference_points, fig.soundness_violations, fig.missed_points,
         fig.in_undecided, fig.twice, fig.above_tolerance, fig.unproven_ends, fig.not_certified, median, worst
     );
-    for n in fig.notes.iter().take(20) {
+    let w = &fig.pairs_with;
+    println!(
+        "  pairs with: soundness violations {} | missed points {} | arcs twice {} | above tolerance {} | unproven or singular ends {} | uncertified branches {} | total time {:.1} s",
+        w.soundness, w.missed, w.twice, w.above_tolerance, w.unproven_ends, w.not_certified, total
+    );
+}
+
+/// Runs the pairs; with `every > 0`, prints the figures so far after every `every` pairs (a long
+/// soak can then be cut short and still report).
+fn run_with_progress(seeds: impl Iterator<Item = u64>, every: usize) -> Figures {
+    let mut fig = Figures::default();
+    for seed in seeds {
+        check_pair(seed, &mut fig);
+        if every > 0 && fig.pairs % every == 0 {
+            print!("[after seed {seed}] ");
+            print_figures(&fig);
+        }
+    }
+    print_figures(&fig);
+    let shown = std::env::var("SSITRACE_ORACLE_NOTES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20usize);
+    for n in fig.notes.iter().take(shown) {
         println!("  {n}");
     }
     fig
@@ -483,7 +553,9 @@ fn random_pairs_fresh_seeds() {
     assert_sound(&fig);
 }
 
-/// The long soak: `SSITRACE_ORACLE_PAIRS` pairs (default 100 000) from seed 1 000 000 on.
+/// The long soak: `SSITRACE_ORACLE_PAIRS` pairs (default 100 000) from seed
+/// `SSITRACE_ORACLE_FIRST` (default 1 000 000) on; `SSITRACE_ORACLE_PROGRESS=k` prints the figures
+/// so far every `k` pairs, `SSITRACE_ORACLE_NOTES=k` prints the first `k` notes (default 20).
 #[test]
 #[ignore = "soak: run by hand, see the module doc"]
 fn soak() {
@@ -491,6 +563,14 @@ fn soak() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(100_000u64);
-    let fig = run(1_000_000..1_000_000 + n);
+    let first = std::env::var("SSITRACE_ORACLE_FIRST")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1_000_000u64);
+    let every = std::env::var("SSITRACE_ORACLE_PROGRESS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0usize);
+    let fig = run_with_progress(first..first + n, every);
     assert_sound(&fig);
 }
