@@ -44,6 +44,7 @@ use crate::pair::newton::{refine, Constraint, Refined};
 use inari::Interval;
 use std::time::Instant;
 
+mod leave;
 mod output;
 mod walker;
 

@@ -410,6 +410,12 @@ impl<'a> Walker<'a> {
                 if self.push(link) {
                     return Stop::Done;
                 }
+                // At a split point outside a domain, heading for a marched node: `leave.rs`.
+                if stack.len() > 1 {
+                    if let Some(end) = self.left_marched_path(&stack[0].0) {
+                        return Stop::Failed(end);
+                    }
+                }
                 cur = tgt;
                 stack.pop();
                 continue;
