@@ -8,31 +8,73 @@
 //! one of the domains, while the marched node it is heading for lies inside both, shows that:
 //! the curve of the chain leaves the domain there, the marched branch does not. The half stops
 //! at that link with an unproven end that says so (not a boundary end: the certificate would
-//! then claim the whole curve of a marched branch it does not follow).
+//! then claim the whole curve of a marched branch it does not follow). When the node it heads
+//! for is the marched end on that same bound (the curve grazes the boundary and dips out just
+//! before the marched end), the link proves the boundary end the marched branch has there.
+//!
+//! The walk past a marched boundary end heads for a curve point found beyond the boundary; where
+//! the curve only dips out of the domain (it grazes the boundary), that point can lie back
+//! inside, the check above stops the walk at the first link out of the domain, and that link
+//! proves the boundary end (the same test as the walk's last link): the half ends there and does
+//! not run on into the next marched piece of the curve.
 
 use super::walker::{Node, Walker};
 use crate::certify::curve::CertifiedEnd;
 use crate::geometry::surface::pair_bounds;
 
 impl Walker<'_> {
-    /// An unproven end if the last link's end slice lies wholly outside P's or Q's domain in
-    /// some parameter while the marched node `target` lies inside both.
-    pub(super) fn left_marched_path(&self, target: &Node) -> Option<CertifiedEnd> {
-        let last = self.links.last()?;
+    /// The surface (0 for P, 1 for Q) whose domain the last link's end slice lies wholly
+    /// outside of, in some parameter: the chain's curve leaves that domain inside the link.
+    pub(super) fn outside_domain(&self) -> Option<usize> {
+        let e = &self.links.last()?.end_slice;
         let (dp, dq) = (self.p.domain(), self.q.domain());
-        let bounds = |i: usize| pair_bounds(&dp, &dq, i);
-        let inside = (0..4).all(|i| {
-            let [lo, hi] = bounds(i);
-            lo <= target.x[i] && target.x[i] <= hi
+        (0..4)
+            .find(|&i| {
+                let [lo, hi] = pair_bounds(&dp, &dq, i);
+                e[i].sup() < lo || e[i].inf() > hi
+            })
+            .map(|i| i / 2)
+    }
+
+    /// The end of a half whose last link, towards a split point on the way to `target`, left
+    /// a domain (its end slice lies wholly outside it): a proven boundary end if `target` (a
+    /// marched node) lies on that same bound, so the marched branch ends there too; an
+    /// unproven end if `target` lies inside both domains (the half has left the marched
+    /// points); none otherwise (the walk past a marched end heads outside on purpose).
+    pub(super) fn left_marched_path(&self, target: &Node) -> Option<CertifiedEnd> {
+        let e = &self.links.last()?.end_slice;
+        let (dp, dq) = (self.p.domain(), self.q.domain());
+        let out = (0..4).find_map(|i| {
+            let [lo, hi] = pair_bounds(&dp, &dq, i);
+            if e[i].sup() < lo {
+                Some((i, lo))
+            } else if e[i].inf() > hi {
+                Some((i, hi))
+            } else {
+                None
+            }
         });
-        let e = &last.end_slice;
-        let outside = (0..4).any(|i| {
-            let [lo, hi] = bounds(i);
-            e[i].sup() < lo || e[i].inf() > hi
+        let (i, bound) = out?;
+        if (target.x[i] - bound).abs() <= 1e-9 * self.scales[i] {
+            return Some(CertifiedEnd::Boundary { surface: i / 2 });
+        }
+        let inside = (0..4).all(|k| {
+            let [lo, hi] = pair_bounds(&dp, &dq, k);
+            lo <= target.x[k] && target.x[k] <= hi
         });
-        (inside && outside).then(|| CertifiedEnd::Unproven {
+        inside.then(|| CertifiedEnd::Unproven {
             reason: "the chain left the marched points and its curve leaves the domain".into(),
             near: *e,
         })
+    }
+
+    /// Past a marched boundary end, where the walk stopped early: a proven boundary end if the
+    /// last link already left a domain (its target, the curve point found past the boundary,
+    /// can lie back inside when the curve only dips out of the domain there).
+    pub(super) fn exit_stopped(&self, end: CertifiedEnd) -> CertifiedEnd {
+        match self.outside_domain() {
+            Some(surface) => CertifiedEnd::Boundary { surface },
+            None => end,
+        }
     }
 }

@@ -530,7 +530,7 @@ impl<'a> Walker<'a> {
             return unproven("no curve point found past the boundary");
         };
         if let Stop::Failed(end) = self.span(last, out, None) {
-            return end;
+            return self.exit_stopped(end);
         }
         let end = self.links.last().map(|l| l.end_slice());
         let [lo, hi] = pair_bounds(&dp, &dq, b);
