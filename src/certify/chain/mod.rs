@@ -143,14 +143,20 @@ pub fn certify_chain(
         return ring_chain(p, q, &xs, opts)
             .ok_or_else(|| fail("no link of the loop could be proven", xs[0]));
     }
+    if xs.len() == 2 {
+        split_two(p, q, &mut xs);
+    }
     let s = (0..xs.len())
         .min_by(|&a, &c| {
             scaled_dist(&xs[a], &start, &scales).total_cmp(&scaled_dist(&xs[c], &start, &scales))
         })
         .unwrap_or(0);
+    let n = xs.len();
+    // Not at an end of the marched points (when there is a point between): a half starting at
+    // the last point has no link to walk and its end could not be proven even at a boundary.
+    let s = if n > 2 { s.clamp(1, n - 2) } else { s };
     // Another start where no link from the chosen one can be proven (a start next to a
     // singular point).
-    let n = xs.len();
     let mut tried = Vec::new();
     for k in [s, n / 2, n / 4, 3 * n / 4, n / 8, 7 * n / 8, 0, n - 1] {
         if tried.contains(&k) {
@@ -165,6 +171,26 @@ pub fn certify_chain(
         "no link could be proven from any tried start point",
         xs[s],
     ))
+}
+
+/// A marched branch of two points (a short arc across a corner of a domain) gets a third, a
+/// curve point between them (Newton from their middle, holding its fastest-moving parameter),
+/// so the chain can start between its ends and walk out of the domain at both. Kept as it is if
+/// Newton fails or lands nearer one end than a quarter of their distance.
+fn split_two(p: &RationalBezierPatch, q: &RationalBezierPatch, xs: &mut Vec<[f64; 4]>) {
+    let scales = pair_widths(&p.domain(), &q.domain());
+    let (a, b) = (xs[0], xs[1]);
+    let m: [f64; 4] = std::array::from_fn(|i| 0.5 * (a[i] + b[i]));
+    let v = velocity(p, q, &m);
+    let j = (0..4)
+        .max_by(|&x, &y| (v[x].abs() / scales[x]).total_cmp(&(v[y].abs() / scales[y])))
+        .unwrap_or(0);
+    let h = scaled_dist(&a, &b, &scales);
+    if let Some(r) = newton(p, q, m, j, m[j]) {
+        if scaled_dist(&r.x, &a, &scales).min(scaled_dist(&r.x, &b, &scales)) > 0.25 * h {
+            xs.insert(1, r.x);
+        }
+    }
 }
 
 /// A closed loop: links round from the first node back to it, the last one holding the first
