@@ -16,11 +16,17 @@
 //! the curve only dips out of the domain (it grazes the boundary), that point can lie back
 //! inside, the check above stops the walk at the first link out of the domain, and that link
 //! proves the boundary end (the same test as the walk's last link): the half ends there and does
-//! not run on into the next marched piece of the curve.
+//! not run on into the next marched piece of the curve. Where the link into the marched end
+//! itself dips out and back (its end slices inside), the first of its slices wholly beyond the
+//! bound proves the boundary end, and the link is cut there.
 
 use super::walker::{Node, Walker};
 use crate::certify::curve::CertifiedEnd;
 use crate::geometry::surface::pair_bounds;
+use inari::Interval;
+
+/// Slices of a link tested by [`Walker::dips_out`].
+const DIP_SLICES: usize = 32;
 
 impl Walker<'_> {
     /// The surface (0 for P, 1 for Q) whose domain the last link's end slice lies wholly
@@ -66,6 +72,54 @@ impl Walker<'_> {
             reason: "the chain left the marched points and its curve leaves the domain".into(),
             near: *e,
         })
+    }
+
+    /// For a link that heads for a marched node on a bound of a domain (the marched end there):
+    /// whether its curve already crosses that bound inside the link (the curve grazes the
+    /// boundary, dips out and comes back to the marched end). The link's enclosure is tested on
+    /// [`DIP_SLICES`] slices from its start; at the first one wholly beyond the bound the link is
+    /// cut (its reported curve and boxes end there; its radii, proven over the whole link,
+    /// still hold) and the half ends with a proven boundary end.
+    pub(super) fn dips_out(&mut self, target: &Node) -> Option<CertifiedEnd> {
+        let (dp, dq) = (self.p.domain(), self.q.domain());
+        let (i, bound, below) = (0..4).find_map(|i| {
+            let [lo, hi] = pair_bounds(&dp, &dq, i);
+            let tol = 1e-9 * self.scales[i];
+            if (target.x[i] - lo).abs() <= tol {
+                Some((i, lo, true))
+            } else if (target.x[i] - hi).abs() <= tol {
+                Some((i, hi, false))
+            } else {
+                None
+            }
+        })?;
+        let link = self.links.last_mut()?;
+        let beyond = |e: &[Interval; 4]| {
+            if below {
+                e[i].sup() < bound
+            } else {
+                e[i].inf() > bound
+            }
+        };
+        let (from, to) = (link.from, link.to);
+        let cut = (1..=DIP_SLICES)
+            .map(|k| from + (to - from) * k as f64 / DIP_SLICES as f64)
+            .find(|&x| beyond(&link.proof.box_over(x, x)))?;
+        link.to = cut;
+        link.end_slice = link.proof.box_over(cut, cut);
+        Some(CertifiedEnd::Boundary { surface: i / 2 })
+    }
+
+    /// After a link towards `target` (a split point on the way to it if `split`): the end of
+    /// the half if the link left a domain ([`Walker::left_marched_path`],
+    /// [`Walker::dips_out`]).
+    pub(super) fn stopped_outside(&mut self, target: &Node, split: bool) -> Option<CertifiedEnd> {
+        if split {
+            if let Some(end) = self.left_marched_path(target) {
+                return Some(end);
+            }
+        }
+        self.dips_out(target)
     }
 
     /// Past a marched boundary end, where the walk stopped early: a proven boundary end if the

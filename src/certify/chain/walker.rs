@@ -410,11 +410,9 @@ impl<'a> Walker<'a> {
                 if self.push(link) {
                     return Stop::Done;
                 }
-                // At a split point outside a domain, heading for a marched node: `leave.rs`.
-                if stack.len() > 1 {
-                    if let Some(end) = self.left_marched_path(&stack[0].0) {
-                        return Stop::Failed(end);
-                    }
+                // Out of a domain on the way to a marched node: `leave.rs`.
+                if let Some(end) = self.stopped_outside(&stack[0].0, stack.len() > 1) {
+                    return Stop::Failed(end);
                 }
                 cur = tgt;
                 stack.pop();
@@ -598,6 +596,9 @@ impl<'a> Walker<'a> {
                 if let Attempt::Proven(link) = attempt {
                     if self.push(link) {
                         return Ok(());
+                    }
+                    if let Some(end) = self.stopped_outside(&nodes[i + k], false) {
+                        return Err(end);
                     }
                     i += k;
                 } else if self.l_pred.is_some_and(|l| l >= len) {
