@@ -37,11 +37,13 @@ use crate::geometry::piece::Piece;
 use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use crate::pair::curve_surface::{settle_box, BoxVerdict};
 use crate::pair::newton::{refine, Constraint};
-use crate::search::loop_exclusion::loop_test;
 use inari::Interval;
 use nalgebra::{Matrix3x4, Vector3};
+use pair_verdict::{classify_pair, PairVerdict};
 use rayon::prelude::*;
 use std::collections::HashMap;
+
+mod pair_verdict;
 
 /// Tuning of the start-point search.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -281,68 +283,6 @@ fn pair_search(
         }
         frontier = next;
     }
-}
-
-/// What the tests say of one pair of pieces.
-enum PairVerdict {
-    /// Their rigorous boxes are disjoint.
-    Disjoint,
-    /// The loop test proved the pair loop-free (its faces are searched next).
-    LoopFree,
-    /// Both pieces at the smallest size and still neither: undecided.
-    Undecided,
-    /// Split one piece: the two new pairs.
-    Split(Vec<(Piece, Piece)>),
-}
-
-/// Tests one pair of pieces (pure: no report, no budget).
-fn classify_pair(
-    ctx: &Ctx,
-    p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
-    a: &Piece,
-    b: &Piece,
-) -> PairVerdict {
-    let (ea, eb) = (a.bounds(), b.bounds());
-    if boxes_disjoint(&ea, &eb) {
-        return PairVerdict::Disjoint;
-    }
-    let test = loop_test(p, a, q, b);
-    if test.proof.is_some() {
-        return PairVerdict::LoopFree;
-    }
-    let (wa, wb) = (diameter(&ea), diameter(&eb));
-    if wa <= ctx.min_pair && wb <= ctx.min_pair {
-        return PairVerdict::Undecided;
-    }
-    // Split the piece whose size times normal spread is larger (the one that keeps the test
-    // from succeeding): a flat piece is never split for the loop test's sake.
-    let [sa, sb] = test.spread;
-    let (ka, kb) = (wa * sa.min(1e300), wb * sb.min(1e300));
-    let split_a = if ka == kb || !(ka.is_finite() && kb.is_finite()) {
-        wa >= wb
-    } else {
-        ka > kb
-    };
-    let split_a = if wa <= ctx.min_pair {
-        false
-    } else if wb <= ctx.min_pair {
-        true
-    } else {
-        split_a
-    };
-    let halves = if split_a {
-        a.split(a.split_direction())
-            .into_iter()
-            .map(|half| (half, b.clone()))
-            .collect()
-    } else {
-        b.split(b.split_direction())
-            .into_iter()
-            .map(|half| (a.clone(), half))
-            .collect()
-    };
-    PairVerdict::Split(halves)
 }
 
 /// Records an undecided pair, and offers Newton projections from its centre and from the

@@ -1,0 +1,70 @@
+//! One pair of pieces of the interior search, tested on its own (pure, so a level's pairs are
+//! tested in parallel): disjoint, loop-free, undecided at the smallest size, or split.
+
+use super::{diameter, Ctx};
+use crate::geometry::enclosure::boxes_disjoint;
+use crate::geometry::piece::Piece;
+use crate::geometry::RationalBezierPatch;
+use crate::search::loop_exclusion::loop_test;
+
+/// What the tests say of one pair of pieces.
+pub(super) enum PairVerdict {
+    /// Their rigorous boxes are disjoint.
+    Disjoint,
+    /// The loop test proved the pair loop-free (its faces are searched next).
+    LoopFree,
+    /// Both pieces at the smallest size and still neither: undecided.
+    Undecided,
+    /// Split one piece: the two new pairs.
+    Split(Vec<(Piece, Piece)>),
+}
+
+/// Tests one pair of pieces (pure: no report, no budget).
+pub(super) fn classify_pair(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    a: &Piece,
+    b: &Piece,
+) -> PairVerdict {
+    let (ea, eb) = (a.bounds(), b.bounds());
+    if boxes_disjoint(&ea, &eb) {
+        return PairVerdict::Disjoint;
+    }
+    let test = loop_test(p, a, q, b);
+    if test.proof.is_some() {
+        return PairVerdict::LoopFree;
+    }
+    let (wa, wb) = (diameter(&ea), diameter(&eb));
+    if wa <= ctx.min_pair && wb <= ctx.min_pair {
+        return PairVerdict::Undecided;
+    }
+    // Split the piece whose size times normal spread is larger (the one that keeps the test
+    // from succeeding): a flat piece is never split for the loop test's sake.
+    let [sa, sb] = test.spread;
+    let (ka, kb) = (wa * sa.min(1e300), wb * sb.min(1e300));
+    let split_a = if ka == kb || !(ka.is_finite() && kb.is_finite()) {
+        wa >= wb
+    } else {
+        ka > kb
+    };
+    let split_a = if wa <= ctx.min_pair {
+        false
+    } else if wb <= ctx.min_pair {
+        true
+    } else {
+        split_a
+    };
+    let halves = if split_a {
+        a.split(a.split_direction())
+            .into_iter()
+            .map(|half| (half, b.clone()))
+            .collect()
+    } else {
+        b.split(b.split_direction())
+            .into_iter()
+            .map(|half| (a.clone(), half))
+            .collect()
+    };
+    PairVerdict::Split(halves)
+}
