@@ -8,6 +8,7 @@
 pub(crate) mod clock;
 pub(crate) mod intervals;
 pub(crate) mod mangle;
+pub(crate) mod near_crossing;
 pub(crate) mod odes;
 pub(crate) mod rng;
 pub(crate) mod scenes;
