@@ -393,13 +393,20 @@ fn krawczyk_image(
     c_over: &IMat,
     cg: &[Interval; 3],
 ) -> Option<[Interval; 3]> {
-    let dj = jacobian_change(p, q, b, free, x);
+    // The Jacobian over the segments from the predictor (offset 0) to every offset in x.
+    let dj = jacobian_change(p, q, b, free, &with_zero(x));
     let m = combine(a_over, &mul(c_over, &dj), |a, b| a - b);
     let k: [Interval; 3] =
         std::array::from_fn(|r| -cg[r] + m[r][0] * x[0] + m[r][1] * x[1] + m[r][2] * x[2]);
     k.iter()
         .all(|v| !v.is_empty() && v.inf().is_finite() && v.sup().is_finite())
         .then_some(k)
+}
+
+/// The smallest box holding `x` and the origin (the segments from the predictor to the points
+/// of `x` lie in it).
+fn with_zero(x: &[Interval; 3]) -> [Interval; 3] {
+    x.map(|v| v.convex_hull(point(0.0)))
 }
 
 /// Why a segment could not be proven.
@@ -426,7 +433,8 @@ pub(crate) struct SegmentProof {
     /// The enclosure of the offsets, for every `ξ ∈ xi`.
     pub(crate) k: [Interval; 3],
     /// The Jacobian columns `∂(P − Q)/∂x_o` (`[row][col]`, columns in [`others`] order),
-    /// enclosed over every point between the predictor and the curve within the segment.
+    /// enclosed over every point between the predictor and the curve within the segment (offsets
+    /// in the hull of `k` and 0).
     pub(crate) jac: [[Interval; 3]; 3],
 }
 
@@ -556,7 +564,7 @@ pub(crate) fn prove_segment(
     }
     // The Jacobian along the predictor (Taylor form) plus its change off it, over K.
     let j_pred = jacobian_along(&j_c, &j_o, tau);
-    let dj = jacobian_change(p, q, &b, &free, &proof.k);
+    let dj = jacobian_change(p, q, &b, &free, &with_zero(&proof.k));
     proof.jac = combine(&j_pred, &dj, |a, b| a + b);
     Ok(proof)
 }
