@@ -37,12 +37,14 @@ use crate::geometry::piece::Piece;
 use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use crate::pair::curve_surface::{settle_box, BoxVerdict};
 use crate::pair::newton::{refine, Constraint};
+use faces::{face_search, face_searches_ahead};
 use inari::Interval;
 use nalgebra::{Matrix3x4, Vector3};
 use pair_verdict::{classify_pair, PairVerdict};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
+mod faces;
 mod pair_verdict;
 
 /// Tuning of the start-point search.
@@ -248,6 +250,13 @@ fn pair_search(
             .par_iter()
             .map(|(a, b)| classify_pair(ctx, p, q, a, b))
             .collect();
+        let loop_free: Vec<(&Piece, &Piece)> = frontier
+            .iter()
+            .zip(&verdicts)
+            .filter(|(_, v)| matches!(v, PairVerdict::LoopFree))
+            .map(|((a, b), _)| (a, b))
+            .collect();
+        let mut pre = face_searches_ahead(ctx, p, q, &loop_free, &searched, report);
         let mut rest = frontier.into_iter().zip(verdicts);
         for ((a, b), verdict) in rest.by_ref() {
             if !ctx.spend(report) {
@@ -259,7 +268,7 @@ fn pair_search(
                 PairVerdict::Disjoint => report.disjoint_pairs += 1,
                 PairVerdict::LoopFree => {
                     report.loop_free_pairs += 1;
-                    if !face_search(ctx, p, q, &a, &b, &mut searched, report) {
+                    if !face_search(ctx, p, q, &a, &b, &mut searched, &mut pre, report) {
                         undecided_pair(ctx, p, q, &a, &b, report);
                     }
                 }
@@ -320,85 +329,6 @@ fn undecided_pair(
             }
         }
     }
-}
-
-/// Searches the faces of a loop-free pair that lie inside the domains (faces on a domain
-/// boundary are covered by the boundary search): each face of the P piece against the Q piece
-/// and each face of the Q piece against the P piece. True when every leaf was settled.
-fn face_search(
-    ctx: &Ctx,
-    p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
-    pp: &Piece,
-    pq: &Piece,
-    searched: &mut HashMap<FaceKey, bool>,
-    report: &mut SearchReport,
-) -> bool {
-    // Leaves a quarter of the smaller piece: the faces are that small anyway, a large partner
-    // piece (a plane against a small curved piece) is cut down to them, and Krawczyk settles
-    // most such leaves at the first try (measured: fewer leaves than at the piece size).
-    let size = diameter(&pp.bounds()).min(diameter(&pq.bounds()));
-    let leaf = ctx.leaf.min(size * 0.25);
-    let min_leaf = leaf * REFINE_FAILED_LEAF;
-    let mut settled = true;
-    for (a, b, piece_a, piece_b, swapped) in [(p, q, pp, pq, false), (q, p, pq, pp, true)] {
-        // Upper faces only: see the module documentation for why they suffice.
-        for (fixed_index, upper) in [(0, true), (1, true)] {
-            let range = if fixed_index == 0 {
-                piece_a.s
-            } else {
-                piece_a.r
-            };
-            let value = range[usize::from(upper)];
-            if value == 0.0 || value == 1.0 {
-                continue;
-            }
-            // A face shared with a neighbouring pair against the same partner piece is
-            // searched once; its outcome is reused.
-            let free = if fixed_index == 0 {
-                piece_a.r
-            } else {
-                piece_a.s
-            };
-            let key = [
-                u64::from(swapped),
-                fixed_index as u64,
-                value.to_bits(),
-                free[0].to_bits(),
-                free[1].to_bits(),
-                piece_b.s[0].to_bits(),
-                piece_b.s[1].to_bits(),
-                piece_b.r[0].to_bits(),
-                piece_b.r[1].to_bits(),
-            ];
-            if let Some(&done) = searched.get(&key) {
-                settled &= done;
-                continue;
-            }
-            let problem = EdgeProblem {
-                a,
-                b,
-                swapped,
-                kind: StartKind::Interior,
-            };
-            let mut found = Vec::new();
-            let undecided = edge_search(
-                ctx,
-                &problem,
-                piece_a.face(fixed_index, upper),
-                piece_b.clone(),
-                leaf,
-                min_leaf,
-                report,
-                &mut found,
-            );
-            report.interior.extend(found);
-            let done = undecided.is_empty() && !report.truncated;
-            searched.insert(key, done);
-            settled &= done;
-        }
-    }
-    settled
 }
 
 /// A curve/surface problem: a boundary curve (or face) of `a` against a piece of `b`.
