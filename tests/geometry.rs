@@ -457,8 +457,9 @@ proptest! {
         let hull = s.hull_bound(ui, vi).unwrap();
         for p in 0..=12 {
             for q in 0..=12 {
-                let u = u0 + (u1 - u0) * p as f64 / 12.0;
-                let v = v0 + (v1 - v0) * q as f64 / 12.0;
+                // Clamped: `v0 + (v1 − v0)·1` can round past `v1`, outside the box.
+                let u = (u0 + (u1 - u0) * p as f64 / 12.0).min(u1);
+                let v = (v0 + (v1 - v0) * q as f64 / 12.0).min(v1);
                 // The exact point is in both rigorous sets, so they must overlap.
                 let exact = s.eval(point(u), point(v));
                 for k in 0..3 {
@@ -482,8 +483,9 @@ proptest! {
         let enc = s.enclose_derivs(interval(u0, u1).unwrap(), interval(v0, v1).unwrap());
         for p in 0..=4 {
             for q in 0..=4 {
-                let u = u0 + (u1 - u0) * p as f64 / 4.0;
-                let v = v0 + (v1 - v0) * q as f64 / 4.0;
+                // Clamped: `v0 + (v1 − v0)·1` can round past `v1`, outside the box.
+                let u = (u0 + (u1 - u0) * p as f64 / 4.0).min(u1);
+                let v = (v0 + (v1 - v0) * q as f64 / 4.0).min(v1);
                 let e = s.enclose_derivs(point(u), point(v));
                 for (x, y) in [(e.p, enc.p), (e.su, enc.su), (e.sv, enc.sv),
                                (e.suu, enc.suu), (e.suv, enc.suv), (e.svv, enc.svv)] {
