@@ -9,8 +9,9 @@
 //! Now such a branch gets a third guide point between the two (Newton from their middle) and the
 //! chain starts there, so both halves walk out of the domain.
 
-use inari::{interval, Interval};
-use ssitrace::geometry::{Domain, RationalBezierPatch};
+mod common;
+
+use common::surfaces::unit_height_patch as patch;
 use ssitrace::{intersect, Method, Options};
 
 /// Heights of P (bicubic, row `i` for `σ = i/3`).
@@ -45,18 +46,6 @@ const G: [f64; 9] = [
     -0.14109685856733445,
     -0.06339879367055962,
 ];
-
-fn point(x: f64) -> Interval {
-    interval!(x, x).unwrap()
-}
-
-fn patch(m: usize, z: &[f64]) -> RationalBezierPatch {
-    let points = (0..=m)
-        .flat_map(|i| (0..=m).map(move |j| (i, j)))
-        .map(|(i, j)| [i as f64 / m as f64, j as f64 / m as f64, z[i * (m + 1) + j]].map(point))
-        .collect();
-    RationalBezierPatch::new([m, m], points, None, Domain::new(0.0, 1.0, 0.0, 1.0)).unwrap()
-}
 
 #[test]
 fn two_point_branch_has_both_ends_proven() {

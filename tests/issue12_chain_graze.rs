@@ -14,8 +14,9 @@
 //! Checked: every branch certified with both ends on the boundary, and no curve point (sign
 //! changes of `f − g` on grid lines, refined by bisection) in the boxes of two of them.
 
-use inari::{interval, Interval};
-use ssitrace::geometry::{Domain, RationalBezierPatch};
+mod common;
+
+use common::surfaces::unit_height_patch as patch;
 use ssitrace::{intersect, Method, Options};
 
 /// Heights of P (bicubic, row `i` for `σ = i/3`).
@@ -50,18 +51,6 @@ const G: [f64; 9] = [
     -0.1031114016336192,
     0.09155847450735716,
 ];
-
-fn point(x: f64) -> Interval {
-    interval!(x, x).unwrap()
-}
-
-fn patch(m: usize, z: &[f64]) -> RationalBezierPatch {
-    let points = (0..=m)
-        .flat_map(|i| (0..=m).map(move |j| (i, j)))
-        .map(|(i, j)| [i as f64 / m as f64, j as f64 / m as f64, z[i * (m + 1) + j]].map(point))
-        .collect();
-    RationalBezierPatch::new([m, m], points, None, Domain::new(0.0, 1.0, 0.0, 1.0)).unwrap()
-}
 
 /// A height field at `(x, y)` (de Casteljau in `f64`).
 fn height(m: usize, z: &[f64], x: f64, y: f64) -> f64 {

@@ -2,7 +2,7 @@
 //! whose intersection has two curves that nearly cross near `(σ, t) ≈ (0.631, 0.680)`.
 
 use inari::{interval, Interval};
-use ssitrace::geometry::{Domain, RationalBezierPatch};
+use ssitrace::geometry::RationalBezierPatch;
 
 /// Heights of P (bicubic, row `i` for `σ = i/3`).
 pub(crate) const F: [f64; 16] = [
@@ -48,10 +48,7 @@ pub(crate) fn point(x: f64) -> Interval {
     interval!(x, x).unwrap()
 }
 
+/// The bicubic height field with heights `z` over `[0, 1]²`.
 pub(crate) fn patch(z: &[f64; 16]) -> RationalBezierPatch {
-    let points = (0..4)
-        .flat_map(|i| (0..4).map(move |j| (i, j)))
-        .map(|(i, j)| [i as f64 / 3.0, j as f64 / 3.0, z[i * 4 + j]].map(point))
-        .collect();
-    RationalBezierPatch::new([3, 3], points, None, Domain::new(0.0, 1.0, 0.0, 1.0)).unwrap()
+    super::surfaces::unit_height_patch(3, z)
 }

@@ -3,6 +3,19 @@
 use ssitrace::geometry::analytic::{AnalyticSurface, Jet2};
 use ssitrace::geometry::{Domain, PowerSurface, RationalBezierPatch};
 
+/// The Bézier height field of degree `m × m` over `[0, 1]²` whose control point `(i, j)` is
+/// `(i/m, j/m, z[i·(m+1) + j])`.
+pub(crate) fn unit_height_patch(m: usize, z: &[f64]) -> RationalBezierPatch {
+    let points = (0..=m)
+        .flat_map(|i| (0..=m).map(move |j| (i, j)))
+        .map(|(i, j)| {
+            [i as f64 / m as f64, j as f64 / m as f64, z[i * (m + 1) + j]]
+                .map(ssitrace::numeric::scalar::point)
+        })
+        .collect();
+    RationalBezierPatch::new([m, m], points, None, Domain::new(0.0, 1.0, 0.0, 1.0)).unwrap()
+}
+
 /// The square `[−1, 1]²`.
 pub(crate) const SQUARE: Domain = Domain::new(-1.0, 1.0, -1.0, 1.0);
 

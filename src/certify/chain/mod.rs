@@ -241,10 +241,10 @@ fn ring_chain(
 ) -> Option<CertifiedBranch> {
     let mut fwd_ring = xs.to_vec();
     fwd_ring.push(xs[0]);
-    let mut bwd_ring: Vec<[f64; 4]> = xs.iter().rev().copied().collect();
-    bwd_ring.insert(0, xs[0]);
-    bwd_ring.pop();
-    bwd_ring.push(xs[0]);
+    // x0, x_{n−1}, …, x1, x0.
+    let bwd_ring: Vec<[f64; 4]> = std::iter::once(xs[0])
+        .chain(xs.iter().rev().copied())
+        .collect();
     let round = EndReason::NewtonFailed;
     let mut fwd = Walker::new(p, q, opts);
     fwd.wants_closure = true;
