@@ -262,17 +262,18 @@ fn combine(a: &IMat, b: &IMat, f: impl Fn(Interval, Interval) -> Interval) -> IM
     std::array::from_fn(|r| std::array::from_fn(|c| f(a[r][c], b[r][c])))
 }
 
-/// Enclosure of the change of the Jacobian columns `free` over the offsets `y` from the
-/// predictor, `Σ_c' ∂²F/∂x_free[col]∂x_free[c'] · y_c'` (second derivatives over `b`), as a
-/// matrix `[row][col]`.
+/// Second derivatives of `P − Q` over the box `b`: `h[col][c2]` is
+/// `∂²F/∂x_free[col]∂x_free[c2]` (a 3-vector; zero between a P and a Q parameter).
+type Hessian = [[[Interval; 3]; 3]; 3];
+
+/// The second derivatives of `P − Q` in the coordinates `free`, enclosed over `b`.
 #[inline(never)]
-fn jacobian_change(
+fn hessian_over(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     b: &[Interval; 4],
     free: &[usize; 3],
-    y: &[Interval; 3],
-) -> IMat {
+) -> Hessian {
     let dp = p.eval_derivs(b[0], b[1]);
     let dq = q.eval_derivs(b[2], b[3]);
     let zero = [point(0.0); 3];
@@ -287,12 +288,14 @@ fn jacobian_change(
             _ => zero,
         }
     };
+    std::array::from_fn(|col| std::array::from_fn(|c2| second(free[col], free[c2])))
+}
+
+/// Enclosure of the change of the Jacobian columns over the offsets `y` from the predictor,
+/// `Σ_c' h[col][c'] · y_c'` (`h` over a box holding those points), as a matrix `[row][col]`.
+fn jacobian_change(h: &Hessian, y: &[Interval; 3]) -> IMat {
     std::array::from_fn(|r| {
-        std::array::from_fn(|col| {
-            (0..3).fold(point(0.0), |acc, c2| {
-                acc + second(free[col], free[c2])[r] * y[c2]
-            })
-        })
+        std::array::from_fn(|col| (0..3).fold(point(0.0), |acc, c2| acc + h[col][c2][r] * y[c2]))
     })
 }
 
@@ -381,20 +384,16 @@ fn preconditioned_residual(
 }
 
 /// The Krawczyk image `−C·g + (A − C·ΔJ(x))·x` of the offsets `x`; `None` if unbounded.
-#[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn krawczyk_image(
-    p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
-    b: &[Interval; 4],
-    free: &[usize; 3],
+    h: &Hessian,
     x: &[Interval; 3],
     a_over: &IMat,
     c_over: &IMat,
     cg: &[Interval; 3],
 ) -> Option<[Interval; 3]> {
     // The Jacobian over the segments from the predictor (offset 0) to every offset in x.
-    let dj = jacobian_change(p, q, b, free, &with_zero(x));
+    let dj = jacobian_change(h, &with_zero(x));
     let m = combine(a_over, &mul(c_over, &dj), |a, b| a - b);
     let k: [Interval; 3] =
         std::array::from_fn(|r| -cg[r] + m[r][0] * x[0] + m[r][1] * x[1] + m[r][2] * x[2]);
@@ -543,7 +542,9 @@ pub(crate) fn prove_segment(
     let b = proof.tube_over(x_range[0], x_range[1]);
     // K = −C·g + (A − C·ΔJ(x))·x for the offsets x (ΔJ: the Jacobian's change off the
     // predictor, over the segment from 0 to x, inside Y and so inside B).
-    let image = |x: &[Interval; 3]| krawczyk_image(p, q, &b, &free, x, &a_over, &c_over, &cg);
+    // The second derivatives over the tube, once for every use below.
+    let h = hessian_over(p, q, &b, &free);
+    let image = |x: &[Interval; 3]| krawczyk_image(&h, x, &a_over, &c_over, &cg);
     let k = image(&y).ok_or(SegmentFailure::Singular)?;
     let inside = (0..3).all(|r| k[r].interior(y[r]));
     if !inside {
@@ -564,7 +565,7 @@ pub(crate) fn prove_segment(
     }
     // The Jacobian along the predictor (Taylor form) plus its change off it, over K.
     let j_pred = jacobian_along(&j_c, &j_o, tau);
-    let dj = jacobian_change(p, q, &b, &free, &with_zero(&proof.k));
+    let dj = jacobian_change(&h, &with_zero(&proof.k));
     proof.jac = combine(&j_pred, &dj, |a, b| a + b);
     Ok(proof)
 }
