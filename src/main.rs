@@ -548,8 +548,13 @@ fn summary(scene: &Scene, report: &RunReport, opts: &RunOptions, seconds: f64) -
     if r.is_complete() {
         let _ = writeln!(
             out,
-            "  search complete: {} pair(s) proven disjoint, {} proven free of closed loops",
-            s.disjoint_pairs, s.loop_free_pairs
+            "  search complete: {} pair(s) proven disjoint, {} proven free of closed loops{}",
+            s.disjoint_pairs,
+            s.loop_free_pairs,
+            match s.node_regions {
+                0 => String::new(),
+                n => format!(", {n} neighbourhood(s) of singular points settled"),
+            }
         );
     } else {
         let _ = writeln!(out,

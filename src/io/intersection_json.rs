@@ -141,6 +141,7 @@ pub fn stats_json(r: &SurfaceIntersection) -> Map<String, Value> {
         "search_complete": s.search_complete,
         "disjoint_pairs": s.disjoint_pairs,
         "loop_free_pairs": s.loop_free_pairs,
+        "node_regions": s.node_regions,
         "undecided_regions": s
             .undecided_regions
             .iter()

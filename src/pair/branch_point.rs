@@ -52,13 +52,30 @@ pub struct SingularNode {
 /// Pins down a point with parallel normals near `x0`: Gauss–Newton (least squares by SVD, since
 /// the system is nearly rank deficient at tacnodes and triple points) on the six equations
 /// `P − Q = 0`, `(N^P × N^Q)/(|N^P||N^Q|) = 0` in four unknowns. Returns `None` when it does not
-/// converge to a point with `|P − Q| ≤ tol` and normal sine ≤ `sine_tol`.
+/// converge to a point with `|P − Q| ≤ tol` and normal sine ≤ `sine_tol` within a parameter
+/// distance 0.1 of `x0`.
 pub fn locate_singular_point<S1, S2>(
     p: &S1,
     q: &S2,
     x0: [f64; 4],
     tol: f64,
     sine_tol: f64,
+) -> Option<[f64; 4]>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    locate_singular_point_within(p, q, x0, tol, sine_tol, 0.1)
+}
+
+/// [`locate_singular_point`], accepting a point up to the parameter distance `reach` from `x0`.
+pub fn locate_singular_point_within<S1, S2>(
+    p: &S1,
+    q: &S2,
+    x0: [f64; 4],
+    tol: f64,
+    sine_tol: f64,
+    reach: f64,
 ) -> Option<[f64; 4]>
 where
     S1: ParametricSurface + ?Sized,
@@ -115,7 +132,7 @@ where
     let (np, nq) = (dp.normal(), dq.normal());
     let sine = np.cross(&nq).norm() / (np.norm() * nq.norm());
     let moved = (x - Vector4::from(x0)).norm();
-    let ok = (dp.p - dq.p).norm() <= tol && sine <= sine_tol && moved <= 0.1;
+    let ok = (dp.p - dq.p).norm() <= tol && sine <= sine_tol && moved <= reach;
     ok.then_some([x[0], x[1], x[2], x[3]])
 }
 

@@ -174,14 +174,45 @@ pub fn krawczyk_operator(
     cols: &[[Interval; 3]; 3],
     c: &Matrix3<f64>,
 ) -> [Interval; 3] {
-    let c: [[Interval; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|k| point(c[(r, k)])));
+    let jac: [[Interval; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|k| cols[k][r]));
+    let c: [[f64; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|k| c[(r, k)]));
+    krawczyk_image_n(&free.map(|k| x[k]), &free.map(|k| xm[k]), f, &jac, &c)
+}
+
+/// The Krawczyk operator in `N` unknowns, the one formula every Krawczyk test of the crate
+/// evaluates:
+///
+/// ```text
+/// K(X)ᵣ = x̃ᵣ − (C·F(x̃))ᵣ + Σ_k (I − C·J(X))ᵣₖ · (X − x̃)ₖ
+/// ```
+///
+/// with `x` the box, `xm` the point `x̃` (point intervals, or thin enclosures, inside `x`), `f`
+/// an enclosure of `F` at `x̃` (for a parametric problem: over all parameter values), `jac[r][k]`
+/// the interval Jacobian `∂Fᵣ/∂xₖ` over the box (and the parameters) and `c` any preconditioner
+/// (rows). Rigorous whatever `c` is: every zero of `F` in `x` lies in the image; an image inside
+/// the interior of `x` proves exactly one (for each parameter value); an image disjoint from `x`
+/// proves none.
+pub fn krawczyk_image_n<const N: usize>(
+    x: &[Interval; N],
+    xm: &[Interval; N],
+    f: &[Interval; N],
+    jac: &[[Interval; N]; N],
+    c: &[[f64; N]; N],
+) -> [Interval; N] {
+    let c: [[Interval; N]; N] = c.map(|row| row.map(point));
     std::array::from_fn(|r| {
-        let cf = c[r][0] * f[0] + c[r][1] * f[1] + c[r][2] * f[2];
-        let mut acc = xm[free[r]] - cf;
-        for (col, &k) in free.iter().enumerate() {
-            // (I − C·J)[r][col]
-            let cj = c[r][0] * cols[col][0] + c[r][1] * cols[col][1] + c[r][2] * cols[col][2];
-            let ident = if r == col { point(1.0) } else { point(0.0) };
+        let mut cf = point(0.0);
+        for (ci, fi) in c[r].iter().zip(f) {
+            cf += *ci * *fi;
+        }
+        let mut acc = xm[r] - cf;
+        for k in 0..N {
+            // (I − C·J)[r][k]
+            let mut cj = point(0.0);
+            for (i, ci) in c[r].iter().enumerate() {
+                cj += *ci * jac[i][k];
+            }
+            let ident = if r == k { point(1.0) } else { point(0.0) };
             acc += (ident - cj) * (x[k] - xm[k]);
         }
         acc

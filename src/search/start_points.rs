@@ -40,11 +40,13 @@ use crate::pair::newton::{refine, Constraint};
 use faces::{face_search, face_searches_ahead};
 use inari::Interval;
 use nalgebra::{Matrix3x4, Vector3};
+use node_region::NodeRegions;
 use pair_verdict::{classify_pair, PairVerdict};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
 mod faces;
+mod node_region;
 mod pair_verdict;
 
 /// Tuning of the start-point search.
@@ -135,6 +137,10 @@ pub struct SearchReport {
     pub loop_free_pairs: usize,
     /// Regions not settled: neither proven free of further branches nor searched completely.
     pub undecided_regions: Vec<UndecidedRegion>,
+    /// Neighbourhoods of singular points proven to hold no closed component (every component
+    /// inside reaches a face, which was searched): their pairs are settled at once instead of
+    /// being subdivided to the smallest size.
+    pub node_regions: usize,
     /// True only when every pair was settled (disjoint, or loop-free with all its faces
     /// searched to proven leaves), every boundary leaf was settled and no budget ran out: then
     /// every branch inside the domains has a start point in `boundary` or `interior`.
@@ -241,6 +247,7 @@ fn pair_search(
 ) {
     let mut frontier = vec![(Piece::whole(p), Piece::whole(q))];
     let mut searched = HashMap::new();
+    let mut nodes = NodeRegions::default();
     while !frontier.is_empty() {
         let mut next = Vec::new();
         // The tests of a level are independent: run them in parallel, then act on them in
@@ -272,8 +279,15 @@ fn pair_search(
                         undecided_pair(ctx, p, q, &a, &b, report);
                     }
                 }
-                PairVerdict::Undecided => undecided_pair(ctx, p, q, &a, &b, report),
-                PairVerdict::Split(halves) => next.extend(halves),
+                PairVerdict::Undecided => {
+                    if !(nodes.try_pair(ctx, p, q, &a, &b, report) && nodes.settles(&a, &b)) {
+                        undecided_pair(ctx, p, q, &a, &b, report);
+                    }
+                }
+                PairVerdict::Split(halves) => {
+                    nodes.try_pair(ctx, p, q, &a, &b, report);
+                    next.extend(halves);
+                }
             }
         }
         let rest = rest.map(|(pair, _)| pair);
@@ -285,6 +299,8 @@ fn pair_search(
         }) {
             undecided_pair(ctx, p, q, &a, &b, report);
         }
+        // Pairs inside a proven neighbourhood of a singular point are settled.
+        next.retain(|(a, b)| !nodes.settles(a, b));
         if next.len() > ctx.max_frontier {
             for (a, b) in next.drain(..) {
                 undecided_pair(ctx, p, q, &a, &b, report);
@@ -292,6 +308,7 @@ fn pair_search(
         }
         frontier = next;
     }
+    report.node_regions = nodes.regions.len();
 }
 
 /// Records an undecided pair, and offers Newton projections from its centre and from the

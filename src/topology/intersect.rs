@@ -38,6 +38,9 @@ pub struct IntersectStats {
     pub disjoint_pairs: usize,
     /// Sub-patch pairs the search proved loop-free (their faces were then searched).
     pub loop_free_pairs: usize,
+    /// Neighbourhoods of singular points the search proved to hold no closed component (their
+    /// faces were then searched; no pair inside was subdivided further).
+    pub node_regions: usize,
     /// Regions the search could not settle (parameter boxes on P and Q, rounded outward).
     pub undecided_regions: Vec<UndecidedRegion>,
     /// The search settled every region: every branch inside the domains got a start point.
@@ -82,6 +85,7 @@ pub fn intersect(
         search_truncated: report.truncated,
         disjoint_pairs: report.disjoint_pairs,
         loop_free_pairs: report.loop_free_pairs,
+        node_regions: report.node_regions,
         undecided_regions: report.undecided_regions.clone(),
         search_complete: report.complete,
         search_seconds: (t1 - t0).as_secs_f64(),
