@@ -65,10 +65,11 @@ where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
-    locate_singular_point_within(p, q, x0, tol, sine_tol, 0.1)
+    locate_singular_point_within(p, q, x0, tol, sine_tol, 0.1, 200)
 }
 
-/// [`locate_singular_point`], accepting a point up to the parameter distance `reach` from `x0`.
+/// [`locate_singular_point`], accepting a point up to the parameter distance `reach` from `x0`,
+/// after at most `iterations` Gauss–Newton steps.
 pub fn locate_singular_point_within<S1, S2>(
     p: &S1,
     q: &S2,
@@ -76,13 +77,14 @@ pub fn locate_singular_point_within<S1, S2>(
     tol: f64,
     sine_tol: f64,
     reach: f64,
+    iterations: usize,
 ) -> Option<[f64; 4]>
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
     let mut x = Vector4::from(x0);
-    for _ in 0..200 {
+    for _ in 0..iterations {
         let dp = p.derivs(x[0], x[1]);
         let dq = q.derivs(x[2], x[3]);
         let (np, nq) = (dp.normal(), dq.normal());

@@ -86,12 +86,16 @@ fn within(x: [f64; 2], y: [f64; 2]) -> bool {
 pub(super) struct NodeRegions {
     pub(super) regions: Vec<NodeRegion>,
     tried: Vec<[f64; 4]>,
+    /// Pairs (normalised boxes of both pieces) from whose centre no singular point was found:
+    /// their sub-pairs are not tried again until eight times smaller.
+    failed: Vec<[[f64; 2]; 4]>,
     attempts: usize,
 }
 
-/// Most singular-point locations tried per search (each a Gauss–Newton run and, when it
-/// converges, a few interval tests).
-const MAX_ATTEMPTS: usize = 128;
+/// Most singular-point locations tried per search (each up to 30 Gauss–Newton steps and, when it
+/// converges, a few interval tests): near-tangent pairs without a singular point (Fig. 7's loops
+/// 3.5e-4 from a common plane) try and fail.
+const MAX_ATTEMPTS: usize = 32;
 
 /// Pairs are tried once both pieces are at most this fraction of the model size.
 const TRY_BELOW: f64 = 0.25;
@@ -156,11 +160,23 @@ impl NodeRegions {
         if self.tried.iter().any(inside) {
             return false;
         }
+        let boxes = [a.s, a.r, b.s, b.r];
+        let below = |f: &[[f64; 2]; 4]| {
+            boxes.iter().zip(f).all(|(x, y)| within(*x, *y))
+                && boxes
+                    .iter()
+                    .zip(f)
+                    .any(|(x, y)| 8.0 * (x[1] - x[0]) > y[1] - y[0])
+        };
+        if self.failed.iter().any(below) {
+            return false;
+        }
         self.attempts += 1;
         // Anywhere in the pair's box or next to it (a singular point on a subdivision line is
         // found from the pairs on both sides).
         let reach = bp.iter().chain(&bq).map(|i| i.wid()).fold(0.0, f64::max);
-        let Some(x) = locate_singular_point_within(p, q, x0, 1e-6 * size, 1e-6, reach) else {
+        let Some(x) = locate_singular_point_within(p, q, x0, 1e-6 * size, 1e-6, reach, 30) else {
+            self.failed.push(boxes);
             return false;
         };
         if self.tried.iter().any(|t| same(t, &x)) {
