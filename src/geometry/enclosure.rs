@@ -55,6 +55,32 @@ fn restrict_curve(net: &[[Interval; 4]], a: Interval, b: Interval) -> Vec<[Inter
         .collect()
 }
 
+/// The homogeneous net (degrees `[m, n]`, row-major in the first parameter) restricted to the
+/// normalised box `[s₀, s₁] × [r₀, r₁]`, the ends given as intervals enclosing the exact ones:
+/// every u-column, then every v-row ([`restrict_curve`]). Each output point encloses the exact
+/// control point of the sub-patch over that box.
+pub(crate) fn restrict_net(
+    net: &[[Interval; 4]],
+    [m, n]: [usize; 2],
+    [sa, sb]: [Interval; 2],
+    [ra, rb]: [Interval; 2],
+) -> Vec<[Interval; 4]> {
+    let mut tmp = vec![[point(0.0); 4]; net.len()];
+    let mut column = Vec::with_capacity(m + 1);
+    for j in 0..=n {
+        column.clear();
+        column.extend((0..=m).map(|i| net[i * (n + 1) + j]));
+        for (i, h) in restrict_curve(&column, sa, sb).into_iter().enumerate() {
+            tmp[i * (n + 1) + j] = h;
+        }
+    }
+    let mut out = Vec::with_capacity(net.len());
+    for i in 0..=m {
+        out.extend(restrict_curve(&tmp[i * (n + 1)..(i + 1) * (n + 1)], ra, rb));
+    }
+    out
+}
+
 /// The interval `(x − lo) / (hi − lo)` enclosing the normalised parameter of `x`.
 fn normalised(x: f64, [lo, hi]: [f64; 2]) -> Interval {
     (point(x) - point(lo)) / (point(hi) - point(lo))
@@ -95,22 +121,7 @@ impl RationalBezierPatch {
         let d = self.domain();
         let (ua, ub) = (normalised(u.inf(), d.u), normalised(u.sup(), d.u));
         let (va, vb) = (normalised(v.inf(), d.v), normalised(v.sup(), d.v));
-        let net = self.homogeneous();
-        // Restrict every u-column (fixed j), then every v-row (fixed i).
-        let mut tmp = vec![[point(0.0); 4]; net.len()];
-        let mut column = Vec::with_capacity(m + 1);
-        for j in 0..=n {
-            column.clear();
-            column.extend((0..=m).map(|i| net[i * (n + 1) + j]));
-            for (i, h) in restrict_curve(&column, ua, ub).into_iter().enumerate() {
-                tmp[i * (n + 1) + j] = h;
-            }
-        }
-        let mut out = Vec::with_capacity(net.len());
-        for i in 0..=m {
-            out.extend(restrict_curve(&tmp[i * (n + 1)..(i + 1) * (n + 1)], va, vb));
-        }
-        out
+        restrict_net(self.homogeneous(), [m, n], [ua, ub], [va, vb])
     }
 
     /// The sub-patch over `[u.inf, u.sup] × [v.inf, v.sup]` (declared parameters, which become

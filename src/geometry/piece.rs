@@ -12,7 +12,7 @@
 //! `Σ |B_i(x)| = (1 + 2δ)^k` at worst for `x ∈ [−δ, 1 + δ]`, so
 //! `|g(x) − m| ≤ max |c_i − m| · (1 + 2δ)^k` there (per direction for tensor products).
 
-use crate::geometry::enclosure::hull_of_net;
+use crate::geometry::enclosure::{hull_of_net, restrict_net};
 use crate::geometry::{Domain, RationalBezierPatch};
 use crate::numeric::rounding::{average, dot_point, sub};
 use crate::numeric::scalar::{interval, point, Scalar};
@@ -67,21 +67,16 @@ impl Piece {
     }
 
     /// The piece of `patch` over the normalised box `s × r` (sub-ranges of `[0, 1]`, e.g. the
-    /// dyadic box around a singular point, not aligned with any halving): de Casteljau at `s₀`
-    /// keeping the upper part, then at `(s₁ − s₀)/(1 − s₀)` keeping the lower part, per
-    /// direction, with the split parameters and every combination in interval arithmetic, so the
-    /// net encloses the exact sub-net over exactly that box. `None` if a range is empty or leaves
-    /// `[0, 1]`.
+    /// dyadic box around a singular point, not aligned with any halving), by blossoming in
+    /// interval arithmetic ([`restrict_net`]): the net encloses the exact sub-net over exactly
+    /// that box. `None` if a range is empty or leaves `[0, 1]`.
     pub fn over(patch: &RationalBezierPatch, s: [f64; 2], r: [f64; 2]) -> Option<Self> {
         let valid = |x: [f64; 2]| 0.0 <= x[0] && x[0] < x[1] && x[1] <= 1.0;
         if !(valid(s) && valid(r)) {
             return None;
         }
         let whole = Piece::whole(patch);
-        let mut net = whole.net;
-        for (dir, range) in [(0, s), (1, r)] {
-            restrict(&mut net, whole.degree, dir, range, whole.polynomial);
-        }
+        let net = restrict_net(&whole.net, whole.degree, s.map(point), r.map(point));
         Some(Piece::new(s, r, whole.degree, net, whole.polynomial))
     }
 
@@ -354,63 +349,6 @@ impl Piece {
             None
         };
         Some([su, sv])
-    }
-}
-
-/// Restricts the net (degrees `degree`, row-major in `s`) in direction `dir` from `[0, 1]` to
-/// `range` (see [`Piece::over`]). The weights of a polynomial net are left exactly 1.
-fn restrict(
-    net: &mut [[Interval; 4]],
-    degree: [usize; 2],
-    dir: usize,
-    range: [f64; 2],
-    polynomial: bool,
-) {
-    let [m, n] = degree;
-    let (count, lines) = if dir == 0 {
-        (m + 1, n + 1)
-    } else {
-        (n + 1, m + 1)
-    };
-    if count < 2 {
-        return;
-    }
-    let idx = |k: usize, l: usize| {
-        if dir == 0 {
-            k * (n + 1) + l
-        } else {
-            l * (n + 1) + k
-        }
-    };
-    let coords = if polynomial { 3 } else { 4 };
-    let (a, b) = (point(range[0]), point(range[1]));
-    // Upper part at s₀, then the lower part at (s₁ − s₀)/(1 − s₀) of what is left.
-    let cuts = [
-        (range[0] > 0.0).then_some((a, true)),
-        (range[1] < 1.0).then(|| ((b - a) / (point(1.0) - a), false)),
-    ];
-    let mut work = vec![[point(0.0); 4]; count];
-    for (tau, keep_upper) in cuts.into_iter().flatten() {
-        for l in 0..lines {
-            for (k, w) in work.iter_mut().enumerate() {
-                *w = net[idx(k, l)];
-            }
-            let (mut lo, mut hi) = (work.clone(), work.clone());
-            for level in 1..count {
-                for k in 0..count - level {
-                    let next = work[k + 1];
-                    for (w, x) in work[k][..coords].iter_mut().zip(next) {
-                        *w = *w + tau * (x - *w);
-                    }
-                }
-                lo[level] = work[0];
-                hi[count - 1 - level] = work[count - 1 - level];
-            }
-            let kept = if keep_upper { &hi } else { &lo };
-            for (k, x) in kept.iter().enumerate() {
-                net[idx(k, l)] = *x;
-            }
-        }
     }
 }
 
