@@ -150,12 +150,13 @@ impl NodeRegions {
         if np.cross(&nq).norm() > 0.5 * np.norm() * nq.norm() {
             return false;
         }
-        // Skip pairs whose box holds a point already tried.
+        // Skip pairs whose box, widened by its width (the reach of the search below), holds a
+        // point already tried.
         let inside = |x: &[f64; 4]| {
-            [bp[0], bp[1], bq[0], bq[1]]
-                .iter()
-                .zip(x)
-                .all(|(i, v)| i.inf() <= *v && *v <= i.sup())
+            [bp[0], bp[1], bq[0], bq[1]].iter().zip(x).all(|(i, v)| {
+                let w = i.wid();
+                i.inf() - w <= *v && *v <= i.sup() + w
+            })
         };
         if self.tried.iter().any(inside) {
             return false;
@@ -276,18 +277,27 @@ fn graph_over_p(
     let [_, ps, pt, ..] = p.second_order_centred(xp[0], xp[1], mp[0], mp[1]);
     let [_, qu, qv, ..] = q.second_order_centred(xq[0], xq[1], cq[0], cq[1]);
     let gap: [Interval; 3] = std::array::from_fn(|k| pm[k] - qc[k]);
-    let f: [Interval; 2] = std::array::from_fn(|i| {
-        dot_point(&e[i], &gap)
-            + dot_point(&e[i], &ps) * (xp[0] - mp[0])
-            + dot_point(&e[i], &pt) * (xp[1] - mp[1])
-    });
+    let f: [Interval; 2] = std::array::from_fn(|i| dot_point(&e[i], &gap));
+    let jp: [[Interval; 2]; 2] =
+        std::array::from_fn(|i| [dot_point(&e[i], &ps), dot_point(&e[i], &pt)]);
     let jac: [[Interval; 2]; 2] =
         std::array::from_fn(|i| [-dot_point(&e[i], &qu), -dot_point(&e[i], &qv)]);
     let Some(c) = Matrix2::from_fn(|r, k| jac[r][k].mid()).try_inverse() else {
         return false;
     };
     let c = [[c[(0, 0)], c[(0, 1)]], [c[(1, 0)], c[(1, 1)]]];
+    // G(σ, t, c_q) ∈ G(m_p, c_q) + J_P·((σ, t) − m_p) (mean value over xp). Its term is added
+    // as (C·J_P)·(xp − m_p), not C·(J_P·(xp − m_p)): the product C·J_P is nearly the tangent
+    // map between the parameters, so the box maps to a box without wrapping.
     let k = krawczyk_image_n(xq, &cq, &f, &jac, &c);
+    let k: [Interval; 2] = std::array::from_fn(|r| {
+        let mut acc = k[r];
+        for col in 0..2 {
+            let cj = point(c[r][0]) * jp[0][col] + point(c[r][1]) * jp[1][col];
+            acc -= cj * (xp[col] - mp[col]);
+        }
+        acc
+    });
     k.iter().zip(xq).all(|(k, x)| {
         let margin = 1e-12 * (1.0 + x.mag());
         k.inf() > x.inf() + margin && k.sup() < x.sup() - margin
