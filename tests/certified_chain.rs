@@ -107,6 +107,18 @@ fn check_circle(s: &Scene, c: &CertifiedBranch, r: &[[f64; 3]; 3]) {
         assert!(w[0].overlaps(&w[1]), "gap in the chain");
     }
     assert!(c.boxes[c.boxes.len() - 1].overlaps(&c.boxes[0]));
+    // Round once: the pieces' lengths add up to the circle's (the loop may be certified as two
+    // arcs at the same time; neither may run on past where the other starts).
+    let length: f64 = c
+        .tubes
+        .iter()
+        .map(|t| t.along.expect("chain pieces carry their length").arc_length)
+        .sum();
+    let round = std::f64::consts::TAU * rad;
+    assert!(
+        (length / round - 1.0).abs() < 1e-3,
+        "the pieces are {length} long, the circle {round}"
+    );
     // Every reported point within the tolerance of the circle; the angles cover the circle.
     let tol = c.certified_tolerance + MARGIN;
     let mut angles = Vec::new();

@@ -42,6 +42,7 @@ use crate::pair::field::transversal_velocity;
 use crate::pair::krawczyk::{krawczyk, KrawczykResult};
 use crate::pair::newton::{refine, Constraint, Refined};
 use inari::Interval;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 mod leave;
@@ -201,6 +202,9 @@ fn closed_chain(
     xs: &[[f64; 4]],
     opts: &ChainOptions,
 ) -> Option<CertifiedBranch> {
+    if let Some(c) = closed_chain_halves(p, q, xs, opts) {
+        return Some(c);
+    }
     let mut w = Walker::new(p, q, opts);
     w.wants_closure = true;
     let mut nodes = w.nodes(xs);
@@ -219,6 +223,54 @@ fn closed_chain(
     nodes.extend([last, back]);
     w.advance(&nodes, Some(&start_slice)).ok()?;
     closed_loop(p, q, &w.links)
+}
+
+/// A closed loop marched once round, certified as two arcs at the same time (rayon): from the
+/// first guide point to the middle one and from there back to the first, each arc's first link
+/// holding a proven slice of the curve at its start ([`point_slice`]) and its last link the slice
+/// where the other arc starts. `None` (the caller walks round in one piece) when the march may
+/// have gone round more than once (a guide point in the middle of the list, or any before the
+/// last few, nearest the first one), when a slice is not proven, or when an arc fails.
+fn closed_chain_halves(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    xs: &[[f64; 4]],
+    opts: &ChainOptions,
+) -> Option<CertifiedBranch> {
+    let n = xs.len();
+    if n < 8 {
+        return None;
+    }
+    let scales = pair_widths(&p.domain(), &q.domain());
+    let from_start: Vec<f64> = xs.iter().map(|x| scaled_dist(&xs[0], x, &scales)).collect();
+    let reach = from_start.iter().copied().fold(0.0, f64::max);
+    let nearest = (n / 8..n).min_by(|&a, &b| from_start[a].total_cmp(&from_start[b]))?;
+    let once_round = nearest + 3 >= n
+        && from_start[n / 8..=7 * n / 8]
+            .iter()
+            .all(|&d| d >= 0.2 * reach);
+    if !once_round {
+        return None;
+    }
+    let m = n / 2;
+    let (s0, sm) = (point_slice(p, q, &xs[0])?, point_slice(p, q, &xs[m])?);
+    let spent = AtomicUsize::new(0);
+    let arc = |ys: &[[f64; 4]], from: [Interval; 4], to: [Interval; 4]| {
+        let mut w = Walker::new(p, q, opts);
+        w.shared = Some(&spent);
+        w.join = Some(from);
+        let nodes = w.nodes(ys);
+        if nodes.len() < ys.len() {
+            return None;
+        }
+        w.advance(&nodes, Some(&to)).ok()?;
+        Some(w.links)
+    };
+    let second: Vec<[f64; 4]> = xs[m..].iter().chain(&xs[..1]).copied().collect();
+    let (a, b) = rayon::join(|| arc(&xs[..=m], s0, sm), || arc(&second, sm, s0));
+    let mut links = a?;
+    links.extend(b?);
+    closed_loop(p, q, &links)
 }
 
 /// The certificate of a loop proven closed by `links`.
@@ -262,9 +314,68 @@ fn ring_chain(
     assemble(p, q, &bwd.links, &fwd.links, [bwd_end, fwd_end])
 }
 
+/// A proven slice of the curve at the guide point `x`: a box round it, its fastest-moving
+/// parameter held at `x`'s value, where Krawczyk proves exactly one curve point. Two halves
+/// whose first links both hold it are joined there (the curve point of the slice lies on both).
+fn point_slice(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    x: &[f64; 4],
+) -> Option<[Interval; 4]> {
+    let scales = pair_widths(&p.domain(), &q.domain());
+    let v = velocity(p, q, x);
+    let j =
+        (0..4).max_by(|&a, &b| (v[a].abs() / scales[a]).total_cmp(&(v[b].abs() / scales[b])))?;
+    let unit = crate::numeric::scalar::interval(-1.0, 1.0)?;
+    [1e-12, 1e-10, 1e-8].into_iter().find_map(|pad| {
+        let y: [Interval; 4] = std::array::from_fn(|i| {
+            if i == j {
+                point(x[i])
+            } else {
+                point(x[i]) + point(pad * scales[i]) * unit
+            }
+        });
+        match krawczyk(p, q, y, j, 4) {
+            KrawczykResult::Proven { enclosure, .. } => Some(enclosure),
+            KrawczykResult::NotProven(_) => None,
+        }
+    })
+}
+
 /// An open branch through node `s`: the forward half over `xs[s..]`, the backward half over
-/// `xs[..=s]` reversed, joined at the start slice.
+/// `xs[..=s]` reversed, joined at the start. When both halves have marched points and a slice of
+/// the curve at the start is proven ([`point_slice`]), the halves are walked at the same time
+/// (rayon), each first link holding that slice; otherwise one after the other, the backward
+/// half's first link holding the forward half's start slice.
 fn open_chain(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    xs: &[[f64; 4]],
+    s: usize,
+    ends: [EndReason; 2],
+    opts: &ChainOptions,
+) -> Option<CertifiedBranch> {
+    if s > 0 && s + 1 < xs.len() {
+        if let Some(slice) = point_slice(p, q, &xs[s]) {
+            let spent = AtomicUsize::new(0);
+            let half = |ys: &[[f64; 4]], end: EndReason| {
+                let mut w = Walker::new(p, q, opts);
+                w.shared = Some(&spent);
+                w.join = Some(slice);
+                let reached = w.walk(ys, end);
+                (w.links, reached)
+            };
+            let back: Vec<[f64; 4]> = xs[..=s].iter().rev().copied().collect();
+            let ((fwd, fwd_end), (bwd, bwd_end)) =
+                rayon::join(|| half(&xs[s..], ends[1]), || half(&back, ends[0]));
+            return assemble(p, q, &bwd, &fwd, [bwd_end, fwd_end]);
+        }
+    }
+    open_chain_in_turn(p, q, xs, s, ends, opts)
+}
+
+/// [`open_chain`] one half after the other.
+fn open_chain_in_turn(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     xs: &[[f64; 4]],

@@ -85,6 +85,9 @@ pub(super) struct Walker<'a> {
     pub(super) join: Option<[Interval; 4]>,
     /// Links made by the other half (shared budget).
     pub(super) used: usize,
+    /// Links made by all the walkers of one branch that run at the same time (the budget is
+    /// shared through it; `None` for a walker on its own).
+    pub(super) shared: Option<&'a AtomicUsize>,
     /// On a loop, the first link's start slice: a later link whose tube holds it closes the
     /// loop (the curve passes through the start point there), and the walk stops.
     pub(super) close_at: Option<[Interval; 4]>,
@@ -121,6 +124,7 @@ impl<'a> Walker<'a> {
             links: Vec::new(),
             join: None,
             used: 0,
+            shared: None,
             close_at: None,
             closed: false,
             wants_closure: false,
@@ -339,6 +343,9 @@ impl<'a> Walker<'a> {
 
     /// Adds a proven link; on a loop, whether it closes the loop (then the walk stops).
     fn push(&mut self, link: Link) -> bool {
+        if let Some(c) = self.shared {
+            c.fetch_add(1, Ordering::Relaxed);
+        }
         self.join = Some(link.end_slice());
         self.links.push(link);
         if self.links.len() == 1 {
@@ -363,7 +370,10 @@ impl<'a> Walker<'a> {
         if self.opts.deadline.is_some_and(|d| Instant::now() >= d) {
             return Some("time limit reached".into());
         }
-        (self.links.len() + self.used >= self.opts.max_links)
+        let made = self
+            .shared
+            .map_or(self.links.len(), |c| c.load(Ordering::Relaxed));
+        (made + self.used >= self.opts.max_links)
             .then(|| format!("budget spent ({} links)", self.opts.max_links))
     }
 
