@@ -6,11 +6,11 @@
 
 use crate::edge::{Edge, EdgeError};
 use crate::error::{Error, Result};
-use crate::io::step::write::{step_text, StepCurve};
-use crate::io::step::StepModel;
 use crate::io::intersection_json::{result_meta, shell_result};
 use crate::io::result_json::ResultMeta;
 use crate::io::scene::{Method, Scene, SceneOptions, ShellScene};
+use crate::io::step::write::{step_text, StepCurve};
+use crate::io::step::StepModel;
 use crate::march::branch::Intersection;
 use crate::shell::{intersect_shells, ShellIntersection};
 use crate::solve::{intersect, Engine, Options, SurfaceIntersection, DEFAULT_MAX_STEPS};

@@ -46,7 +46,9 @@ fn trace(file: &str) -> Traced {
     let [a, b] = &step.scene.shells;
     let edges = edges_of_shells(a, b, &report.result);
     for (k, e) in &edges {
-        let e = e.as_ref().unwrap_or_else(|err| panic!("{file}: curve {k}: {err}"));
+        let e = e
+            .as_ref()
+            .unwrap_or_else(|err| panic!("{file}: curve {k}: {err}"));
         assert!(e.closed, "{file}: curve {k} is not closed");
         assert!(
             e.edge_tolerance <= 1e-9,
@@ -184,7 +186,10 @@ fn sphere_against_plane_is_one_circle_written_and_read_back() {
     assert_eq!(faces[0].faces[0].surface_kind, "SPHERICAL_SURFACE");
     assert!(!faces[0].faces[0].trimmed, "a whole sphere is not trimmed");
     assert_eq!(faces[1].faces[0].surface_kind, "PLANE");
-    assert!(faces[1].faces[0].trimmed, "plane faces are reported trimmed");
+    assert!(
+        faces[1].faces[0].trimmed,
+        "plane faces are reported trimmed"
+    );
     assert_eq!(faces[0].length_unit.as_deref(), Some("MILLI METRE"));
     // Every branch says its pair is trimmed (the plane face is).
     assert!(!t.meta.branch_notes.is_empty());

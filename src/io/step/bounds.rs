@@ -55,7 +55,11 @@ impl Boundary {
 
 /// The bounds of face `face` (its `FACE_BOUND`s `bounds`); `axis` is the surface's axis,
 /// whose circles count as natural edges (the ends of a cylinder or cone face).
-pub(super) fn boundary(e: &Entities<'_>, bounds: &[u64], axis: Option<[f64; 3]>) -> Result<Boundary> {
+pub(super) fn boundary(
+    e: &Entities<'_>,
+    bounds: &[u64],
+    axis: Option<[f64; 3]>,
+) -> Result<Boundary> {
     let mut b = Boundary {
         natural: true,
         bounded: !bounds.is_empty(),
@@ -119,21 +123,22 @@ fn curve(
         }
         return Ok(false);
     }
-    let a = e.record(
-        id,
-        &[
-            "LINE",
-            "CIRCLE",
-            "ELLIPSE",
-            "B_SPLINE_CURVE_WITH_KNOTS",
-            "POLYLINE",
-            "SEAM_CURVE",
-            "SURFACE_CURVE",
-            "INTERSECTION_CURVE",
-            "TRIMMED_CURVE",
-        ],
-    )
-    .map_err(|_| step_error(id, format!("edge curve {name} is not supported")))?;
+    let a = e
+        .record(
+            id,
+            &[
+                "LINE",
+                "CIRCLE",
+                "ELLIPSE",
+                "B_SPLINE_CURVE_WITH_KNOTS",
+                "POLYLINE",
+                "SEAM_CURVE",
+                "SURFACE_CURVE",
+                "INTERSECTION_CURVE",
+                "TRIMMED_CURVE",
+            ],
+        )
+        .map_err(|_| step_error(id, format!("edge curve {name} is not supported")))?;
     match a.name() {
         // A line edge is the segment between its vertices, which are already counted.
         "LINE" => Ok(false),

@@ -37,7 +37,11 @@ impl<'a> Entities<'a> {
         }
         Err(step_error(
             id,
-            format!("is a {} where {} is needed", inst.name(), names.join(" or ")),
+            format!(
+                "is a {} where {} is needed",
+                inst.name(),
+                names.join(" or ")
+            ),
         ))
     }
 }

@@ -35,9 +35,9 @@
 //! exact NURBS with enclosed control data. The subset needed here (Part 21 syntax, a dozen
 //! entity types) is short enough to write with the limits above ([`part21`]).
 //!
-//! **Writing** ([`write`]): certified curves as `B_SPLINE_CURVE_WITH_KNOTS` in a
+//! **Writing** ([`mod@write`]): certified curves as `B_SPLINE_CURVE_WITH_KNOTS` in a
 //! `GEOMETRIC_CURVE_SET` of a `GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION`, as
-//! OpenCASCADE writes free curves. P-curves are left out (see [`write`]).
+//! OpenCASCADE writes free curves. P-curves are left out (see [`mod@write`]).
 
 mod bounds;
 mod entities;
@@ -136,7 +136,10 @@ impl StepModel {
         if size > MAX_FILE_BYTES {
             return Err(Error::Step {
                 entity: None,
-                message: format!("{}: {size} bytes, more than {MAX_FILE_BYTES}", path.display()),
+                message: format!(
+                    "{}: {size} bytes, more than {MAX_FILE_BYTES}",
+                    path.display()
+                ),
             });
         }
         let bytes = std::fs::read(path).map_err(io)?;
@@ -165,7 +168,11 @@ impl StepModel {
 }
 
 /// Reads one face: its surface as a NURBS on the patch the face is intersected on.
-fn read_face(e: &Entities<'_>, face: entities::Args<'_>, angle: inari::Interval) -> Result<StepFace> {
+fn read_face(
+    e: &Entities<'_>,
+    face: entities::Args<'_>,
+    angle: inari::Interval,
+) -> Result<StepFace> {
     let bounds = face.refs(1)?;
     let sid = face.reference(2)?;
     let inst = e.get(sid)?;
@@ -216,7 +223,10 @@ fn read_face(e: &Entities<'_>, face: entities::Args<'_>, angle: inari::Interval)
         let f = surfaces::placement(e, a.reference(1)?)?;
         let b = bounds::boundary(e, &bounds, None)?;
         let o = surfaces::mid(&f.origin);
-        let (u, v) = match (b.range(o, surfaces::mid(&f.x)), b.range(o, surfaces::mid(&f.y))) {
+        let (u, v) = match (
+            b.range(o, surfaces::mid(&f.x)),
+            b.range(o, surfaces::mid(&f.y)),
+        ) {
             (Some(u), Some(v)) if u[0] < u[1] && v[0] < v[1] => (u, v),
             _ => {
                 return Err(step_error(
@@ -227,7 +237,10 @@ fn read_face(e: &Entities<'_>, face: entities::Args<'_>, angle: inari::Interval)
         };
         (surfaces::plane(e, a, u, v)?, "PLANE", true)
     } else {
-        return Err(step_error(sid, format!("surface type {name} is not supported")));
+        return Err(step_error(
+            sid,
+            format!("surface type {name} is not supported"),
+        ));
     };
     Ok(StepFace {
         entity: face.id,
@@ -252,7 +265,11 @@ fn length_unit(e: &Entities<'_>) -> Result<Option<String>> {
                 _ => None,
             };
             let prefix = a.at(0).ok().and_then(enum_of);
-            let name = a.at(1).ok().and_then(enum_of).unwrap_or_else(|| "METRE".into());
+            let name = a
+                .at(1)
+                .ok()
+                .and_then(enum_of)
+                .unwrap_or_else(|| "METRE".into());
             return Ok(Some(match prefix {
                 Some(p) => format!("{p} {name}"),
                 None => name,

@@ -237,8 +237,9 @@ impl<'a> Lexer<'a> {
             }
             b'+' | b'-' | b'0'..=b'9' => self.number(line).map(Some),
             c if c.is_ascii_alphabetic() || c == b'_' || c == b'!' => {
-                let word =
-                    self.take_while(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-' || b == b'!');
+                let word = self.take_while(|b| {
+                    b.is_ascii_alphanumeric() || b == b'_' || b == b'-' || b == b'!'
+                });
                 single(Tok::Keyword(word.to_ascii_uppercase()))
             }
             other => Err(syntax(
@@ -311,7 +312,10 @@ impl Parser<'_> {
         match self.bump()? {
             Some(t) if t == want => Ok(()),
             Some(t) => Err(syntax(line, format!("expected {what}, found {t:?}"))),
-            None => Err(syntax(line, format!("expected {what}, found the end of the file"))),
+            None => Err(syntax(
+                line,
+                format!("expected {what}, found the end of the file"),
+            )),
         }
     }
 
@@ -319,7 +323,10 @@ impl Parser<'_> {
     fn list(&mut self, depth: usize) -> Result<Vec<Param>> {
         let line = self.lex.line;
         if depth > MAX_DEPTH {
-            return Err(syntax(line, format!("lists nested deeper than {MAX_DEPTH}")));
+            return Err(syntax(
+                line,
+                format!("lists nested deeper than {MAX_DEPTH}"),
+            ));
         }
         let mut out = Vec::new();
         if self.peek()? == Some(&Tok::Close) {
@@ -359,7 +366,12 @@ impl Parser<'_> {
                 Param::Typed(k, Box::new(value))
             }
             Some(t) => return Err(syntax(line, format!("expected a parameter, found {t:?}"))),
-            None => return Err(syntax(line, "expected a parameter, found the end of the file")),
+            None => {
+                return Err(syntax(
+                    line,
+                    "expected a parameter, found the end of the file",
+                ))
+            }
         })
     }
 
@@ -397,7 +409,12 @@ pub fn parse(text: &str) -> Result<Part21> {
     };
     match p.bump()? {
         Some(Tok::Keyword(k)) if k == "ISO-10303-21" => p.expect(Tok::Semicolon, "`;`")?,
-        _ => return Err(syntax(1, "not a STEP file (no `ISO-10303-21;` at the start)")),
+        _ => {
+            return Err(syntax(
+                1,
+                "not a STEP file (no `ISO-10303-21;` at the start)",
+            ))
+        }
     }
     let mut out = Part21::default();
     let mut data_sections = 0;

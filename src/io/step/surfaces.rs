@@ -68,7 +68,7 @@ fn half_sqrt2() -> Interval {
 
 /// sin and cos of `x` (|x| ≤ 4) by their Taylor series to 30 terms plus the Lagrange remainder.
 fn sin_cos(x: Interval) -> Option<(Interval, Interval)> {
-    if !(x.mag() <= 4.0) {
+    if x.mag().is_nan() || x.mag() > 4.0 {
         return None;
     }
     let mut term = point(1.0); // x^k / k!
@@ -76,10 +76,10 @@ fn sin_cos(x: Interval) -> Option<(Interval, Interval)> {
     let terms = 30;
     for k in 0..terms {
         match k % 4 {
-            0 => c = c + term,
-            1 => s = s + term,
-            2 => c = c - term,
-            _ => s = s - term,
+            0 => c += term,
+            1 => s += term,
+            2 => c -= term,
+            _ => s -= term,
         }
         term = term * x / point((k + 1) as f64);
     }
@@ -167,12 +167,22 @@ fn revolve(
             weights.push(wu * wv);
         }
     }
-    NurbsSurface::new([2, vdeg], [CIRCLE_KNOTS.to_vec(), vknots], points, Some(weights))
-        .map_err(|e| step_error(id, format!("its NURBS form is not valid: {e}")))
+    NurbsSurface::new(
+        [2, vdeg],
+        [CIRCLE_KNOTS.to_vec(), vknots],
+        points,
+        Some(weights),
+    )
+    .map_err(|e| step_error(id, format!("its NURBS form is not valid: {e}")))
 }
 
 /// A NURBS surface from a `PLANE`, given the box.
-pub(super) fn plane(e: &Entities<'_>, a: Args<'_>, u: [f64; 2], v: [f64; 2]) -> Result<NurbsSurface> {
+pub(super) fn plane(
+    e: &Entities<'_>,
+    a: Args<'_>,
+    u: [f64; 2],
+    v: [f64; 2],
+) -> Result<NurbsSurface> {
     let f = placement(e, a.reference(1)?)?;
     let mut points = Vec::new();
     for su in u {
@@ -194,7 +204,10 @@ fn positive(a: &Args<'_>, k: usize) -> Result<f64> {
     if r > 0.0 {
         Ok(r)
     } else {
-        Err(step_error(a.id, format!("{} parameter {k}: {r} is not positive", a.name())))
+        Err(step_error(
+            a.id,
+            format!("{} parameter {k}: {r} is not positive", a.name()),
+        ))
     }
 }
 
@@ -208,13 +221,13 @@ pub(super) fn cylinder_or_cone(
 ) -> Result<NurbsSurface> {
     let f = placement(e, a.reference(1)?)?;
     let r = point(a.real(2)?);
-    if !(r.inf() >= 0.0) {
+    if r.inf() < 0.0 {
         return Err(step_error(a.id, "a negative radius"));
     }
     let slope = if a.name() == "CONICAL_SURFACE" {
         let (s, c) = sin_cos(point(a.real(3)?) * angle)
             .ok_or_else(|| step_error(a.id, "semi-angle out of range"))?;
-        if !(c.inf() > 0.0) {
+        if c.inf().is_nan() || c.inf() <= 0.0 {
             return Err(step_error(a.id, "semi-angle not below a right angle"));
         }
         s / c
@@ -238,7 +251,13 @@ pub(super) fn sphere(e: &Entities<'_>, a: Args<'_>) -> Result<NurbsSurface> {
         (r, r, s),
         (zero, r, one),
     ];
-    revolve(a.id, &f, &profile, 2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 2.0])
+    revolve(
+        a.id,
+        &f,
+        &profile,
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 2.0],
+    )
 }
 
 /// A NURBS surface from a `TOROIDAL_SURFACE` (the whole torus).
@@ -255,7 +274,14 @@ pub(super) fn torus(e: &Entities<'_>, a: Args<'_>) -> Result<NurbsSurface> {
 
 /// The knot vector from distinct knots and multiplicities, for `count` control points of
 /// degree `p` (checked before anything is allocated).
-fn expand_knots(a: &Args<'_>, k: usize, mults: &[usize], knots: &[f64], count: usize, p: usize) -> Result<Vec<f64>> {
+fn expand_knots(
+    a: &Args<'_>,
+    k: usize,
+    mults: &[usize],
+    knots: &[f64],
+    count: usize,
+    p: usize,
+) -> Result<Vec<f64>> {
     if mults.len() != knots.len() {
         return Err(step_error(
             a.id,
@@ -308,7 +334,10 @@ pub(super) fn bspline(e: &Entities<'_>, id: u64) -> Result<NurbsSurface> {
     let nu = rows.len();
     let nv = rows.first().map_or(0, |r| r.len());
     if nu == 0 || nv == 0 || rows.iter().any(|r| r.len() != nv) {
-        return Err(step_error(id, "control points are not a non-empty rectangular array"));
+        return Err(step_error(
+            id,
+            "control points are not a non-empty rectangular array",
+        ));
     }
     let um = kn.ints(k0, 1, 65)?;
     let vm = kn.ints(k0 + 1, 1, 65)?;
@@ -348,7 +377,7 @@ pub(super) fn angle_factor(e: &Entities<'_>) -> Result<Interval> {
             let m = Args { id: *id, record: r }.reference(1)?;
             let factor = e.record(m, &["PLANE_ANGLE_MEASURE_WITH_UNIT", "MEASURE_WITH_UNIT"])?;
             let x = factor.real(0)?;
-            if !(x > 0.0) {
+            if x <= 0.0 {
                 return Err(step_error(m, "a plane angle unit that is not positive"));
             }
             return Ok(point(x));

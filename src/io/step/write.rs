@@ -108,16 +108,31 @@ pub fn step_text(
         &mut d,
         format!("PRODUCT('{0}','{0}','',(#{pc}))", string(name)),
     );
-    let pdf = add(&mut d, format!("PRODUCT_DEFINITION_FORMATION('','',#{product})"));
+    let pdf = add(
+        &mut d,
+        format!("PRODUCT_DEFINITION_FORMATION('','',#{product})"),
+    );
     let pdc = add(
         &mut d,
         format!("PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')"),
     );
-    let pd = add(&mut d, format!("PRODUCT_DEFINITION('design','',#{pdf},#{pdc})"));
+    let pd = add(
+        &mut d,
+        format!("PRODUCT_DEFINITION('design','',#{pdf},#{pdc})"),
+    );
     let pds = add(&mut d, format!("PRODUCT_DEFINITION_SHAPE('','',#{pd})"));
-    let length = add(&mut d, format!("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT({prefix},.METRE.) )"));
-    let angle = add(&mut d, "( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) )".into());
-    let solid = add(&mut d, "( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )".into());
+    let length = add(
+        &mut d,
+        format!("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT({prefix},.METRE.) )"),
+    );
+    let angle = add(
+        &mut d,
+        "( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) )".into(),
+    );
+    let solid = add(
+        &mut d,
+        "( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )".into(),
+    );
     let unc = add(
         &mut d,
         format!(
@@ -149,7 +164,12 @@ pub fn step_text(
                     "#{}",
                     add(
                         &mut d,
-                        format!("CARTESIAN_POINT('',({},{},{}))", real(p[0]), real(p[1]), real(p[2]))
+                        format!(
+                            "CARTESIAN_POINT('',({},{},{}))",
+                            real(p[0]),
+                            real(p[1]),
+                            real(p[2])
+                        )
                     )
                 )
             })
@@ -178,12 +198,18 @@ pub fn step_text(
         );
         ids.push(format!("#{id}"));
     }
-    let set = add(&mut d, format!("GEOMETRIC_CURVE_SET('',({}))", ids.join(",")));
+    let set = add(
+        &mut d,
+        format!("GEOMETRIC_CURVE_SET('',({}))", ids.join(",")),
+    );
     let rep = add(
         &mut d,
         format!("GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('',(#{set}),#{ctx})"),
     );
-    add(&mut d, format!("SHAPE_DEFINITION_REPRESENTATION(#{pds},#{rep})"));
+    add(
+        &mut d,
+        format!("SHAPE_DEFINITION_REPRESENTATION(#{pds},#{rep})"),
+    );
     add(
         &mut d,
         format!("PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{product}))"),
