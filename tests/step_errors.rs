@@ -185,6 +185,38 @@ fn entity_errors_name_the_entity() {
     refused(&t.replacen(face, &unbounded, 1), Some(id), "no area");
 }
 
+/// A B-spline surface of a few kilobytes that would split into 64 × 64 Bézier pieces of degree
+/// 64 × 64 (17 million control points) is refused before it is split; a small one is read.
+#[test]
+fn bspline_too_large_to_split_is_refused() {
+    let file = |degree: usize, spans: usize| {
+        let n = degree + spans;
+        let row = format!("({})", vec!["#3"; n].join(","));
+        let rows = vec![row; n].join(",");
+        let mut mults = vec![degree + 1];
+        mults.extend(std::iter::repeat_n(1, spans - 1));
+        mults.push(degree + 1);
+        let mults = mults
+            .iter()
+            .map(|m| m.to_string())
+            .collect::<Vec<_>>()
+            .join(",");
+        let knots = (0..=spans)
+            .map(|k| format!("{k}."))
+            .collect::<Vec<_>>()
+            .join(",");
+        format!(
+            "ISO-10303-21;HEADER;ENDSEC;DATA;\n#1=ADVANCED_FACE('',(),#2,.T.);\n\
+             #2=B_SPLINE_SURFACE_WITH_KNOTS('',{degree},{degree},({rows}),.UNSPECIFIED.,.F.,.F.,.F.,\
+             ({mults}),({mults}),({knots}),({knots}),.UNSPECIFIED.);\n\
+             #3=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;END-ISO-10303-21;\n"
+        )
+    };
+    refused(&file(64, 64), Some(2), "too many to split");
+    let m = StepModel::from_text(&file(2, 3)).expect("a small one reads");
+    assert!(!m.faces[0].trimmed, "no bounds: the whole surface");
+}
+
 /// One mutation of a text: truncate, replace a byte, delete or duplicate a range.
 #[derive(Debug, Clone)]
 enum Mutation {

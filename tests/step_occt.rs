@@ -235,3 +235,92 @@ fn cylinder_and_cone_against_plane_are_circles() {
     assert_eq!(t.step.models[0].faces[0].surface_kind, "CONICAL_SURFACE");
     check_written("cone", &t, &[1.0 - HEIGHT / 2.0], 1e-12);
 }
+
+/// A body of several faces: the sphere against the cube [-0.7, 0.7]³ (six plane faces sharing
+/// their edges) meets it in eight closed curves, one round each corner, each made of three arcs
+/// on three faces joined across the cube's edges by proven joins. Every written curve point is
+/// within its tolerance of the sphere and of the cube's surface.
+#[test]
+fn sphere_against_cube_is_eight_closed_curves_across_faces() {
+    let step = read_step_scene(&data("occt_sphere.step"), &data("occt_box.step")).expect("reads");
+    assert_eq!(step.models[1].faces.len(), 6);
+    assert!(step.models[1].faces.iter().all(|f| f.trimmed));
+    let opts = RunOptions::from_scene_options(&step.scene.options);
+    let report = run_shells(&step.scene, &opts).expect("runs");
+    let curves = &report.result.curves;
+    assert_eq!(curves.len(), 8, "one curve round each corner");
+    for c in curves {
+        assert!(c.closed);
+        assert_eq!(c.parts.len(), 3, "three faces meet at a corner");
+        let tol = c.certified_tolerance.expect("certified, joins proven");
+        assert!(tol <= 1e-9, "{tol}");
+    }
+    let [a, b] = &step.scene.shells;
+    let edges = edges_of_shells(a, b, &report.result);
+    let (text, n) = step_curves_text("cube", &edges, Some("MILLI METRE")).expect("writes");
+    eprintln!("sphere x cube: {n} of {} curves have an edge", edges.len());
+    for (label, c) in read_step_curves(&text).expect("reads back") {
+        let tol: f64 = label.rsplit(' ').next().unwrap().parse().unwrap();
+        for p in dense(&c) {
+            let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+            let cube = p[0].abs().max(p[1].abs()).max(p[2].abs());
+            assert!((r - 1.0).abs() <= tol + 1e-12, "{label}: off the sphere");
+            assert!((cube - 0.7).abs() <= tol + 1e-12, "{label}: off the cube");
+        }
+    }
+}
+
+/// The exact NURBS forms of the elementary surfaces lie on their closed forms: points of every
+/// Bézier piece (in f64, so up to rounding) on the unit sphere, the torus `(ρ − 2)² + z² = 1/4`,
+/// the cylinder `ρ = 1`, the cone `ρ = 1 − z/2`, the plane `z = 1/4`, and cover the face's
+/// height range.
+#[test]
+fn converted_surfaces_lie_on_their_closed_forms() {
+    type Check = fn([f64; 3]) -> f64;
+    let cases: [(&str, Check); 5] = [
+        ("occt_sphere.step", |p| {
+            (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0
+        }),
+        ("occt_torus.step", |p| {
+            (p[0].hypot(p[1]) - 2.0).hypot(p[2]) - 0.5
+        }),
+        ("occt_cylinder.step", |p| p[0].hypot(p[1]) - 1.0),
+        ("occt_cone.step", |p| p[0].hypot(p[1]) - (1.0 - p[2] / 2.0)),
+        ("occt_plane.step", |p| p[2] - HEIGHT),
+    ];
+    for (file, off) in cases {
+        let text = std::fs::read_to_string(data(file)).unwrap();
+        let model = ssitrace::io::step::StepModel::from_text(&text).expect("reads");
+        let shell = model.shell().expect("splits");
+        let mut z = [f64::INFINITY, f64::NEG_INFINITY];
+        for piece in shell[0].pieces() {
+            let d = piece.domain();
+            for i in 0..=8 {
+                for j in 0..=8 {
+                    let u = d.u[0] + (d.u[1] - d.u[0]) * i as f64 / 8.0;
+                    let v = d.v[0] + (d.v[1] - d.v[0]) * j as f64 / 8.0;
+                    let p = piece.point_f64(u, v);
+                    // The cone's semi-angle is written to 12 digits: its radius is off by ~1e-13.
+                    let slack = if file == "occt_cone.step" {
+                        1e-12
+                    } else {
+                        1e-14
+                    };
+                    assert!(off(p).abs() < slack, "{file}: {p:?} is {} off", off(p));
+                    z = [z[0].min(p[2]), z[1].max(p[2])];
+                }
+            }
+        }
+        let want = match file {
+            "occt_sphere.step" => [-1.0, 1.0],
+            "occt_torus.step" => [-0.5, 0.5],
+            "occt_cylinder.step" => [-1.0, 1.0],
+            "occt_cone.step" => [0.0, 1.0],
+            _ => [HEIGHT, HEIGHT],
+        };
+        assert!(
+            (z[0] - want[0]).abs() < 1e-14 && (z[1] - want[1]).abs() < 1e-14,
+            "{file}: heights {z:?}"
+        );
+    }
+}

@@ -2,6 +2,7 @@
 // usage: gen_step OUTDIR
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
@@ -57,5 +58,7 @@ int main(int argc, char** argv) {
   gp_Ax2 low(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1));
   bad += write(curvedFace(BRepPrimAPI_MakeCylinder(low, 1.0, 2.0).Shape()), d + "/occt_cylinder.step");
   bad += write(curvedFace(BRepPrimAPI_MakeCone(z, 1.0, 0.5, 1.0).Shape()), d + "/occt_cone.step");
+  // A solid cube [-0.7, 0.7]^3: six PLANE faces sharing their edges (a closed shell).
+  bad += write(BRepPrimAPI_MakeBox(gp_Pnt(-0.7, -0.7, -0.7), 1.4, 1.4, 1.4).Shape(), d + "/occt_box.step");
   return bad;
 }

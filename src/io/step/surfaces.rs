@@ -311,6 +311,9 @@ fn expand_knots(
         .collect())
 }
 
+/// The most Bézier control points a B-spline surface of a STEP file may split into.
+pub const MAX_BEZIER_POINTS: usize = 1 << 24;
+
 /// A NURBS surface from a `B_SPLINE_SURFACE_WITH_KNOTS`, simple or the complex instance with
 /// `B_SPLINE_SURFACE`, `B_SPLINE_SURFACE_WITH_KNOTS` and possibly `RATIONAL_B_SPLINE_SURFACE`.
 pub(super) fn bspline(e: &Entities<'_>, id: u64) -> Result<NurbsSurface> {
@@ -345,6 +348,16 @@ pub(super) fn bspline(e: &Entities<'_>, id: u64) -> Result<NurbsSurface> {
     let vk = kn.reals(k0 + 3)?;
     let uknots = expand_knots(&kn, k0, &um, &uk, nu, p)?;
     let vknots = expand_knots(&kn, k0 + 1, &vm, &vk, nv, q)?;
+    // The Bézier split makes one piece per pair of knot spans, each (p+1)(q+1) points: refuse
+    // what would not fit in memory before splitting.
+    let spans = |k: &[f64]| k.windows(2).filter(|w| w[0] < w[1]).count().max(1);
+    let pieces = spans(&uknots) * spans(&vknots);
+    if pieces.saturating_mul((p + 1) * (q + 1)) > MAX_BEZIER_POINTS {
+        return Err(step_error(
+            id,
+            format!("{pieces} Bézier pieces of degree ({p}, {q}): too many to split"),
+        ));
+    }
     let mut points = Vec::with_capacity(nu * nv);
     for row in &rows {
         for &pt in row {
