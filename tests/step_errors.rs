@@ -44,9 +44,11 @@ fn good_files_read() {
         "occt_torus.step",
         "occt_cylinder.step",
         "occt_cone.step",
+        "occt_box.step",
+        "occt_two_spheres.step",
     ] {
         let m = StepModel::from_text(&text(f)).unwrap_or_else(|e| panic!("{f}: {e}"));
-        assert_eq!(m.faces.len(), 1, "{f}");
+        assert!(!m.faces.is_empty(), "{f}");
         m.shell().unwrap_or_else(|e| panic!("{f}: {e}"));
     }
 }
@@ -132,18 +134,28 @@ fn entity_errors_name_the_entity() {
     );
     refused(
         &edited(s, "#17 = ADVANCED_FACE('',(#18),#22,.T.);", ""),
-        None,
-        "no ADVANCED_FACE",
+        Some(17),
+        "not defined",
     );
     refused(
         &edited(
             s,
-            "ENDSEC;\nEND-ISO",
-            "#99 = ITEM_DEFINED_TRANSFORMATION('','',#11,#23);\nENDSEC;\nEND-ISO",
+            "#17 = ADVANCED_FACE('',(#18),#22,.T.);",
+            "#17 = FACE_BOUND('',#19,.T.);",
         ),
-        Some(99),
-        "assemblies",
+        None,
+        "no ADVANCED_FACE",
     );
+    // A placement whose transformation is not one.
+    let a = "occt_two_spheres.step";
+    let t = text(a);
+    let idt = t
+        .lines()
+        .find(|l| l.contains("ITEM_DEFINED_TRANSFORMATION"))
+        .unwrap();
+    let id: u64 = idt[1..idt.find(' ').unwrap()].parse().unwrap();
+    let bad = format!("#{id} = ITEM_DEFINED_TRANSFORMATION('','',#11,#12);");
+    refused(&t.replacen(idt, &bad, 1), Some(12), "AXIS2_PLACEMENT_3D");
     let n = "occt_sphere_nurbs.step";
     refused(
         &edited(n, "(1,2,2,2,2,1)", "(1,2,2,2,2,9)"),
@@ -267,7 +279,7 @@ proptest! {
     fn mutated_files_never_panic(
         file in prop::sample::select(vec![
             "occt_sphere.step", "occt_sphere_nurbs.step", "occt_plane.step", "occt_torus.step",
-            "occt_cylinder.step", "occt_cone.step",
+            "occt_cylinder.step", "occt_cone.step", "occt_box.step", "occt_two_spheres.step",
         ]),
         ms in prop::collection::vec(mutation(), 1..4),
     ) {

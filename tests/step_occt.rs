@@ -40,6 +40,10 @@ struct Traced {
 
 fn trace(file: &str) -> Traced {
     let step = read_step_scene(&data(file), &data("occt_plane.step")).expect("reads");
+    trace_scene(file, step)
+}
+
+fn trace_scene(file: &str, step: StepScene) -> Traced {
     let opts = RunOptions::from_scene_options(&step.scene.options);
     let mut report = run_shells(&step.scene, &opts).expect("runs");
     mark_step(&mut report.meta, &step);
@@ -79,32 +83,38 @@ fn trace(file: &str) -> Traced {
     }
 }
 
-/// The distance from `p` to the circle of radius `r` about the z axis at z = [`HEIGHT`].
-fn off_circle(p: &[f64; 3], r: f64) -> f64 {
-    (p[0].hypot(p[1]) - r).hypot(p[2] - HEIGHT)
+/// A circle in the plane z = [`HEIGHT`]: centre `(x, y)` and radius.
+type Circle = [f64; 3];
+
+/// Circles about the z axis.
+fn about_axis(radii: &[f64]) -> Vec<Circle> {
+    radii.iter().map(|&r| [0.0, 0.0, r]).collect()
 }
 
-/// Checks points of a closed curve against the nearest of `radii`: within `tol + slack` of that
-/// circle and winding once round the axis. Returns the circle's index.
-fn check_loop(what: &str, pts: &[[f64; 3]], radii: &[f64], tol: f64, slack: f64) -> usize {
-    let (k, _) = radii
+/// The distance from `p` to a circle.
+fn off_circle(p: &[f64; 3], c: &Circle) -> f64 {
+    ((p[0] - c[0]).hypot(p[1] - c[1]) - c[2]).hypot(p[2] - HEIGHT)
+}
+
+/// Checks points of a closed curve against the nearest of `circles`: within `tol + slack` of
+/// that circle and winding once round its centre. Returns the circle's index.
+fn check_loop(what: &str, pts: &[[f64; 3]], circles: &[Circle], tol: f64, slack: f64) -> usize {
+    let (k, _) = circles
         .iter()
         .enumerate()
-        .map(|(k, &r)| (k, off_circle(&pts[0], r)))
+        .map(|(k, c)| (k, off_circle(&pts[0], c)))
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .unwrap();
-    let worst = pts
-        .iter()
-        .map(|p| off_circle(p, radii[k]))
-        .fold(0.0, f64::max);
+    let c = circles[k];
+    let worst = pts.iter().map(|p| off_circle(p, &c)).fold(0.0, f64::max);
     assert!(
         worst <= tol + slack,
-        "{what}: a point {worst:e} off the circle of radius {} (tolerance {tol:e})",
-        radii[k]
+        "{what}: a point {worst:e} off the circle {c:?} (tolerance {tol:e})"
     );
+    let angle = |p: &[f64; 3]| (p[1] - c[1]).atan2(p[0] - c[0]);
     let mut turn = 0.0;
     for w in pts.windows(2) {
-        let d = w[1][1].atan2(w[1][0]) - w[0][1].atan2(w[0][0]);
+        let d = angle(&w[1]) - angle(&w[0]);
         turn += (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
     }
     assert!(
@@ -122,16 +132,21 @@ fn dense(c: &BSpline<3>) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// Checks every written curve against the circles `radii`, each circle met once.
+/// Checks every written curve against the circles about the axis of radii `radii`.
 fn check_written(what: &str, t: &Traced, radii: &[f64], slack: f64) {
-    assert_eq!(t.curves.len(), radii.len(), "{what}: curves written");
-    let mut met = vec![false; radii.len()];
+    check_circles(what, t, &about_axis(radii), slack);
+}
+
+/// Checks every written curve against `circles`, each circle met once.
+fn check_circles(what: &str, t: &Traced, circles: &[Circle], slack: f64) {
+    assert_eq!(t.curves.len(), circles.len(), "{what}: curves written");
+    let mut met = vec![false; circles.len()];
     for (tol, c) in &t.curves {
-        let k = check_loop(what, &dense(c), radii, *tol, slack);
+        let k = check_loop(what, &dense(c), circles, *tol, slack);
         assert!(!met[k], "{what}: circle {k} twice");
         met[k] = true;
     }
-    check_occt(what, t, radii, slack);
+    check_occt(what, t, circles, slack);
 }
 
 /// OCCT's reader, if it is at hand (see the module documentation).
@@ -143,7 +158,7 @@ fn occt_reader() -> Option<PathBuf> {
 }
 
 /// Reads the written file with OCCT and checks its edges like ours.
-fn check_occt(what: &str, t: &Traced, radii: &[f64], slack: f64) {
+fn check_occt(what: &str, t: &Traced, circles: &[Circle], slack: f64) {
     let Some(reader) = occt_reader() else {
         eprintln!("{what}: OCCT reader not built (tests/data/README.md): skipped");
         return;
@@ -173,7 +188,7 @@ fn check_occt(what: &str, t: &Traced, radii: &[f64], slack: f64) {
             .iter()
             .map(|p| [0, 1, 2].map(|k| p[k].as_f64().unwrap()))
             .collect();
-        check_loop(&format!("{what} (OCCT)"), &pts, radii, worst_tol, slack);
+        check_loop(&format!("{what} (OCCT)"), &pts, circles, worst_tol, slack);
     }
     let _ = std::fs::remove_file(&path);
 }
@@ -323,4 +338,59 @@ fn converted_surfaces_lie_on_their_closed_forms() {
             "{file}: heights {z:?}"
         );
     }
+}
+
+/// An assembly (two parts placed by `ITEM_DEFINED_TRANSFORMATION`s): as OCCT wrote it (identity
+/// placements), the spheres about (0, 0, 0) and (1.5, 0, 0) meet the plane in circles about
+/// those centres; with the first part's placement edited to put its origin at (−1.5, 1, 0),
+/// turned a quarter about z, its circle moves there (OpenCASCADE reads the edited file the same
+/// way: the motion takes the transformation's first frame onto its second).
+#[test]
+fn assembly_parts_are_placed() {
+    let r = (1.0 - HEIGHT * HEIGHT).sqrt();
+    let t = trace("occt_two_spheres.step");
+    assert_eq!(t.step.models[0].faces.len(), 2);
+    check_circles("assembly", &t, &[[0.0, 0.0, r], [1.5, 0.0, r]], 1e-10);
+
+    let text = std::fs::read_to_string(data("occt_two_spheres.step")).unwrap();
+    let line = |start: &str| -> String {
+        text.lines()
+            .find(|l| l.starts_with(start) || l.contains(start))
+            .unwrap_or_else(|| panic!("{start}"))
+            .to_string()
+    };
+    // ITEM_DEFINED_TRANSFORMATION('','',#from,#to): edit the frame #to.
+    let idt = line("ITEM_DEFINED_TRANSFORMATION");
+    let to = idt.rsplit('#').next().unwrap().trim_end_matches([')', ';']);
+    let frame = line(&format!("#{to} = AXIS2_PLACEMENT_3D"));
+    let refs: Vec<&str> = frame
+        .split('#')
+        .skip(2)
+        .map(|s| s.split([',', ')']).next().unwrap())
+        .collect();
+    let (origin, xdir) = (refs[0], refs[2]);
+    let moved = text
+        .replacen(
+            &line(&format!("#{origin} = CARTESIAN_POINT")),
+            &format!("#{origin} = CARTESIAN_POINT('',(-1.5,1.,0.));"),
+            1,
+        )
+        .replacen(
+            &line(&format!("#{xdir} = DIRECTION")),
+            &format!("#{xdir} = DIRECTION('',(0.,1.,0.));"),
+            1,
+        );
+    let dir = std::env::temp_dir().join(format!("ssitrace-step-asm-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("moved.step");
+    std::fs::write(&path, moved).unwrap();
+    let step = read_step_scene(&path, &data("occt_plane.step")).expect("reads");
+    let t = trace_scene("moved assembly", step);
+    check_circles(
+        "moved assembly",
+        &t,
+        &[[-1.5, 1.0, r], [1.5, 0.0, r]],
+        1e-10,
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,5 +1,5 @@
 // Writes the STEP test files of tests/data/ with OpenCASCADE's STEP writer (see README.md here).
-// usage: gen_step OUTDIR
+// usage: gen_step OUTDIR [big]
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
@@ -7,7 +7,9 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <TopoDS_Compound.hxx>
 #include <Geom_Plane.hxx>
 #include <Geom_Surface.hxx>
 #include <IFSelect_ReturnStatus.hxx>
@@ -60,5 +62,25 @@ int main(int argc, char** argv) {
   bad += write(curvedFace(BRepPrimAPI_MakeCone(z, 1.0, 0.5, 1.0).Shape()), d + "/occt_cone.step");
   // A solid cube [-0.7, 0.7]^3: six PLANE faces sharing their edges (a closed shell).
   bad += write(BRepPrimAPI_MakeBox(gp_Pnt(-0.7, -0.7, -0.7), 1.4, 1.4, 1.4).Shape(), d + "/occt_box.step");
+  // An assembly: a compound of two unit spheres as rational B-splines, about (0, 0, 0) and
+  // (1.5, 0, 0); OCCT writes each as a part placed by an ITEM_DEFINED_TRANSFORMATION (identity).
+  TopoDS_Compound two;
+  BRep_Builder builder;
+  builder.MakeCompound(two);
+  builder.Add(two, BRepBuilderAPI_NurbsConvert(sphere).Shape());
+  gp_Ax2 right(gp_Pnt(1.5, 0, 0), gp_Dir(0, 0, 1));
+  builder.Add(two, BRepBuilderAPI_NurbsConvert(BRepPrimAPI_MakeSphere(right, 1.0).Face()).Shape());
+  bad += write(two, d + "/occt_two_spheres.step");
+  // With a second argument `big` (not kept in the repository, 0.9 MB): 200 unit spheres as
+  // rational B-splines on a 10 x 20 grid of spacing 3 at z = 5, for timing the readers.
+  if (argc > 2 && std::string(argv[2]) == "big") {
+    TopoDS_Compound many;
+    builder.MakeCompound(many);
+    for (int i = 0; i < 200; ++i) {
+      gp_Ax2 at(gp_Pnt(3.0 * (i % 10), 3.0 * (i / 10), 5.0), gp_Dir(0, 0, 1));
+      builder.Add(many, BRepBuilderAPI_NurbsConvert(BRepPrimAPI_MakeSphere(at, 1.0).Face()).Shape());
+    }
+    bad += write(many, d + "/occt_200_spheres.step");
+  }
   return bad;
 }

@@ -19,11 +19,12 @@
 //! cylinder or cone, of circles about its axis), i.e. when the patch is the face; planes are
 //! always `true`. The result document carries it per face pair.
 //!
-//! The file's numbers are taken as they are (lengths in the file's unit, [`StepModel::length_unit`]);
+//! Faces of assemblies are placed where the assembly puts them (`ITEM_DEFINED_TRANSFORMATION`,
+//! `MAPPED_ITEM`; see [`assembly`]); a part used twice gives its faces twice. The file's
+//! numbers are taken as they are (lengths in the file's unit, [`StepModel::length_unit`]);
 //! plane angles in radians unless the file declares a conversion-based plane angle unit, whose
-//! factor is applied. Assemblies whose parts are placed by transformations
-//! (`ITEM_DEFINED_TRANSFORMATION`, `MAPPED_ITEM`) are refused rather than read in the wrong
-//! place, and so are other surface types (`SURFACE_OF_REVOLUTION`, `OFFSET_SURFACE`, ...).
+//! factor is applied. Other surface types (`SURFACE_OF_REVOLUTION`, `OFFSET_SURFACE`, ...) are
+//! refused.
 //!
 //! **Errors.** A file that cannot be read gives [`Error::Step`], naming the instance `#n` where
 //! the problem is in one, or the line of a syntax error; never a panic.
@@ -39,6 +40,7 @@
 //! `GEOMETRIC_CURVE_SET` of a `GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION`, as
 //! OpenCASCADE writes free curves. P-curves are left out (see [`mod@write`]).
 
+pub mod assembly;
 mod bounds;
 mod entities;
 pub mod part21;
@@ -67,8 +69,11 @@ pub struct StepFace {
     /// Whether the face may be smaller than [`StepFace::surface`] (see the module
     /// documentation): the intersection is computed on the whole surface patch.
     pub trimmed: bool,
-    /// The surface patch the face is intersected on.
+    /// The surface patch the face is intersected on, placed where the assembly puts it.
     pub surface: NurbsSurface,
+    /// Which placement of the face this is: 0, or more when its part is used several times in
+    /// the assembly (each use is one face here).
+    pub placement: usize,
 }
 
 /// The faces of a STEP file.
@@ -89,19 +94,9 @@ impl StepModel {
     pub fn from_text(text: &str) -> Result<StepModel> {
         let file = part21::parse(text)?;
         let e = Entities { file: &file };
-        for &id in &file.order {
-            let inst = e.get(id)?;
-            for refused in ["ITEM_DEFINED_TRANSFORMATION", "MAPPED_ITEM"] {
-                if inst.record(refused).is_some() {
-                    return Err(step_error(
-                        id,
-                        format!("{refused}: assemblies of placed parts are not supported"),
-                    ));
-                }
-            }
-        }
         let angle = surfaces::angle_factor(&e)?;
-        let mut faces = Vec::new();
+        let mut read = std::collections::HashMap::new();
+        let mut ids = Vec::new();
         for &id in &file.order {
             let inst = e.get(id)?;
             let rec = ["ADVANCED_FACE", "FACE_SURFACE"]
@@ -109,8 +104,19 @@ impl StepModel {
                 .find_map(|n| inst.record(n));
             if let Some(r) = rec {
                 let a = entities::Args { id, record: r };
-                faces.push(read_face(&e, a, angle)?);
+                read.insert(id, read_face(&e, a, angle)?);
+                ids.push(id);
             }
+        }
+        let mut faces: Vec<StepFace> = Vec::new();
+        for (id, place) in assembly::face_placements(&e, &ids)? {
+            let Some(f) = read.get(&id) else { continue };
+            let placement = faces.iter().filter(|g| g.entity == id).count();
+            faces.push(StepFace {
+                surface: assembly::place(&f.surface, &place, id)?,
+                placement,
+                ..f.clone()
+            });
         }
         if faces.is_empty() {
             return Err(Error::Step {
@@ -248,6 +254,7 @@ fn read_face(
         surface_kind: kind_name.to_string(),
         trimmed,
         surface,
+        placement: 0,
     })
 }
 
