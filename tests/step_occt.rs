@@ -222,6 +222,10 @@ fn rational_bspline_sphere_against_plane_is_one_circle() {
         t.step.models[0].faces[0].surface_kind,
         "RATIONAL_B_SPLINE_SURFACE"
     );
+    assert!(
+        !t.step.models[0].faces[0].trimmed,
+        "bounded by a vertex loop only: the whole surface"
+    );
     check_written("nurbs sphere", &t, &[(1.0 - HEIGHT * HEIGHT).sqrt()], 1e-10);
 }
 

@@ -31,8 +31,6 @@ pub(super) struct Boundary {
     /// Whether every bound is a vertex loop or a loop of seam edges (or of circles about
     /// `axis`, when the surface has one).
     pub(super) natural: bool,
-    /// Whether the face has any bound.
-    pub(super) bounded: bool,
 }
 
 impl Boundary {
@@ -62,7 +60,6 @@ pub(super) fn boundary(
 ) -> Result<Boundary> {
     let mut b = Boundary {
         natural: true,
-        bounded: !bounds.is_empty(),
         ..Boundary::default()
     };
     for &fb in bounds {

@@ -15,9 +15,9 @@
 //!
 //! A face is its whole surface patch (the box above): the face's trimming curves are not
 //! applied. [`StepFace::trimmed`] says whether the face may be smaller than that patch: it is
-//! `false` only when every bound of the face is a vertex loop or made of seam edges (and, on a
-//! cylinder or cone, of circles about its axis), i.e. when the patch is the face; planes are
-//! always `true`. The result document carries it per face pair.
+//! `false` only when the face has no bounds or every bound is a vertex loop or made of seam
+//! edges (and, on a cylinder or cone, of circles about its axis), i.e. when the patch is the
+//! face; planes are always `true`. The result document carries it per face pair.
 //!
 //! Faces of assemblies are placed where the assembly puts them (`ITEM_DEFINED_TRANSFORMATION`,
 //! `MAPPED_ITEM`; see [`assembly`]); a part used twice gives its faces twice. The file's
@@ -192,7 +192,7 @@ fn read_face(
         } else {
             "B_SPLINE_SURFACE_WITH_KNOTS"
         };
-        (surfaces::bspline(e, sid)?, k, b.bounded)
+        (surfaces::bspline(e, sid)?, k, !b.natural)
     } else if kind("SPHERICAL_SURFACE") || kind("TOROIDAL_SURFACE") {
         let b = bounds::boundary(e, &bounds, None)?;
         let s = if kind("SPHERICAL_SURFACE") {
