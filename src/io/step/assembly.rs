@@ -21,6 +21,9 @@ use std::collections::{HashMap, HashSet};
 pub const MAX_INSTANCES: usize = 100_000;
 /// The deepest nesting of placements followed.
 const MAX_DEPTH: usize = 32;
+/// The most representation items visited (a file whose representations share items many times
+/// over is refused rather than walked for long).
+pub const MAX_VISITS: usize = 10_000_000;
 
 /// A rigid motion: frame `from` onto frame `to`.
 pub(super) type Motion = (Frame, Frame);
@@ -66,6 +69,7 @@ pub(super) fn face_placements(e: &Entities<'_>, faces: &[u64]) -> Result<Vec<(u6
     let mut owner: HashMap<u64, Vec<u64>> = HashMap::new();
     let mut ups: HashMap<u64, Vec<Up>> = HashMap::new();
     let mut same: HashMap<u64, Vec<u64>> = HashMap::new();
+    let mut visits = 0usize;
     for &id in &e.file.order {
         let inst = e.get(id)?;
         if let Some(r) = inst.record("REPRESENTATION_RELATIONSHIP").or_else(|| {
@@ -102,7 +106,7 @@ pub(super) fn face_placements(e: &Entities<'_>, faces: &[u64]) -> Result<Vec<(u6
             continue;
         };
         for item in items {
-            collect(e, item, id, &mut owner, &mut ups, 0)?;
+            collect(e, item, id, &mut owner, &mut ups, &mut visits, 0)?;
         }
     }
     let mut out = Vec::new();
@@ -146,10 +150,18 @@ fn collect(
     rep: u64,
     owner: &mut HashMap<u64, Vec<u64>>,
     ups: &mut HashMap<u64, Vec<Up>>,
+    visits: &mut usize,
     depth: usize,
 ) -> Result<()> {
     if depth > MAX_DEPTH {
         return Err(step_error(item, "representation items nested too deeply"));
+    }
+    *visits += 1;
+    if *visits > MAX_VISITS {
+        return Err(step_error(
+            item,
+            format!("more than {MAX_VISITS} representation items visited"),
+        ));
     }
     let inst = e.get(item)?;
     if inst.record("ADVANCED_FACE").is_some() || inst.record("FACE_SURFACE").is_some() {
@@ -196,7 +208,7 @@ fn collect(
         _ => a.refs(1)?,
     };
     for c in children {
-        collect(e, c, rep, owner, ups, depth + 1)?;
+        collect(e, c, rep, owner, ups, visits, depth + 1)?;
     }
     Ok(())
 }
