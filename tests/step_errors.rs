@@ -187,7 +187,30 @@ fn entity_errors_name_the_entity() {
         Some(22),
         "multiplicities add up",
     );
+    // An edge curve of a type the reader does not place: refused on a plane face (its box
+    // depends on it); on a torus face it only makes the face trimmed.
     let p = "occt_plane.step";
+    refused(
+        &edited(
+            p,
+            "#27 = LINE('',#28,#29);",
+            "#27 = OFFSET_CURVE_3D('',#28,1.,.F.,#29);",
+        ),
+        Some(27),
+        "OFFSET_CURVE_3D is not supported",
+    );
+    let torus = edited(
+        "occt_torus.step",
+        "#24 = SEAM_CURVE('',#25,",
+        "#24 = SURFACE_CURVE('',#25,",
+    );
+    let torus = torus.replacen(
+        "#25 = CIRCLE('',#26,2.5);",
+        "#25 = CLOTHOID('',#26,2.5);",
+        1,
+    );
+    let m = StepModel::from_text(&torus).expect("reads");
+    assert!(m.faces[0].trimmed, "an edge that is not a seam");
     let t = text(p);
     let face = t.lines().find(|l| l.contains("ADVANCED_FACE")).unwrap();
     let id: u64 = face[1..face.find(' ').unwrap()].parse().unwrap();

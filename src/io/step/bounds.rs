@@ -31,6 +31,9 @@ pub(super) struct Boundary {
     /// Whether every bound is a vertex loop or a loop of seam edges (or of circles about
     /// `axis`, when the surface has one).
     pub(super) natural: bool,
+    /// The first edge curve of a type whose reach is not known (`#n` and its entity name); such
+    /// an edge is not natural, and its reach is missing from [`Boundary::range`].
+    pub(super) unknown: Option<(u64, String)>,
 }
 
 impl Boundary {
@@ -86,7 +89,7 @@ pub(super) fn boundary(
                 let ec = e.record(ec, &["EDGE_CURVE"])?;
                 b.reach.push(Reach::Point(vertex(e, ec.reference(1)?)?));
                 b.reach.push(Reach::Point(vertex(e, ec.reference(2)?)?));
-                let natural = curve(e, ec.reference(3)?, axis, &mut b.reach, 0)?;
+                let natural = curve(e, ec.reference(3)?, axis, &mut b, 0)?;
                 b.natural &= natural;
             }
         }
@@ -105,9 +108,10 @@ fn curve(
     e: &Entities<'_>,
     id: u64,
     axis: Option<[f64; 3]>,
-    reach: &mut Vec<Reach>,
+    b: &mut Boundary,
     depth: usize,
 ) -> Result<bool> {
+    let reach = &mut b.reach;
     if depth > 4 {
         return Err(step_error(id, "curves nested too deeply"));
     }
@@ -120,22 +124,24 @@ fn curve(
         }
         return Ok(false);
     }
-    let a = e
-        .record(
-            id,
-            &[
-                "LINE",
-                "CIRCLE",
-                "ELLIPSE",
-                "B_SPLINE_CURVE_WITH_KNOTS",
-                "POLYLINE",
-                "SEAM_CURVE",
-                "SURFACE_CURVE",
-                "INTERSECTION_CURVE",
-                "TRIMMED_CURVE",
-            ],
-        )
-        .map_err(|_| step_error(id, format!("edge curve {name} is not supported")))?;
+    let found = e.record(
+        id,
+        &[
+            "LINE",
+            "CIRCLE",
+            "ELLIPSE",
+            "B_SPLINE_CURVE_WITH_KNOTS",
+            "POLYLINE",
+            "SEAM_CURVE",
+            "SURFACE_CURVE",
+            "INTERSECTION_CURVE",
+            "TRIMMED_CURVE",
+        ],
+    );
+    let Ok(a) = found else {
+        b.unknown.get_or_insert((id, name));
+        return Ok(false);
+    };
     match a.name() {
         // A line edge is the segment between its vertices, which are already counted.
         "LINE" => Ok(false),
@@ -156,10 +162,10 @@ fn curve(
             Ok(false)
         }
         "SEAM_CURVE" => {
-            curve(e, a.reference(1)?, axis, reach, depth + 1)?;
+            curve(e, a.reference(1)?, axis, b, depth + 1)?;
             Ok(true)
         }
         // SURFACE_CURVE, INTERSECTION_CURVE (the 3D curve), TRIMMED_CURVE (its basis curve).
-        _ => curve(e, a.reference(1)?, axis, reach, depth + 1),
+        _ => curve(e, a.reference(1)?, axis, b, depth + 1),
     }
 }

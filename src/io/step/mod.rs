@@ -211,6 +211,7 @@ fn read_face(
         let f = surfaces::placement(e, a.reference(1)?)?;
         let axis = surfaces::mid(&f.z);
         let b = bounds::boundary(e, &bounds, Some(axis))?;
+        unknown_edge(&b)?;
         let v = b
             .range(surfaces::mid(&f.origin), axis)
             .filter(|[lo, hi]| lo < hi)
@@ -228,6 +229,7 @@ fn read_face(
         let a = simple(&["PLANE"])?;
         let f = surfaces::placement(e, a.reference(1)?)?;
         let b = bounds::boundary(e, &bounds, None)?;
+        unknown_edge(&b)?;
         let o = surfaces::mid(&f.origin);
         let (u, v) = match (
             b.range(o, surfaces::mid(&f.x)),
@@ -256,6 +258,18 @@ fn read_face(
         surface,
         placement: 0,
     })
+}
+
+/// An error naming the first edge curve whose reach is unknown, where the box depends on it
+/// (planes, cylinders, cones; elsewhere such an edge only makes the face trimmed).
+fn unknown_edge(b: &bounds::Boundary) -> Result<()> {
+    match &b.unknown {
+        Some((id, name)) => Err(step_error(
+            *id,
+            format!("edge curve {name} is not supported on a plane, cylinder or cone face"),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The length unit the file declares (see [`StepModel::length_unit`]).
