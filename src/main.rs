@@ -60,10 +60,14 @@ struct Outputs {
     /// edge tolerance; docs/result-format.md).
     #[arg(long, value_name = "FILE")]
     edges: Option<PathBuf>,
-    /// Write the certified curves as a STEP file here (B_SPLINE_CURVE_WITH_KNOTS, no p-curves;
-    /// docs/step.md).
+    /// Write the certified curves as a STEP file here (B_SPLINE_CURVE_WITH_KNOTS; p-curves with
+    /// --step-pcurves; docs/step.md).
     #[arg(long, value_name = "FILE")]
     step_out: Option<PathBuf>,
+    /// With --step-out: write each part of a curve (a stretch on one pair of Bézier pieces) as a
+    /// SURFACE_CURVE with its two p-curves, on the pieces written as B-spline surfaces.
+    #[arg(long)]
+    step_pcurves: bool,
 }
 
 #[derive(Subcommand)]
@@ -216,7 +220,12 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
             write_edges_file(path, name, "branch", &edges)?;
         }
         if let Some(path) = &outputs.step_out {
-            write_step_file(path, name, &edges, None)?;
+            let faces = [
+                vec![ssitrace::shell::Face::from_patch(p.clone())],
+                vec![ssitrace::shell::Face::from_patch(q.clone())],
+            ];
+            let pieces = outputs.step_pcurves.then_some(&faces);
+            write_step_file(path, name, &edges, None, pieces)?;
         }
     }
     Ok(())
@@ -239,17 +248,27 @@ fn write_step_file(
         Result<ssitrace::edge::Edge, ssitrace::edge::EdgeError>,
     )],
     length_unit: Option<&str>,
+    pieces: Option<&[Vec<ssitrace::shell::Face>; 2]>,
 ) -> ssitrace::Result<()> {
-    let (text, n) =
-        ssitrace::pipeline::step_curves_text(name.unwrap_or("ssitrace"), edges, length_unit)?;
+    let (text, n) = ssitrace::pipeline::step_curves_text(
+        name.unwrap_or("ssitrace"),
+        edges,
+        length_unit,
+        pieces,
+    )?;
     std::fs::write(path, text).map_err(|e| ssitrace::Error::Io {
         path: path.display().to_string(),
         message: e.to_string(),
     })?;
     say(&format!(
-        "{n} certified curve(s) of {} written to {} (STEP, without p-curves)\n",
+        "{n} certified curve(s) or part(s) of {} curve(s) written to {} (STEP, {})\n",
         edges.len(),
-        path.display()
+        path.display(),
+        if pieces.is_some() {
+            "with p-curves"
+        } else {
+            "without p-curves"
+        }
     ));
     Ok(())
 }
@@ -321,7 +340,8 @@ fn run_shells(
         }
         if let Some(path) = &outputs.step_out {
             let unit = step.and_then(|s| s.models[0].length_unit.as_deref());
-            write_step_file(path, name, &edges, unit)?;
+            let pieces = outputs.step_pcurves.then_some(&scene.shells);
+            write_step_file(path, name, &edges, unit, pieces)?;
         }
     }
     Ok(())

@@ -4,15 +4,16 @@
 //! scene by [`read_step_scene`]; [`mark_step`] adds what they say to the result, and
 //! [`step_curves_text`] writes the certified edges back as STEP.
 
-use crate::edge::{Edge, EdgeError};
+use crate::edge::{BSpline, Edge, EdgeError};
 use crate::error::{Error, Result};
+use crate::geometry::RationalBezierPatch;
 use crate::io::intersection_json::{result_meta, shell_result};
 use crate::io::result_json::ResultMeta;
 use crate::io::scene::{Method, Scene, SceneOptions, ShellScene};
-use crate::io::step::write::{step_text, StepCurve};
+use crate::io::step::write::{step_text, StepCurve, StepPCurve};
 use crate::io::step::StepModel;
 use crate::march::branch::Intersection;
-use crate::shell::{intersect_shells, ShellIntersection};
+use crate::shell::{intersect_shells, Face, ShellIntersection};
 use crate::solve::{intersect, Engine, Options, SurfaceIntersection, DEFAULT_MAX_STEPS};
 use serde_json::json;
 use std::path::Path;
@@ -241,23 +242,53 @@ pub fn mark_step(meta: &mut ResultMeta, step: &StepScene) {
 }
 
 /// The certified edges of a shell run as STEP curves: the text of the file that
-/// `--step-out` writes ([`crate::io::step::write::step_text`]), one curve per joined curve that
-/// has an edge, named with its index and proven tolerance, in `length_unit`; how many were
-/// written.
+/// `--step-out` writes ([`crate::io::step::write::step_text`]), in `length_unit`, and how many
+/// curves it holds. Each curve is named with its joined curve's index and the edge's proven
+/// tolerance (in full, e.g. `curve 0 tolerance 1.0737e-10`).
+///
+/// Without `pieces`, one B-spline curve per joined curve that has an edge. With `pieces` (the
+/// two shells the edges were made on), one `SURFACE_CURVE` per part of an edge (a stretch on
+/// one pair of Bézier pieces, named `curve K part J tolerance T`): the 3D curve over that
+/// stretch (its control points and knots, exactly) and the two p-curves, each on its piece
+/// written as a rational B-spline surface. An edge whose parts cannot be cut out that way is
+/// written whole, without p-curves.
 ///
 /// Errors: as [`crate::io::step::write::step_text`].
 pub fn step_curves_text(
     name: &str,
     edges: &[(usize, std::result::Result<Edge, EdgeError>)],
     length_unit: Option<&str>,
+    pieces: Option<&[Vec<Face>; 2]>,
 ) -> Result<(String, usize)> {
-    let curves: Vec<StepCurve<'_>> = edges
+    // (label, the part's 3D curve if the edge was cut, the edge, the part's p-curves).
+    let mut parts: Vec<(String, Option<BSpline<3>>, &Edge, Vec<PiecePCurve<'_>>)> = Vec::new();
+    for (k, e) in edges {
+        let Ok(e) = e else { continue };
+        let tol = e.edge_tolerance;
+        let split = pieces.and_then(|shells| edge_parts(e, shells));
+        match split {
+            Some(ps) => {
+                for (j, (sub, pcs)) in ps.into_iter().enumerate() {
+                    parts.push((
+                        format!("curve {k} part {j} tolerance {tol:e}"),
+                        Some(sub),
+                        e,
+                        pcs,
+                    ));
+                }
+            }
+            None => parts.push((format!("curve {k} tolerance {tol:e}"), None, e, Vec::new())),
+        }
+    }
+    let curves: Vec<StepCurve<'_>> = parts
         .iter()
-        .filter_map(|(k, e)| {
-            e.as_ref().ok().map(|e| StepCurve {
-                label: format!("curve {k} tolerance {:.3e}", e.edge_tolerance),
-                curve: &e.curve,
-            })
+        .map(|(label, sub, e, pcs)| StepCurve {
+            label: label.clone(),
+            curve: sub.as_ref().unwrap_or(&e.curve),
+            pcurves: pcs
+                .iter()
+                .map(|&(piece, curve)| StepPCurve { piece, curve })
+                .collect(),
         })
         .collect();
     let worst = edges
@@ -265,4 +296,58 @@ pub fn step_curves_text(
         .filter_map(|(_, e)| e.as_ref().ok().map(|e| e.edge_tolerance))
         .fold(1e-7_f64, f64::max);
     Ok((step_text(name, &curves, length_unit, worst)?, curves.len()))
+}
+
+/// A p-curve and the Bézier piece it lies on.
+type PiecePCurve<'a> = (&'a RationalBezierPatch, &'a BSpline<2>);
+
+/// One part of an edge: its 3D curve and its p-curves.
+type EdgePart<'a> = (BSpline<3>, Vec<PiecePCurve<'a>>);
+
+/// An edge cut into its parts: per part the 3D curve over the part's range and its p-curves
+/// with their pieces; `None` if a p-curve's piece is missing or its knots are not a stretch of
+/// the 3D curve's.
+fn edge_parts<'a>(e: &'a Edge, shells: &'a [Vec<Face>; 2]) -> Option<Vec<EdgePart<'a>>> {
+    let mut out: Vec<EdgePart<'a>> = Vec::new();
+    let mut last: Option<(usize, [f64; 2])> = None;
+    for pc in &e.pcurves {
+        let piece = shells
+            .get(pc.surface)?
+            .get(pc.face)?
+            .pieces()
+            .get(pc.piece)?;
+        let key = (pc.branch, pc.curve.range());
+        if last != Some(key) {
+            out.push((sub_curve(&e.curve, &pc.curve)?, Vec::new()));
+            last = Some(key);
+        }
+        out.last_mut()?.1.push((piece, &pc.curve));
+    }
+    (!out.is_empty()).then_some(out)
+}
+
+/// The stretch of `c` on the knots of `like` (whose knots are a clamped stretch of `c`'s, at
+/// knots of full multiplicity), exactly.
+fn sub_curve(c: &BSpline<3>, like: &BSpline<2>) -> Option<BSpline<3>> {
+    let p = c.degree;
+    let n = like.points.len();
+    if like.degree != p || n < 2 || like.knots.len() != n + p + 1 {
+        return None;
+    }
+    let s0 = like.knots[0];
+    let start = c
+        .knots
+        .iter()
+        .filter(|&&t| t < s0)
+        .count()
+        .saturating_sub(1);
+    if start + n > c.points.len() || c.knots.get(start + 1..start + n + p)? != &like.knots[1..n + p]
+    {
+        return None;
+    }
+    Some(BSpline {
+        degree: p,
+        knots: like.knots.clone(),
+        points: c.points[start..start + n].to_vec(),
+    })
 }

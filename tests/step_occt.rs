@@ -61,7 +61,7 @@ fn trace_scene(file: &str, step: StepScene) -> Traced {
         );
     }
     let unit = step.models[0].length_unit.clone();
-    let (text, n) = step_curves_text("test", &edges, unit.as_deref()).expect("writes");
+    let (text, n) = step_curves_text("test", &edges, unit.as_deref(), None).expect("writes");
     assert_eq!(n, edges.len());
     let curves = read_step_curves(&text)
         .expect("reads back")
@@ -276,7 +276,7 @@ fn sphere_against_cube_is_eight_closed_curves_across_faces() {
     }
     let [a, b] = &step.scene.shells;
     let edges = edges_of_shells(a, b, &report.result);
-    let (text, n) = step_curves_text("cube", &edges, Some("MILLI METRE")).expect("writes");
+    let (text, n) = step_curves_text("cube", &edges, Some("MILLI METRE"), None).expect("writes");
     eprintln!("sphere x cube: {n} of {} curves have an edge", edges.len());
     for (label, c) in read_step_curves(&text).expect("reads back") {
         let tol: f64 = label.rsplit(' ').next().unwrap().parse().unwrap();
@@ -397,4 +397,222 @@ fn assembly_parts_are_placed() {
         1e-10,
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+mod pcurves {
+    //! Reading back what `--step-pcurves` writes, with the crate's Part 21 parser.
+    use ssitrace::edge::BSpline;
+    use ssitrace::geometry::surface::Domain;
+    use ssitrace::io::step::part21::{Instance, Param, Part21};
+    use ssitrace::RationalBezierPatch;
+
+    fn reals(p: &Param) -> Vec<f64> {
+        match p {
+            Param::List(v) => v
+                .iter()
+                .map(|x| match x {
+                    Param::Real(r) => *r,
+                    Param::Int(n) => *n as f64,
+                    _ => panic!("not a number"),
+                })
+                .collect(),
+            _ => panic!("not a list"),
+        }
+    }
+
+    fn refs(p: &Param) -> Vec<u64> {
+        match p {
+            Param::List(v) => v
+                .iter()
+                .map(|x| match x {
+                    Param::Ref(n) => *n,
+                    _ => panic!("not a reference"),
+                })
+                .collect(),
+            _ => panic!("not a list"),
+        }
+    }
+
+    fn ints(p: &Param) -> Vec<usize> {
+        reals(p).into_iter().map(|x| x as usize).collect()
+    }
+
+    fn record<'a>(f: &'a Part21, id: u64, name: &str) -> &'a [Param] {
+        &f.instances[&id].record(name).expect(name).params
+    }
+
+    fn point<const D: usize>(f: &Part21, id: u64) -> [f64; D] {
+        reals(&record(f, id, "CARTESIAN_POINT")[1])
+            .try_into()
+            .unwrap()
+    }
+
+    fn expand(mults: &[usize], knots: &[f64]) -> Vec<f64> {
+        knots
+            .iter()
+            .zip(mults)
+            .flat_map(|(&t, &m)| std::iter::repeat_n(t, m))
+            .collect()
+    }
+
+    /// A `B_SPLINE_CURVE_WITH_KNOTS` of dimension `D`.
+    pub(super) fn curve<const D: usize>(f: &Part21, id: u64) -> BSpline<D> {
+        let r = record(f, id, "B_SPLINE_CURVE_WITH_KNOTS");
+        let Param::Int(degree) = r[1] else { panic!() };
+        BSpline {
+            degree: degree as usize,
+            points: refs(&r[2]).into_iter().map(|p| point::<D>(f, p)).collect(),
+            knots: expand(&ints(&r[6]), &reals(&r[7])),
+        }
+    }
+
+    /// A rational B-spline surface with one knot span each way, as a Bézier patch.
+    pub(super) fn patch(f: &Part21, id: u64) -> RationalBezierPatch {
+        let b = record(f, id, "B_SPLINE_SURFACE");
+        let k = record(f, id, "B_SPLINE_SURFACE_WITH_KNOTS");
+        let w = record(f, id, "RATIONAL_B_SPLINE_SURFACE");
+        let (Param::Int(m), Param::Int(n)) = (&b[0], &b[1]) else {
+            panic!()
+        };
+        let Param::List(rows) = &b[2] else { panic!() };
+        let points: Vec<[f64; 3]> = rows
+            .iter()
+            .flat_map(refs)
+            .map(|p| point::<3>(f, p))
+            .collect();
+        let Param::List(wrows) = &w[0] else { panic!() };
+        let weights: Vec<f64> = wrows.iter().flat_map(reals).collect();
+        let (u, v) = (reals(&k[2]), reals(&k[3]));
+        let domain = Domain {
+            u: [u[0], u[1]],
+            v: [v[0], v[1]],
+        };
+        RationalBezierPatch::from_f64_points(
+            [*m as usize, *n as usize],
+            &points,
+            Some(&weights),
+            domain,
+        )
+        .expect("a valid patch")
+    }
+
+    /// A SURFACE_CURVE read back: its label, 3D curve, and p-curves with their pieces.
+    pub(super) type SurfaceCurve = (String, BSpline<3>, Vec<(RationalBezierPatch, BSpline<2>)>);
+
+    /// Every SURFACE_CURVE.
+    pub(super) fn surface_curves(f: &Part21) -> Vec<SurfaceCurve> {
+        let mut out = Vec::new();
+        for id in &f.order {
+            let Instance::Simple(r) = &f.instances[id] else {
+                continue;
+            };
+            if r.name != "SURFACE_CURVE" {
+                continue;
+            }
+            let Param::Str(label) = &r.params[0] else {
+                panic!()
+            };
+            let Param::Ref(c3) = r.params[1] else {
+                panic!()
+            };
+            let pcs = refs(&r.params[2])
+                .into_iter()
+                .map(|pc| {
+                    let p = record(f, pc, "PCURVE");
+                    let (Param::Ref(s), Param::Ref(d)) = (&p[1], &p[2]) else {
+                        panic!()
+                    };
+                    let items = refs(&record(f, *d, "DEFINITIONAL_REPRESENTATION")[1]);
+                    (patch(f, *s), curve::<2>(f, items[0]))
+                })
+                .collect();
+            out.push((label.clone(), curve::<3>(f, c3), pcs));
+        }
+        out
+    }
+}
+
+/// `--step-pcurves`: the sphere's circle written as one SURFACE_CURVE per part (a stretch on one
+/// pair of Bézier pieces), each with a p-curve on the sphere piece and one on the plane, the
+/// pieces written as rational B-spline surfaces. Read back: every 3D point and every p-curve's
+/// image on its written piece within the reported tolerance of the circle, the p-curve on the
+/// sphere at the same parameter as the 3D curve within it too, and the parts' 3D curves
+/// chained end to end round the circle. OCCT reads one edge per part.
+#[test]
+fn pcurves_are_written_on_their_pieces() {
+    let step = read_step_scene(&data("occt_sphere.step"), &data("occt_plane.step")).expect("reads");
+    let opts = RunOptions::from_scene_options(&step.scene.options);
+    let report = run_shells(&step.scene, &opts).expect("runs");
+    let [a, b] = &step.scene.shells;
+    let edges = edges_of_shells(a, b, &report.result);
+    let (text, n) = step_curves_text("pc", &edges, Some("MILLI METRE"), Some(&step.scene.shells))
+        .expect("writes");
+    let file = ssitrace::io::step::part21::parse(&text).expect("parses");
+    let parts = pcurves::surface_curves(&file);
+    assert_eq!(parts.len(), n);
+    assert!(
+        n >= 2,
+        "the circle crosses the sphere's knot lines: {n} part(s)"
+    );
+    let circle = about_axis(&[(1.0 - HEIGHT * HEIGHT).sqrt()])[0];
+    let slack = 1e-12;
+    let mut ends = Vec::new();
+    for (label, c3, pcs) in &parts {
+        let tol: f64 = label.rsplit(' ').next().unwrap().parse().unwrap();
+        assert_eq!(pcs.len(), 2, "{label}");
+        let [lo, hi] = c3.range();
+        for k in 0..=400 {
+            let s = lo + (hi - lo) * k as f64 / 400.0;
+            let x = c3.eval(s);
+            assert!(off_circle(&x, &circle) <= tol + slack, "{label}: 3D curve");
+            for (j, (piece, pc)) in pcs.iter().enumerate() {
+                let [u, v] = pc.eval(s);
+                let y = piece.point_f64(u, v);
+                assert!(
+                    off_circle(&y, &circle) <= tol + slack,
+                    "{label}: p-curve {j}"
+                );
+                if j == 0 {
+                    let d = ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2))
+                        .sqrt();
+                    assert!(d <= tol + slack, "{label}: same parameter {d:e}");
+                }
+            }
+        }
+        ends.push((c3.eval(lo), c3.eval(hi)));
+    }
+    for k in 0..ends.len() {
+        let (next, _) = ends[(k + 1) % ends.len()];
+        let (_, end) = ends[k];
+        let gap = ((end[0] - next[0]).powi(2) + (end[1] - next[1]).powi(2)).sqrt();
+        assert!(gap < 1e-9, "parts {k} and {} do not meet ({gap:e})", k + 1);
+    }
+    let t = Traced {
+        curves: read_step_curves(&text)
+            .unwrap()
+            .into_iter()
+            .map(|(label, c)| (label.rsplit(' ').next().unwrap().parse().unwrap(), c))
+            .collect(),
+        text,
+        step,
+        meta: report.meta,
+    };
+    // OCCT reads one edge (its 3D curve) per part.
+    if let Some(reader) = occt_reader() {
+        let path = std::env::temp_dir().join(format!("ssitrace-pc-{}.step", std::process::id()));
+        std::fs::write(&path, &t.text).unwrap();
+        let out = std::process::Command::new(reader)
+            .arg(&path)
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let line = stdout
+            .lines()
+            .find(|l| l.starts_with("{\"read_ms\""))
+            .expect("OCCT result");
+        let doc: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert_eq!(doc["edges"].as_array().unwrap().len(), n);
+        let _ = std::fs::remove_file(&path);
+    }
+    assert_eq!(t.curves.len(), n, "the 3D curves read back");
 }

@@ -38,7 +38,8 @@
 //!
 //! **Writing** ([`mod@write`]): certified curves as `B_SPLINE_CURVE_WITH_KNOTS` in a
 //! `GEOMETRIC_CURVE_SET` of a `GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION`, as
-//! OpenCASCADE writes free curves. P-curves are left out (see [`mod@write`]).
+//! OpenCASCADE writes free curves; with p-curves on request, as `SURFACE_CURVE`s (see
+//! [`mod@write`]).
 
 pub mod assembly;
 mod bounds;

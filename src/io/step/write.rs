@@ -4,15 +4,21 @@
 //! one product, which is how OpenCASCADE writes free curves and reads them back as edges. Each
 //! curve's name records its proven tolerance, e.g. `'curve 0 tolerance 3.1e-10'`.
 //!
-//! P-curves are not written: in STEP a p-curve (`PCURVE` with a `DEFINITIONAL_REPRESENTATION`)
-//! refers to its surface entity and must be in that surface's parameters. An edge's p-curves are
-//! in the parameters of the NURBS faces it was traced on, which are the STEP parameters for
-//! B-spline surfaces and planes but not for cylinders, cones, spheres and tori (their STEP
-//! parameters are angles, ours rational); and writing them would mean writing the faces too.
-//! The result's `--edges` JSON carries the p-curves.
+//! With p-curves ([`StepCurve::pcurves`], `--step-pcurves`), a curve is written as a
+//! `SURFACE_CURVE` of its 3D curve and one `PCURVE` per surface: a 2D
+//! `B_SPLINE_CURVE_WITH_KNOTS` in a `DEFINITIONAL_REPRESENTATION` (2D parametric context) on
+//! the Bézier piece it lies on, written once per file as a rational `B_SPLINE_SURFACE_WITH_KNOTS`
+//! on the piece's domain (the surface's own parameters), its control points and weights at the
+//! midpoints of their interval enclosures. A STEP p-curve must lie in the parameters of the
+//! surface entity it names, so the pieces are written rather than referring back to the input
+//! files' surfaces: for converted cylinders, cones, spheres and tori the input's parameters are
+//! angles, not the rational parameters the p-curves are in. A curve is split where it passes
+//! from one pair of pieces to the next (one `SURFACE_CURVE` per part); OpenCASCADE reads each as
+//! an edge with its 3D curve.
 
 use crate::edge::BSpline;
 use crate::error::{Error, Result};
+use crate::geometry::RationalBezierPatch;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -23,6 +29,19 @@ pub struct StepCurve<'a> {
     pub label: String,
     /// The curve.
     pub curve: &'a BSpline<3>,
+    /// Its p-curves, if any: then it is written as a `SURFACE_CURVE` of the 3D curve and one
+    /// `PCURVE` per entry.
+    pub pcurves: Vec<StepPCurve<'a>>,
+}
+
+/// A p-curve to write: a 2D B-spline in the parameters of a Bézier piece, on the same knots as
+/// its 3D curve.
+#[derive(Debug, Clone)]
+pub struct StepPCurve<'a> {
+    /// The piece (written once per file as a rational B-spline surface on its domain).
+    pub piece: &'a RationalBezierPatch,
+    /// The curve in the piece's parameters.
+    pub curve: &'a BSpline<2>,
 }
 
 /// A real in Part 21 syntax (a decimal point always, `E` for the exponent), exact to the last
@@ -71,6 +90,103 @@ fn string(s: &str) -> String {
         .collect()
 }
 
+/// The data section being written: instances numbered from 1.
+struct Out {
+    d: String,
+    next: u64,
+}
+
+impl Out {
+    fn add(&mut self, body: impl AsRef<str>) -> u64 {
+        let id = self.next;
+        self.next += 1;
+        let _ = writeln!(self.d, "#{id} = {};", body.as_ref());
+        id
+    }
+
+    /// Distinct knots and their multiplicities.
+    fn knots(knots: &[f64]) -> (String, String) {
+        let mut ks: Vec<f64> = Vec::new();
+        let mut ms: Vec<usize> = Vec::new();
+        for &t in knots {
+            match (ks.last(), ms.last_mut()) {
+                (Some(&last), Some(m)) if last == t => *m += 1,
+                _ => {
+                    ks.push(t);
+                    ms.push(1);
+                }
+            }
+        }
+        let ms: Vec<String> = ms.iter().map(|m| m.to_string()).collect();
+        let ks: Vec<String> = ks.iter().map(|&t| real(t)).collect();
+        (ms.join(","), ks.join(","))
+    }
+
+    fn point(&mut self, p: &[f64]) -> String {
+        let c: Vec<String> = p.iter().map(|&x| real(x)).collect();
+        format!(
+            "#{}",
+            self.add(format!("CARTESIAN_POINT('',({}))", c.join(",")))
+        )
+    }
+
+    /// A `B_SPLINE_CURVE_WITH_KNOTS` (3D or 2D).
+    fn curve<const D: usize>(&mut self, label: &str, b: &BSpline<D>) -> Result<u64> {
+        let n = b.points.len();
+        if n < 2 || b.degree == 0 || b.knots.len() != n + b.degree + 1 {
+            return Err(Error::Step {
+                entity: None,
+                message: format!("curve `{label}` is not a valid B-spline"),
+            });
+        }
+        let pts: Vec<String> = b.points.iter().map(|p| self.point(p)).collect();
+        let (mults, knots) = Self::knots(&b.knots);
+        Ok(self.add(format!(
+            "B_SPLINE_CURVE_WITH_KNOTS('{}',{},({}),.UNSPECIFIED.,.F.,.F.,({mults}),({knots}),.UNSPECIFIED.)",
+            string(label),
+            b.degree,
+            pts.join(",")
+        )))
+    }
+
+    /// A rational Bézier patch as a rational B-spline surface on its domain (control points and
+    /// weights at the midpoints of their enclosures).
+    fn patch(&mut self, p: &RationalBezierPatch) -> u64 {
+        let [m, n] = p.degree();
+        let net = p.cartesian();
+        let mut rows = Vec::new();
+        let mut weights = Vec::new();
+        for i in 0..=m {
+            let mut row = Vec::new();
+            let mut wrow = Vec::new();
+            for j in 0..=n {
+                let c = net[i * (n + 1) + j];
+                row.push(self.point(&[c[0].mid(), c[1].mid(), c[2].mid()]));
+                wrow.push(real(c[3].mid()));
+            }
+            rows.push(format!("({})", row.join(",")));
+            weights.push(format!("({})", wrow.join(",")));
+        }
+        let d = p.domain();
+        self.add(format!(
+            "( BOUNDED_SURFACE() B_SPLINE_SURFACE({m},{n},({}),.UNSPECIFIED.,.F.,.F.,.F.) \
+             B_SPLINE_SURFACE_WITH_KNOTS(({},{}),({},{}),({},{}),({},{}),.PIECEWISE_BEZIER_KNOTS.) \
+             GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE(({})) \
+             REPRESENTATION_ITEM('') SURFACE() )",
+            rows.join(","),
+            m + 1,
+            m + 1,
+            n + 1,
+            n + 1,
+            real(d.u[0]),
+            real(d.u[1]),
+            real(d.v[0]),
+            real(d.v[1]),
+            weights.join(",")
+        ))
+    }
+}
+
 /// The text of a STEP file holding `curves`; lengths in `length_unit` (`"MILLI METRE"`,
 /// `"METRE"`, ...; millimetres if `None`); `uncertainty` the file's distance accuracy.
 ///
@@ -87,136 +203,80 @@ pub fn step_text(
         entity: None,
         message: format!("cannot write curves in the length unit `{unit}`"),
     })?;
-    let mut d = String::new();
-    let mut next = 1u64;
-    let mut add = |d: &mut String, body: String| -> u64 {
-        let id = next;
-        next += 1;
-        let _ = writeln!(d, "#{id} = {body};");
-        id
+    let mut o = Out {
+        d: String::new(),
+        next: 1,
     };
-    let app = add(
-        &mut d,
-        "APPLICATION_CONTEXT('core data for automotive mechanical design processes')".into(),
-    );
-    add(
-        &mut d,
-        format!("APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"),
-    );
-    let pc = add(&mut d, format!("PRODUCT_CONTEXT('',#{app},'mechanical')"));
-    let product = add(
-        &mut d,
-        format!("PRODUCT('{0}','{0}','',(#{pc}))", string(name)),
-    );
-    let pdf = add(
-        &mut d,
-        format!("PRODUCT_DEFINITION_FORMATION('','',#{product})"),
-    );
-    let pdc = add(
-        &mut d,
-        format!("PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')"),
-    );
-    let pd = add(
-        &mut d,
-        format!("PRODUCT_DEFINITION('design','',#{pdf},#{pdc})"),
-    );
-    let pds = add(&mut d, format!("PRODUCT_DEFINITION_SHAPE('','',#{pd})"));
-    let length = add(
-        &mut d,
-        format!("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT({prefix},.METRE.) )"),
-    );
-    let angle = add(
-        &mut d,
-        "( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) )".into(),
-    );
-    let solid = add(
-        &mut d,
-        "( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )".into(),
-    );
-    let unc = add(
-        &mut d,
-        format!(
-            "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({}),#{length},'distance_accuracy_value','confusion accuracy')",
-            real(uncertainty)
-        ),
-    );
-    let ctx = add(
-        &mut d,
-        format!(
-            "( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc})) GLOBAL_UNIT_ASSIGNED_CONTEXT((#{length},#{angle},#{solid})) REPRESENTATION_CONTEXT('Context #1','3D Context with UNIT and UNCERTAINTY') )"
-        ),
-    );
+    let app = o.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')");
+    o.add(format!(
+        "APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"
+    ));
+    let pc = o.add(format!("PRODUCT_CONTEXT('',#{app},'mechanical')"));
+    let product = o.add(format!("PRODUCT('{0}','{0}','',(#{pc}))", string(name)));
+    let pdf = o.add(format!("PRODUCT_DEFINITION_FORMATION('','',#{product})"));
+    let pdc = o.add(format!(
+        "PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')"
+    ));
+    let pd = o.add(format!("PRODUCT_DEFINITION('design','',#{pdf},#{pdc})"));
+    let pds = o.add(format!("PRODUCT_DEFINITION_SHAPE('','',#{pd})"));
+    let length = o.add(format!(
+        "( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT({prefix},.METRE.) )"
+    ));
+    let angle = o.add("( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) )");
+    let solid = o.add("( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )");
+    let unc = o.add(format!(
+        "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({}),#{length},'distance_accuracy_value','confusion accuracy')",
+        real(uncertainty)
+    ));
+    let ctx = o.add(format!(
+        "( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc})) GLOBAL_UNIT_ASSIGNED_CONTEXT((#{length},#{angle},#{solid})) REPRESENTATION_CONTEXT('Context #1','3D Context with UNIT and UNCERTAINTY') )"
+    ));
+    let mut ctx2 = None;
+    let mut surfaces: Vec<(*const RationalBezierPatch, u64)> = Vec::new();
     let mut ids = Vec::new();
-    for (k, c) in curves.iter().enumerate() {
-        let b = c.curve;
-        let n = b.points.len();
-        if n < 2 || b.degree == 0 || b.knots.len() != n + b.degree + 1 {
-            return Err(Error::Step {
-                entity: None,
-                message: format!("curve {k} ({}) is not a valid B-spline", c.label),
-            });
+    for c in curves {
+        if c.pcurves.is_empty() {
+            ids.push(format!("#{}", o.curve(&c.label, c.curve)?));
+            continue;
         }
-        let pts: Vec<String> = b
-            .points
-            .iter()
-            .map(|p| {
-                format!(
-                    "#{}",
-                    add(
-                        &mut d,
-                        format!(
-                            "CARTESIAN_POINT('',({},{},{}))",
-                            real(p[0]),
-                            real(p[1]),
-                            real(p[2])
-                        )
-                    )
-                )
-            })
-            .collect();
-        let mut knots: Vec<f64> = Vec::new();
-        let mut mults: Vec<usize> = Vec::new();
-        for &t in &b.knots {
-            match knots.last() {
-                Some(&last) if last == t => *mults.last_mut().unwrap_or(&mut 0) += 1,
-                _ => {
-                    knots.push(t);
-                    mults.push(1);
+        let c3 = o.curve(&c.label, c.curve)?;
+        let ctx2 = *ctx2.get_or_insert_with(|| {
+            o.add("( GEOMETRIC_REPRESENTATION_CONTEXT(2) PARAMETRIC_REPRESENTATION_CONTEXT() REPRESENTATION_CONTEXT('2D SPACE','') )")
+        });
+        let mut pcs = Vec::new();
+        for pc in &c.pcurves {
+            let key: *const RationalBezierPatch = pc.piece;
+            let surf = match surfaces.iter().find(|(k, _)| *k == key) {
+                Some(&(_, id)) => id,
+                None => {
+                    let id = o.patch(pc.piece);
+                    surfaces.push((key, id));
+                    id
                 }
-            }
+            };
+            let b2 = o.curve("", pc.curve)?;
+            let rep = o.add(format!("DEFINITIONAL_REPRESENTATION('',(#{b2}),#{ctx2})"));
+            pcs.push(format!("#{}", o.add(format!("PCURVE('',#{surf},#{rep})"))));
         }
-        let id = add(
-            &mut d,
-            format!(
-                "B_SPLINE_CURVE_WITH_KNOTS('{}',{},({}),.UNSPECIFIED.,.F.,.F.,({}),({}),.UNSPECIFIED.)",
-                string(&c.label),
-                b.degree,
-                pts.join(","),
-                mults.iter().map(|m| m.to_string()).collect::<Vec<_>>().join(","),
-                knots.iter().map(|&t| real(t)).collect::<Vec<_>>().join(",")
-            ),
-        );
-        ids.push(format!("#{id}"));
+        let sc = o.add(format!(
+            "SURFACE_CURVE('{}',#{c3},({}),.CURVE_3D.)",
+            string(&c.label),
+            pcs.join(",")
+        ));
+        ids.push(format!("#{sc}"));
     }
-    let set = add(
-        &mut d,
-        format!("GEOMETRIC_CURVE_SET('',({}))", ids.join(",")),
-    );
-    let rep = add(
-        &mut d,
-        format!("GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('',(#{set}),#{ctx})"),
-    );
-    add(
-        &mut d,
-        format!("SHAPE_DEFINITION_REPRESENTATION(#{pds},#{rep})"),
-    );
-    add(
-        &mut d,
-        format!("PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{product}))"),
-    );
+    let set = o.add(format!("GEOMETRIC_CURVE_SET('',({}))", ids.join(",")));
+    let rep = o.add(format!(
+        "GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('',(#{set}),#{ctx})"
+    ));
+    o.add(format!("SHAPE_DEFINITION_REPRESENTATION(#{pds},#{rep})"));
+    o.add(format!(
+        "PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{product}))"
+    ));
     Ok(format!(
-        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('ssitrace certified intersection curves'),'2;1');\nFILE_NAME('{}','',(''),(''),'ssitrace','ssitrace','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN {{ 1 0 10303 214 1 1 1 1 }}'));\nENDSEC;\nDATA;\n{d}ENDSEC;\nEND-ISO-10303-21;\n",
-        string(name)
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('ssitrace certified intersection curves'),'2;1');\nFILE_NAME('{}','',(''),(''),'ssitrace','ssitrace','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN {{ 1 0 10303 214 1 1 1 1 }}'));\nENDSEC;\nDATA;\n{}ENDSEC;\nEND-ISO-10303-21;\n",
+        string(name),
+        o.d
     ))
 }
 
@@ -237,8 +297,9 @@ pub fn write_step_curves(
     })
 }
 
-/// The `B_SPLINE_CURVE_WITH_KNOTS` curves of a STEP file's text, in the order written, with
-/// their names (non-rational, simple instances only: what [`step_text`] writes).
+/// The 3D `B_SPLINE_CURVE_WITH_KNOTS` curves of a STEP file's text, in the order written, with
+/// their names (non-rational, simple instances only: what [`step_text`] writes; 2D curves, the
+/// p-curves, are skipped).
 ///
 /// Errors: [`Error::Step`] as [`super::part21::parse`], or naming a curve that is malformed.
 pub fn read_step_curves(text: &str) -> Result<Vec<(String, BSpline<3>)>> {
@@ -256,8 +317,15 @@ pub fn read_step_curves(text: &str) -> Result<Vec<(String, BSpline<3>)>> {
             _ => String::new(),
         };
         let degree = a.int(1, 1, 64)? as usize;
-        let points = a
-            .refs(2)?
+        let refs = a.refs(2)?;
+        let is_2d = match refs.first() {
+            Some(&p) => e.record(p, &["CARTESIAN_POINT"])?.reals(1)?.len() == 2,
+            None => false,
+        };
+        if is_2d {
+            continue;
+        }
+        let points = refs
             .into_iter()
             .map(|p| super::surfaces::cartesian_point(&e, p))
             .collect::<Result<Vec<_>>>()?;
