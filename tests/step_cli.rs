@@ -85,3 +85,32 @@ fn malformed_step_file_is_a_typed_error() {
     assert_eq!(run.status.code(), Some(2));
     let _ = std::fs::remove_file(&bad);
 }
+
+/// `--step-pcurves` on a two-patch JSON scene: the curve written as SURFACE_CURVEs with two
+/// PCURVEs each, on the patches written as B-spline surfaces.
+#[test]
+fn step_pcurves_on_a_json_scene() {
+    let out = tmp("pc.step");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/sphere_patch_plane.json");
+    let run = Command::new(env!("CARGO_BIN_EXE_ssitrace"))
+        .arg("trace")
+        .arg(&scene)
+        .arg("--step-out")
+        .arg(&out)
+        .arg("--step-pcurves")
+        .output()
+        .expect("runs");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    let surface_curves = text.matches("SURFACE_CURVE(").count();
+    assert!(surface_curves >= 1, "{text}");
+    assert_eq!(text.matches("= PCURVE(").count(), 2 * surface_curves);
+    assert_eq!(text.matches("RATIONAL_B_SPLINE_SURFACE(").count(), 2);
+    let file = ssitrace::io::step::part21::parse(&text).expect("parses");
+    assert!(!file.instances.is_empty());
+    let _ = std::fs::remove_file(&out);
+}
