@@ -78,6 +78,15 @@ pub enum Error {
     /// The scene file is not valid JSON or not of the documented shape.
     #[error("scene is not valid: {0}")]
     Scene(String),
+    /// A STEP file that cannot be read (or curves that cannot be written as STEP): names the
+    /// instance `#n` when the problem is in one, else says where (a line, the file).
+    #[error("STEP{}: {message}", entity.map(|e| format!(" entity #{e}")).unwrap_or_default())]
+    Step {
+        /// The instance number, when the problem is in one instance.
+        entity: Option<u64>,
+        /// What is wrong.
+        message: String,
+    },
     /// Reading or writing a file failed.
     #[error("i/o error on {path}: {message}")]
     Io {

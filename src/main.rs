@@ -60,14 +60,26 @@ struct Outputs {
     /// edge tolerance; docs/result-format.md).
     #[arg(long, value_name = "FILE")]
     edges: Option<PathBuf>,
+    /// Write the certified curves as a STEP file here (B_SPLINE_CURVE_WITH_KNOTS; p-curves with
+    /// --step-pcurves; docs/step.md).
+    #[arg(long, value_name = "FILE")]
+    step_out: Option<PathBuf>,
+    /// With --step-out: write each part of a curve (a stretch on one pair of Bézier pieces) as a
+    /// SURFACE_CURVE with its two p-curves, on the pieces written as B-spline surfaces.
+    #[arg(long)]
+    step_pcurves: bool,
 }
 
 #[derive(Subcommand)]
 enum Command {
-    /// Trace the intersection of the two surfaces of a scene file.
+    /// Trace the intersection of the two surfaces of a scene file, or of the faces of two STEP
+    /// files.
     Trace {
-        /// The scene file (JSON; format in the README).
+        /// The scene file (JSON; format in the README), or the first STEP file (`.step`/`.stp`).
         scene: PathBuf,
+        /// The second STEP file, when the first argument is a STEP file: every face of the first
+        /// is intersected with every face of the second.
+        second: Option<PathBuf>,
         /// Tracing method (default: the scene's, else `both`).
         #[arg(long, value_enum)]
         method: Option<MethodArg>,
@@ -114,6 +126,7 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
     let (scene, opts, outputs) = match cli.command {
         Command::Trace {
             scene,
+            second,
             method,
             engine,
             step,
@@ -123,7 +136,18 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
             time_limit,
             outputs,
         } => {
-            let s = ShellScene::from_path(&scene)?;
+            let step_scene = match (ssitrace::pipeline::is_step_path(&scene), &second) {
+                (true, Some(b)) => Some(ssitrace::pipeline::read_step_scene(&scene, b)?),
+                (true, None) => return Err(usage("a STEP file needs a second STEP file")),
+                (false, Some(_)) => {
+                    return Err(usage("a second file is only taken after a STEP file"))
+                }
+                (false, None) => None,
+            };
+            let s = match &step_scene {
+                Some(st) => st.scene.clone(),
+                None => ShellScene::from_path(&scene)?,
+            };
             let mut o = RunOptions::from_scene_options(&s.options);
             if let Some(m) = method {
                 o.method = match m {
@@ -159,9 +183,12 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
                 })?;
                 o.time_limit = Some(limit);
             }
+            if let Some(st) = &step_scene {
+                return run_shells(&s, &o, &outputs, Some(st));
+            }
             match s.as_pair() {
                 Some(pair) => (pair, o, outputs),
-                None => return run_shells(&s, &o, &outputs),
+                None => return run_shells(&s, &o, &outputs, None),
             }
         }
         Command::Demo { outputs } => {
@@ -185,11 +212,64 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
         write_svg(path, &scene, &report)?;
         say(&format!("picture written to {}\n", path.display()));
     }
-    if let Some(path) = &outputs.edges {
+    if outputs.edges.is_some() || outputs.step_out.is_some() {
         let [p, q] = &scene.surfaces;
         let edges = ssitrace::edge::edges_of(p, q, &report.result);
-        write_edges_file(path, scene.options.name.as_deref(), "branch", &edges)?;
+        let name = scene.options.name.as_deref();
+        if let Some(path) = &outputs.edges {
+            write_edges_file(path, name, "branch", &edges)?;
+        }
+        if let Some(path) = &outputs.step_out {
+            let faces = [
+                vec![ssitrace::shell::Face::from_patch(p.clone())],
+                vec![ssitrace::shell::Face::from_patch(q.clone())],
+            ];
+            let pieces = outputs.step_pcurves.then_some(&faces);
+            write_step_file(path, name, &edges, None, pieces)?;
+        }
     }
+    Ok(())
+}
+
+/// An error of the command line's use.
+fn usage(message: &str) -> ssitrace::Error {
+    ssitrace::Error::input(
+        "command line",
+        ssitrace::InputProblem::WrongShape(message.into()),
+    )
+}
+
+/// Writes the certified edges as STEP curves and says how many.
+fn write_step_file(
+    path: &std::path::Path,
+    name: Option<&str>,
+    edges: &[(
+        usize,
+        Result<ssitrace::edge::Edge, ssitrace::edge::EdgeError>,
+    )],
+    length_unit: Option<&str>,
+    pieces: Option<&[Vec<ssitrace::shell::Face>; 2]>,
+) -> ssitrace::Result<()> {
+    let (text, n) = ssitrace::pipeline::step_curves_text(
+        name.unwrap_or("ssitrace"),
+        edges,
+        length_unit,
+        pieces,
+    )?;
+    std::fs::write(path, text).map_err(|e| ssitrace::Error::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })?;
+    say(&format!(
+        "{n} certified curve(s) or part(s) of {} curve(s) written to {} (STEP, {})\n",
+        edges.len(),
+        path.display(),
+        if pieces.is_some() {
+            "with p-curves"
+        } else {
+            "without p-curves"
+        }
+    ));
     Ok(())
 }
 
@@ -227,10 +307,19 @@ fn write_edges_file(
 
 /// A scene of shells (several faces, or NURBS surfaces of several knot spans): every piece
 /// pair traced, a summary printed, the merged result written.
-fn run_shells(scene: &ShellScene, opts: &RunOptions, outputs: &Outputs) -> ssitrace::Result<()> {
+fn run_shells(
+    scene: &ShellScene,
+    opts: &RunOptions,
+    outputs: &Outputs,
+    step: Option<&ssitrace::pipeline::StepScene>,
+) -> ssitrace::Result<()> {
     let started = Instant::now();
-    let report = ssitrace::pipeline::run_shells(scene, opts)?;
+    let mut report = ssitrace::pipeline::run_shells(scene, opts)?;
     let elapsed = started.elapsed().as_secs_f64();
+    if let Some(st) = step {
+        ssitrace::pipeline::mark_step(&mut report.meta, st);
+        say(&step_summary(st));
+    }
     say(&shell_summary(scene, &report, opts, elapsed));
     if let Some(path) = &outputs.out {
         write_result(path, &report.curves, &report.meta)?;
@@ -242,12 +331,42 @@ fn run_shells(scene: &ShellScene, opts: &RunOptions, outputs: &Outputs) -> ssitr
             path.display()
         ));
     }
-    if let Some(path) = &outputs.edges {
+    if outputs.edges.is_some() || outputs.step_out.is_some() {
         let [a, b] = &scene.shells;
         let edges = ssitrace::edge::edges_of_shells(a, b, &report.result);
-        write_edges_file(path, scene.options.name.as_deref(), "curve", &edges)?;
+        let name = scene.options.name.as_deref();
+        if let Some(path) = &outputs.edges {
+            write_edges_file(path, name, "curve", &edges)?;
+        }
+        if let Some(path) = &outputs.step_out {
+            let unit = step.and_then(|s| s.models[0].length_unit.as_deref());
+            let pieces = outputs.step_pcurves.then_some(&scene.shells);
+            write_step_file(path, name, &edges, unit, pieces)?;
+        }
     }
     Ok(())
+}
+
+/// What was read from two STEP files: faces, surface kinds, trimmed faces, read time.
+fn step_summary(step: &ssitrace::pipeline::StepScene) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    for (file, m) in step.files.iter().zip(&step.models) {
+        let trimmed = m.faces.iter().filter(|f| f.trimmed).count();
+        let kinds: Vec<String> = m
+            .faces
+            .iter()
+            .map(|f| format!("#{} {}", f.entity, f.surface_kind))
+            .collect();
+        let _ = writeln!(
+            out,
+            "{file}: {} face(s) ({}), {trimmed} trimmed (traced on their whole surface patch)",
+            m.faces.len(),
+            kinds.join(", ")
+        );
+    }
+    let _ = writeln!(out, "STEP read in {:.2} ms", step.read_seconds * 1e3);
+    out
 }
 
 /// The summary of a shell run: counts, then each traced piece pair and its branches.
