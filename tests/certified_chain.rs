@@ -50,30 +50,6 @@ fn in_box(b: &[inari::Interval; 3], x: &[f64; 3]) -> bool {
     (0..3).all(|i| b[i].inf() - MARGIN <= x[i] && x[i] <= b[i].sup() + MARGIN)
 }
 
-/// Rotation matrix from a random unit quaternion.
-fn rotation(rng: &mut Rng) -> [[f64; 3]; 3] {
-    let q: [f64; 4] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
-    let n = q.iter().map(|v| v * v).sum::<f64>().sqrt();
-    let [w, x, y, z] = q.map(|v| v / n);
-    [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    ]
-}
-
 fn apply(r: &[[f64; 3]; 3], x: &[f64; 3]) -> [f64; 3] {
     std::array::from_fn(|i| r[i][0] * x[0] + r[i][1] * x[1] + r[i][2] * x[2])
 }
@@ -161,7 +137,7 @@ fn sphere_circle_is_a_closed_chain_within_tolerance_both_ways() {
 fn rotated_copies_certify_the_rotated_circle() {
     let mut rng = Rng::new(20261202);
     for _ in 0..3 {
-        let r = rotation(&mut rng);
+        let r = rng.rotation();
         let s = rotated_sphere_scene(&r);
         let c = certify(&s, Engine::Chain, 1e-9);
         assert_eq!(c.len(), 1);

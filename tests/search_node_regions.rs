@@ -18,28 +18,9 @@ use ssitrace::march::MarchOptions;
 use ssitrace::search::start_points::SearchOptions;
 use ssitrace::topology::intersect::intersect;
 
-/// A random rotation (unit quaternion) and a translation of up to 2.
+/// A random rotation and a translation of up to 2.
 fn motion(rng: &mut Rng) -> ([[f64; 3]; 3], [f64; 3]) {
-    let q: [f64; 4] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
-    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let [w, x, y, z] = q.map(|c| c / n);
-    let r = [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    ];
+    let r = rng.rotation();
     let t = std::array::from_fn(|_| rng.uniform(-2.0, 2.0));
     (r, t)
 }
@@ -62,16 +43,6 @@ fn moved(p: &RationalBezierPatch, r: &[[f64; 3]; 3], t: &[f64; 3]) -> RationalBe
         .map(|x| apply(r, t, &std::array::from_fn(|k| x[k].mid() / x[3].mid())))
         .collect();
     RationalBezierPatch::from_f64_points(p.degree(), &pts, Some(&w), p.domain()).unwrap()
-}
-
-/// Implicit equations of the two surfaces of a scene (zero on the surface) and the closed-form
-/// curve `φ ↦ point` with its parameter range, per arc family.
-struct Case {
-    name: &'static str,
-    on_p: fn(&[f64; 3]) -> f64,
-    on_q: fn(&[f64; 3]) -> f64,
-    /// Closed-form curve points (a dense sample).
-    curve: fn() -> Vec<[f64; 3]>,
 }
 
 fn circle_samples(f: impl Fn(f64) -> [f64; 3]) -> Vec<[f64; 3]> {
@@ -117,46 +88,41 @@ fn on_patch(s: &RationalBezierPatch, y: &[f64; 3]) -> bool {
     dist2(s.point_f64(u, v)) < 1e-18 && d.contains(u, v, 0.0)
 }
 
-const CASES: [Case; 4] = [
-    Case {
-        name: "cylinders.json",
-        on_p: |x| x[0] * x[0] + x[2] * x[2] - 1.0,
-        on_q: |x| x[1] * x[1] + x[2] * x[2] - 1.0,
-        curve: || {
-            let mut v = circle_samples(|f| [f.cos(), f.cos(), f.sin()]);
-            v.extend(circle_samples(|f| [f.cos(), -f.cos(), f.sin()]));
-            v
-        },
+/// Implicit equations of the two surfaces (zero on them) and a dense sample of the closed-form
+/// curve.
+type Geometry = (Implicit, Implicit, fn() -> Vec<[f64; 3]>);
+type Implicit = fn(&[f64; 3]) -> f64;
+
+/// The unit cylinders `x² + z² = 1` and `y² + z² = 1`: the ellipses in the planes `x = ±y`.
+const CYLINDERS: Geometry = (
+    |x| x[0] * x[0] + x[2] * x[2] - 1.0,
+    |x| x[1] * x[1] + x[2] * x[2] - 1.0,
+    || {
+        let mut v = circle_samples(|f| [f.cos(), f.cos(), f.sin()]);
+        v.extend(circle_samples(|f| [f.cos(), -f.cos(), f.sin()]));
+        v
     },
-    Case {
-        name: "cylinders_rational.json",
-        on_p: |x| x[0] * x[0] + x[2] * x[2] - 1.0,
-        on_q: |x| x[1] * x[1] + x[2] * x[2] - 1.0,
-        curve: || {
-            let mut v = circle_samples(|f| [f.cos(), f.cos(), f.sin()]);
-            v.extend(circle_samples(|f| [f.cos(), -f.cos(), f.sin()]));
-            v
-        },
-    },
-    Case {
-        name: "viviani.json",
-        on_p: |x| x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 4.0,
-        on_q: |x| (x[0] - 1.0) * (x[0] - 1.0) + x[1] * x[1] - 1.0,
-        curve: viviani_curve,
-    },
-    Case {
-        name: "viviani_rational.json",
-        on_p: |x| x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 4.0,
-        on_q: |x| (x[0] - 1.0) * (x[0] - 1.0) + x[1] * x[1] - 1.0,
-        curve: viviani_curve,
-    },
+);
+
+/// The sphere of radius 2 about the origin and the cylinder `(x − 1)² + y² = 1`.
+const VIVIANI: Geometry = (
+    |x| x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 4.0,
+    |x| (x[0] - 1.0) * (x[0] - 1.0) + x[1] * x[1] - 1.0,
+    viviani_curve,
+);
+
+const CASES: [(&str, Geometry); 4] = [
+    ("cylinders.json", CYLINDERS),
+    ("cylinders_rational.json", CYLINDERS),
+    ("viviani.json", VIVIANI),
+    ("viviani_rational.json", VIVIANI),
 ];
 
 #[test]
 fn moved_copies_of_node_scenes_are_searched_completely_and_traced_on_the_curve() {
     let mut rng = Rng::new(0x05ee_d0de);
-    for case in &CASES {
-        let scene = common::scenes::scene(case.name);
+    for &(name, (on_p, on_q, curve)) in &CASES {
+        let scene = common::scenes::scene(name);
         let [p0, q0] = &scene.surfaces;
         for copy in 0..6 {
             let (r, t) = if copy == 0 {
@@ -174,7 +140,7 @@ fn moved_copies_of_node_scenes_are_searched_completely_and_traced_on_the_curve()
             };
             let out = intersect(&p, &q, &march, &SearchOptions::default());
             let s = &out.stats;
-            let what = format!("{} copy {copy}", case.name);
+            let what = format!("{name} copy {copy}");
             assert!(
                 s.search_complete,
                 "{what}: {} undecided regions",
@@ -186,8 +152,8 @@ fn moved_copies_of_node_scenes_are_searched_completely_and_traced_on_the_curve()
             for b in &out.intersection.branches {
                 for pt in &b.points {
                     let x = unapply(&r, &t, &pt.xyz);
-                    assert!((case.on_p)(&x).abs() < 1e-7, "{what}: {x:?} off P");
-                    assert!((case.on_q)(&x).abs() < 1e-7, "{what}: {x:?} off Q");
+                    assert!(on_p(&x).abs() < 1e-7, "{what}: {x:?} off P");
+                    assert!(on_q(&x).abs() < 1e-7, "{what}: {x:?} off Q");
                     marched.push(x);
                 }
             }
@@ -198,7 +164,7 @@ fn moved_copies_of_node_scenes_are_searched_completely_and_traced_on_the_curve()
                 on_patch(&p, &y) && on_patch(&q, &y)
             };
             let mut checked = 0;
-            for x in (case.curve)().iter().step_by(2) {
+            for x in curve().iter().step_by(2) {
                 if !inside(x) {
                     continue;
                 }

@@ -68,8 +68,8 @@ impl Piece {
 
     /// The piece of `patch` over the normalised box `s × r` (sub-ranges of `[0, 1]`, e.g. the
     /// dyadic box around a singular point, not aligned with any halving), by blossoming in
-    /// interval arithmetic (`restrict_net` in `enclosure.rs`): the net encloses the exact sub-net over exactly
-    /// that box. `None` if a range is empty or leaves `[0, 1]`.
+    /// interval arithmetic (`restrict_net` in `enclosure.rs`): the net encloses the exact
+    /// sub-net over exactly that box. `None` if a range is empty or leaves `[0, 1]`.
     pub fn over(patch: &RationalBezierPatch, s: [f64; 2], r: [f64; 2]) -> Option<Self> {
         let valid = |x: [f64; 2]| 0.0 <= x[0] && x[0] < x[1] && x[1] <= 1.0;
         if !(valid(s) && valid(r)) {
