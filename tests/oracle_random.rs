@@ -536,6 +536,18 @@ fn random_pairs_fixed_seeds_3() {
     fixed(750, 250);
 }
 
+/// Pairs the soak found with an arc traced twice: the marcher jumped between two curves at a
+/// near-crossing and went on along a curve another branch had traced (seed 1 000 188: three
+/// branches for two curves; its chain ends `close_branches` at the jump; 1 000 630: the chain
+/// follows the true curve away from the marched points and ends unproven; 1 001 128: the near
+/// crossing looks singular). The jumping branch is now dropped as a duplicate (its marched
+/// points all lie in the other branches' certified tubes), and every arc is traced once.
+#[test]
+fn arcs_traced_twice_at_near_crossings_are_reported_once() {
+    let fig = run([1_000_188, 1_000_630, 1_001_128].into_iter());
+    assert_clean(&fig);
+}
+
 /// Fresh pairs on every run (the seed is printed, so a failure can be replayed with
 /// `SSITRACE_ORACLE_SEED`).
 #[test]

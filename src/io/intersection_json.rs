@@ -170,6 +170,7 @@ pub fn stats_json(r: &SurfaceIntersection) -> Map<String, Value> {
         put("straying_points", json!(c.straying_points));
         put("unchecked_points", json!(c.unchecked_points));
         put("looping_branches", json!(c.looping_branches));
+        put("duplicate_branches", json!(c.duplicate_branches));
         if r.contact_error.is_none() {
             put("certified_contacts", json!(r.contacts.len()));
         }

@@ -6,6 +6,7 @@
 //! the straying check ([`crate::check`]). Nothing here reads or writes files: the `io` layer above
 //! turns a [`SurfaceIntersection`] into the result JSON and pictures.
 
+mod duplicates;
 mod options;
 mod result;
 mod run;

@@ -119,6 +119,9 @@ pub struct CertifyStats {
     pub unchecked_points: usize,
     /// Branches whose march went round a closed loop more than once.
     pub looping_branches: usize,
+    /// Marched branches dropped as traced twice: the marcher jumped between close curves and
+    /// every point it marched lies in the certified tubes of other branches.
+    pub duplicate_branches: usize,
 }
 
 /// Counts and timings of a run.

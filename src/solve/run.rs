@@ -6,6 +6,7 @@ use std::time::Instant;
 use inari::Interval;
 use rayon::prelude::*;
 
+use super::duplicates::duplicate_branches;
 use super::options::{Engine, Options};
 use super::result::{
     end_box, BranchCertificate, CertifyStats, Stats, SurfaceIntersection, TracedBranch,
@@ -21,6 +22,11 @@ use crate::march::branch::{Branch, BranchStatus};
 use crate::march::MarchOptions;
 use crate::topology::branch_ends::check_branch_ends;
 use crate::topology::intersect::intersect as march_all;
+
+/// Scaled parameter distance, beyond a tube piece's proven radius, within which a marched point
+/// counts as lying on that piece when duplicates are looked for (the marcher's points are on the
+/// curve to about 1e-12 of the model; certified tubes are about 1e-9 wide).
+const DUPLICATE_SLACK: f64 = 1e-9;
 
 /// Finds, traces and (unless the method is [`Method::March`](super::Method::March)) certifies
 /// every branch of `P ∩ Q`.
@@ -47,8 +53,8 @@ pub fn intersect(
     let deadline = opts.time_limit.map(|limit| started + limit);
     let outcome = march_all(p, q, &march, &opts.search);
     let march_seconds = started.elapsed().as_secs_f64();
-    let marched = outcome.intersection.branches;
-    let boundary_ends: Vec<_> = marched
+    let mut marched = outcome.intersection.branches;
+    let mut boundary_ends: Vec<_> = marched
         .iter()
         .map(|b| check_branch_ends(p, q, b, &opts.boundary))
         .collect();
@@ -76,6 +82,32 @@ pub fn intersect(
             .map(|b| certify_within(p, q, b, opts, deadline))
             .collect();
         let wall_seconds = certifying.elapsed().as_secs_f64();
+        // A branch traced twice (the marcher jumped between close curves) is dropped.
+        let dropped = {
+            let certified: Vec<Option<&CertifiedBranch>> =
+                certs.iter().map(BranchCertificate::certified).collect();
+            duplicate_branches(p, q, &marched, &certified, DUPLICATE_SLACK)
+        };
+        let keep = |i: &usize| !dropped[*i];
+        let duplicates = dropped.iter().filter(|d| **d).count();
+        let certs: Vec<BranchCertificate> = certs
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| keep(i))
+            .map(|(_, c)| c)
+            .collect();
+        marched = std::mem::take(&mut marched)
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| keep(i))
+            .map(|(_, b)| b)
+            .collect();
+        boundary_ends = std::mem::take(&mut boundary_ends)
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| keep(i))
+            .map(|(_, b)| b)
+            .collect();
         let certified: Vec<Option<&CertifiedBranch>> =
             certs.iter().map(BranchCertificate::certified).collect();
         let checking = Instant::now();
@@ -101,6 +133,7 @@ pub fn intersect(
             straying_points: count(&|r| r.straying.len()),
             unchecked_points: count(&|r| r.unchecked.len()),
             looping_branches: count(&|r| usize::from(r.looping)),
+            duplicate_branches: duplicates,
         });
         certificates = certs.into_iter().map(Some).collect();
         straying = reports.into_iter().map(Some).collect();

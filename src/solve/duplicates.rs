@@ -1,0 +1,118 @@
+//! Branches the marcher traced twice: at a near-crossing of two curves (closer than its step
+//! can tell apart) the marcher can jump from one curve to the other and go on along a curve
+//! another branch already traced. The cover chain of such a branch stops at the jump, or follows
+//! the true curve away from the marched points, and what it certified lies on other branches.
+//!
+//! A branch is dropped as a **duplicate** when its certificate stops short at an end (it is not a
+//! proven boundary end or a closed loop: `close_branches` at the jump, `singular` where the close
+//! curves look like a singular point, `unproven` where the chain left the marched points) and
+//! every one of its marched points lies in a tube piece of another kept branch's cover chain
+//! (the piece's reported curve ± its proven parameter radius, plus the marcher's Newton
+//! tolerance): then its whole marched path, and with it everything its certificate covers, is
+//! certified by other branches, so no component loses its only trace. Dropping claims nothing;
+//! the test is in `f64` because it only decides what is reported twice. (Two distinct curves
+//! within the certified tolerance of each other along a whole branch would be taken for one:
+//! no certificate at that tolerance tells them apart.)
+
+use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
+use crate::geometry::surface::pair_widths;
+use crate::geometry::RationalBezierPatch;
+use crate::march::branch::Branch;
+
+/// Which branches are duplicates (see the module documentation), in order: a branch is tested
+/// against the branches not dropped before it and all after it.
+pub(crate) fn duplicate_branches(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    marched: &[Branch],
+    certified: &[Option<&CertifiedBranch>],
+    newton_tolerance: f64,
+) -> Vec<bool> {
+    let scales = pair_widths(&p.domain(), &q.domain());
+    let mut dropped = vec![false; marched.len()];
+    for i in 0..marched.len() {
+        // Only a chain that stopped short at some end (a jump, or where it left the marched
+        // points) can have marched past what it certified onto another branch.
+        let jumped = certified[i].is_some_and(|c| {
+            c.ends
+                .iter()
+                .any(|e| !matches!(e, CertifiedEnd::Boundary { .. } | CertifiedEnd::ClosedLoop))
+        });
+        if !jumped {
+            continue;
+        }
+        let others: Vec<&TubePiece> = (0..marched.len())
+            .filter(|&j| j != i && !dropped[j])
+            .filter_map(|j| certified[j])
+            .flat_map(|c| &c.tubes)
+            .filter(|t| t.along.is_some())
+            .collect();
+        dropped[i] = !others.is_empty()
+            && marched[i].points.iter().all(|pt| {
+                let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+                others
+                    .iter()
+                    .any(|t| in_piece(t, &x, &scales, newton_tolerance))
+            });
+    }
+    dropped
+}
+
+/// Whether the parameters `x` lie in the tube piece: its along coordinate in the piece's range
+/// and the others within the proven radius (plus `slack` scaled by the domain widths) of the
+/// reported curve there.
+fn in_piece(t: &TubePiece, x: &[f64; 4], scales: &[f64; 4], slack: f64) -> bool {
+    let Some(along) = t.along else {
+        return false;
+    };
+    let j = along.index;
+    let start = t.eval(0.0)[j];
+    let tau = (x[j] - start) * t.coeffs.get(1).map_or(1.0, |c| c[j].signum());
+    if !(0.0..=t.h).contains(&tau) {
+        return false;
+    }
+    let y = t.eval(tau);
+    (0..4)
+        .filter(|&k| k != j)
+        .all(|k| (x[k] - y[k]).abs() <= t.radius_param + slack * scales[k])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::certify::AlongParameter;
+
+    fn piece() -> TubePiece {
+        // σ = 0.2 + τ, t = 0.5 + 0.1τ, u = σ, v = t over τ ∈ [0, 0.3].
+        TubePiece {
+            s0: 0.0,
+            direction: 1.0,
+            h: 0.3,
+            coeffs: vec![[0.2, 0.5, 0.2, 0.5], [1.0, 0.1, 1.0, 0.1]],
+            radius_param: 1e-9,
+            radius_xyz: 1e-9,
+            s0_error: 0.0,
+            along: Some(AlongParameter {
+                index: 0,
+                arc_length: 0.3,
+            }),
+        }
+    }
+
+    #[test]
+    fn points_in_and_out_of_a_piece() {
+        let (t, s) = (piece(), [1.0; 4]);
+        assert!(in_piece(&t, &[0.3, 0.51, 0.3, 0.51], &s, 0.0));
+        assert!(in_piece(&t, &[0.3, 0.51 + 5e-10, 0.3, 0.51], &s, 0.0));
+        assert!(!in_piece(&t, &[0.3, 0.51 + 5e-9, 0.3, 0.51], &s, 0.0));
+        assert!(in_piece(&t, &[0.3, 0.51 + 5e-9, 0.3, 0.51], &s, 1e-8));
+        // Outside the piece's range of σ.
+        assert!(!in_piece(&t, &[0.6, 0.54, 0.6, 0.54], &s, 0.0));
+        assert!(!in_piece(&t, &[0.1, 0.49, 0.1, 0.49], &s, 0.0));
+        // A piece walked the other way (σ decreasing).
+        let mut back = piece();
+        back.coeffs = vec![[0.5, 0.53, 0.5, 0.53], [-1.0, -0.1, -1.0, -0.1]];
+        assert!(in_piece(&back, &[0.3, 0.51, 0.3, 0.51], &s, 0.0));
+        assert!(!in_piece(&back, &[0.6, 0.54, 0.6, 0.54], &s, 0.0));
+    }
+}
