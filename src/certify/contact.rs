@@ -23,8 +23,11 @@
 
 use crate::certify::budget::{h_max_for, StepBudget};
 use crate::certify::contact_cover::{contact_cover, ContactCover, CoverOptions};
+use crate::certify::contact_patch::ContactPatch;
 use crate::certify::curve::TubePiece;
-use crate::certify::tangential_ode::{ScaledContact, TangentialOde};
+use crate::certify::tangential_ode::{
+    pivot_sign, RatioTangentialOde, ScaledContact, TangentialOde,
+};
 use crate::certify::trace::tube_piece;
 use crate::error::{Error, Result};
 use crate::geometry::surface::{pair_bounds, pair_widths};
@@ -35,7 +38,7 @@ use crate::pair::centred_second_order::CentredSecondOrder;
 use crate::pair::contact_quadratic::{
     classify, contact_quadratic, tangential_velocity, ContactCase, Proven, TangentialFormula,
 };
-use crate::validated::{Integrator, IntegratorState};
+use crate::validated::{Integrator, IntegratorOptions, IntegratorState};
 use inari::Interval;
 
 /// What one parameter box is, decided in interval arithmetic.
@@ -302,8 +305,14 @@ pub fn certify_contact(
         if v_ref.iter().any(|x| !x.is_finite()) {
             return Err(fail("the tangential direction is undefined at the start"));
         }
-        let backward = trace_half(p, q, &y0, v_ref.map(|x| -x), -1.0, opts)?;
-        let forward = trace_half(p, q, &y0, v_ref, 1.0, opts)?;
+        let (lp, lq) = (ContactPatch::new(p), ContactPatch::new(q));
+        let lean = (&lp, &lq);
+        // The halves are independent: one thread each.
+        let (backward, forward) = rayon::join(
+            || trace_half(p, q, lean, &y0, v_ref.map(|x| -x), -1.0, opts),
+            || trace_half(p, q, lean, &y0, v_ref, 1.0, opts),
+        );
+        let (backward, forward) = (backward?, forward?);
         steps.extend(backward.steps.into_iter().rev());
         tubes.extend(backward.tubes.into_iter().rev());
         steps.extend(forward.steps);
@@ -459,6 +468,31 @@ fn statement(
     )
 }
 
+/// The validated integrator of the tangential field of `p`, `q` with root formula `formula` and
+/// orientation `orientation`, from the start set `start`: both patches in their lean centred
+/// form ([`ContactPatch`]), the field in ratio form ([`RatioTangentialOde`], longer steps) when
+/// the sign of its pivot is proven on `start`, else in the scaled form ([`TangentialOde`]). All
+/// are the same field on every box the engine proves anything over.
+fn tangential_integrator(
+    p: &ContactPatch<'_>,
+    q: &ContactPatch<'_>,
+    formula: TangentialFormula,
+    orientation: f64,
+    start: &[Interval; 4],
+    options: IntegratorOptions,
+) -> Result<Integrator> {
+    let field = TangentialOde {
+        p,
+        q,
+        formula,
+        orientation,
+    };
+    match pivot_sign(p, q, formula, start) {
+        Some(pivot_sign) => Integrator::new(&RatioTangentialOde { field, pivot_sign }, options),
+        None => Integrator::new(&field, options),
+    }
+}
+
 struct HalfTrace {
     steps: Vec<ContactStep>,
     tubes: Vec<TubePiece>,
@@ -475,9 +509,11 @@ struct Active {
 
 /// One half of the trace, along `dir` (+1 forward, −1 backward); `heading` is the f64 parameter
 /// velocity the first step should agree with.
+#[allow(clippy::too_many_arguments)]
 fn trace_half(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
+    lean: (&ContactPatch<'_>, &ContactPatch<'_>),
     y0: &[Interval; 4],
     heading: [f64; 4],
     dir: f64,
@@ -514,13 +550,11 @@ fn trace_half(
                 return Ok(half);
             }
             let orientation = if along >= 0.0 { 1.0 } else { -1.0 };
-            let ode = TangentialOde {
-                p,
-                q,
-                formula,
-                orientation,
-            };
-            let integ = Integrator::new(&ode, opts.steps.integrator_options(h_max))?;
+            let options = opts.steps.integrator_options(h_max);
+            let (lp, lq) = lean;
+            let mut integ = tangential_integrator(lp, lq, formula, orientation, &current, options)?;
+            // Sound for any guess; the thin restarted sets of this tracer do not widen by it.
+            integ.set_adaptive_guess(true);
             let state = integ.start(&current, t)?;
             active = Some(Active {
                 formula,
