@@ -357,6 +357,11 @@ pub fn certify_contact(
 
 /// [`certify_contact`] from a marcher's contact events: one result per [`EventKind::Singular`]
 /// event whose parameters are not already inside the searched region of an earlier result.
+///
+/// Each result starts from the pending event nearest the centroid of all pending events (in
+/// parameters), not from the first one: along a contact curve the marcher reports events all
+/// the way, and a start in their middle gives two halves of similar length, which trace on two
+/// threads (from an end, one half would carry the whole curve).
 pub fn certify_contact_events(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -365,24 +370,43 @@ pub fn certify_contact_events(
 ) -> Result<Vec<CertifiedContact>> {
     let mut out: Vec<CertifiedContact> = Vec::new();
     let (dp, dq) = (p.domain(), q.domain());
-    for e in events.iter().filter(|e| e.kind == EventKind::Singular) {
-        // A located contact point may sit a rounding-sized distance outside a domain: clamp it
-        // in, so that it is recognised inside an earlier contact's (clipped) region.
-        let y: [f64; 4] = std::array::from_fn(|i| {
-            let [lo, hi] = pair_bounds(&dp, &dq, i);
-            [e.p[0], e.p[1], e.q[0], e.q[1]][i].clamp(lo, hi)
-        });
-        let seen = out.iter().any(|c| {
-            c.cover
-                .region
-                .iter()
-                .any(|r| r.iter().zip(&y).all(|(x, v)| x.contains(*v)))
-        });
-        if !seen {
-            out.push(certify_contact(p, q, y, opts)?);
+    // A located contact point may sit a rounding-sized distance outside a domain: clamp it in,
+    // so that it is recognised inside an earlier contact's (clipped) region.
+    let mut pending: Vec<[f64; 4]> = events
+        .iter()
+        .filter(|e| e.kind == EventKind::Singular)
+        .map(|e| {
+            std::array::from_fn(|i| {
+                let [lo, hi] = pair_bounds(&dp, &dq, i);
+                [e.p[0], e.p[1], e.q[0], e.q[1]][i].clamp(lo, hi)
+            })
+        })
+        .collect();
+    loop {
+        if let Some(last) = out.last() {
+            pending.retain(|y| {
+                !last
+                    .cover
+                    .region
+                    .iter()
+                    .any(|r| r.iter().zip(y).all(|(x, v)| x.contains(*v)))
+            });
         }
+        let Some(start) = central(&pending) else {
+            return Ok(out);
+        };
+        let y = pending.remove(start);
+        out.push(certify_contact(p, q, y, opts)?);
     }
-    Ok(out)
+}
+
+/// The index of the point nearest the centroid of `points` (the first of equals); `None` if
+/// there are none.
+fn central(points: &[[f64; 4]]) -> Option<usize> {
+    let n = points.len() as f64;
+    let c: [f64; 4] = std::array::from_fn(|i| points.iter().map(|y| y[i]).sum::<f64>() / n);
+    let dist = |y: &[f64; 4]| (0..4).map(|i| (y[i] - c[i]).powi(2)).sum::<f64>();
+    (0..points.len()).min_by(|&a, &b| dist(&points[a]).total_cmp(&dist(&points[b])))
 }
 
 /// The searched region: runs of consecutive a-priori boxes whose hull spans at most two
