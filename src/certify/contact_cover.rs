@@ -16,6 +16,7 @@
 //! `d ≈ √(rounding/κ)` where `κ d²` drowns in rounding (≈ 1e-8 in double precision), which no
 //! affordable number of 4-D boxes reaches.
 
+use crate::certify::contact_net::{CoverPatch, Net4, Scratch};
 use crate::geometry::enclosure::boxes_disjoint;
 use crate::geometry::surface::{pair_bounds, pair_widths};
 use crate::geometry::RationalBezierPatch;
@@ -23,6 +24,7 @@ use crate::numeric::scalar::{interval, point};
 use crate::numeric::vec3::{self, cross};
 use inari::Interval;
 use rayon::prelude::*;
+use std::rc::Rc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Parameters of [`contact_cover`].
@@ -114,7 +116,8 @@ const NORMAL_TEST_LEAVES: f64 = 1.0;
 /// with the partials enclosed over the box. Near a contact the partials of `g` are `O(w)` (the
 /// tangents are normal to `n`), so this excludes boxes at distance `≳ w` from the contact where
 /// the hull test, whose ranges carry the surfaces' slope `O(w)`, needs distance `≳ √w`.
-fn normal_separates(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Interval; 4]) -> bool {
+fn normal_separates(cp: &CoverPatch<'_>, cq: &CoverPatch<'_>, y: &[Interval; 4]) -> bool {
+    let (p, q) = (cp.patch(), cq.patch());
     let c = y.map(|x| x.mid());
     let d = p.derivs_f64(c[0], c[1]);
     let n = cross(&d.su, &d.sv);
@@ -127,8 +130,8 @@ fn normal_separates(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Inter
     let qc = q.eval(point(c[2]), point(c[3]));
     // Partials over the box, written around its centre (tight: no Bernstein cancellation).
     let ci = c.map(point);
-    let (pa, pb, pg) = p.scaled_partials_centred(y[0], y[1], ci[0], ci[1]);
-    let (qa, qb, qg) = q.scaled_partials_centred(y[2], y[3], ci[2], ci[3]);
+    let (pa, pb, pg) = cp.scaled_partials_centred(y[0], y[1], ci[0], ci[1]);
+    let (qa, qb, qg) = cq.scaled_partials_centred(y[2], y[3], ci[2], ci[3]);
     let (ps, pt) = (pa.map(|x| x / pg), pb.map(|x| x / pg));
     let (qu, qv) = (qa.map(|x| x / qg), qb.map(|x| x / qg));
     let off = |i: usize| y[i] - point(c[i]);
@@ -157,17 +160,18 @@ pub fn contact_cover(
         .iter()
         .filter_map(|y| clip_to_domains(p, q, y))
         .collect();
+    let (cp, cq) = (CoverPatch::new(p), CoverPatch::new(q));
     let roots: Vec<Root> = clipped
         .par_iter()
         .map(|y| Root {
             y: *y,
-            bp: p.enclose(y[0], y[1]),
-            bq: q.enclose(y[2], y[3]),
+            bp: cp.enclose(y[0], y[1]),
+            bq: cq.enclose(y[2], y[3]),
         })
         .collect();
     let ctx = Bisection {
-        p,
-        q,
+        p: &cp,
+        q: &cq,
         widths,
         leaf,
         max_evaluations: opts.max_evaluations,
@@ -211,6 +215,17 @@ struct Root {
     bq: [Interval; 3],
 }
 
+/// A box waiting to be tested, with what its bisection can reuse.
+struct Item {
+    y: [Interval; 4],
+    /// `P([σ], [t])` and `Q([u], [v])`.
+    bp: [Interval; 3],
+    bq: [Interval; 3],
+    /// The u-columns of the sub-nets over `[σ]` and `[u]` ([`CoverPatch::columns`]).
+    cols_p: Rc<Vec<Net4>>,
+    cols_q: Rc<Vec<Net4>>,
+}
+
 /// The kept boxes of one root.
 #[derive(Default)]
 struct RootCover {
@@ -232,8 +247,8 @@ enum Limit<'a> {
 
 /// What every root's bisection shares.
 struct Bisection<'a> {
-    p: &'a RationalBezierPatch,
-    q: &'a RationalBezierPatch,
+    p: &'a CoverPatch<'a>,
+    q: &'a CoverPatch<'a>,
     widths: [f64; 4],
     leaf: [f64; 4],
     max_evaluations: usize,
@@ -255,10 +270,24 @@ impl Bisection<'_> {
             }
         };
         // Each work item carries the enclosures of its P- and Q-halves, so bisecting σ or t
-        // only re-encloses P, and u or v only Q.
-        let mut stack: Vec<([Interval; 4], [Interval; 3], [Interval; 3])> =
-            vec![(root.y, root.bp, root.bq)];
-        while let Some((y, bp, bq)) = stack.pop() {
+        // only re-encloses P, and u or v only Q; and the u-columns of both sub-nets, so
+        // bisecting t (or v) only restricts the rows again.
+        let mut scratch = Scratch::default();
+        let mut stack: Vec<Item> = vec![Item {
+            y: root.y,
+            bp: root.bp,
+            bq: root.bq,
+            cols_p: Rc::new(p.columns(root.y[0], &mut scratch)),
+            cols_q: Rc::new(q.columns(root.y[2], &mut scratch)),
+        }];
+        while let Some(Item {
+            y,
+            bp,
+            bq,
+            cols_p,
+            cols_q,
+        }) = stack.pop()
+        {
             if boxes_disjoint(&bp, &bq) {
                 continue;
             }
@@ -302,11 +331,24 @@ impl Bisection<'_> {
                 if !spend(&mut out, 1) {
                     return None;
                 }
-                if widest < 2 {
-                    stack.push((z, p.enclose(z[0], z[1]), bq));
-                } else {
-                    stack.push((z, bp, q.enclose(z[2], z[3])));
+                let mut item = Item {
+                    y: z,
+                    bp,
+                    bq,
+                    cols_p: cols_p.clone(),
+                    cols_q: cols_q.clone(),
+                };
+                match widest {
+                    0 => item.cols_p = Rc::new(p.columns(z[0], &mut scratch)),
+                    2 => item.cols_q = Rc::new(q.columns(z[2], &mut scratch)),
+                    _ => {}
                 }
+                if widest < 2 {
+                    item.bp = p.enclose_rows(&item.cols_p, z[0], z[1], &mut scratch);
+                } else {
+                    item.bq = q.enclose_rows(&item.cols_q, z[2], z[3], &mut scratch);
+                }
+                stack.push(item);
             }
         }
         Some(out)
@@ -317,6 +359,35 @@ impl Bisection<'_> {
 mod tests {
     use super::*;
     use crate::geometry::{Domain, PowerSurface};
+
+    /// The normal test as it was (on the patches' own functions).
+    fn old_normal_separates(
+        p: &RationalBezierPatch,
+        q: &RationalBezierPatch,
+        y: &[Interval; 4],
+    ) -> bool {
+        let c = y.map(|x| x.mid());
+        let d = p.derivs_f64(c[0], c[1]);
+        let n = cross(&d.su, &d.sv);
+        if !n.iter().all(|x| x.is_finite()) {
+            return false;
+        }
+        let n = [point(n[0]), point(n[1]), point(n[2])];
+        let dot = |a: &[Interval; 3]| vec3::dot(&n, a);
+        let pc = p.eval(point(c[0]), point(c[1]));
+        let qc = q.eval(point(c[2]), point(c[3]));
+        // Partials over the box, written around its centre (tight: no Bernstein cancellation).
+        let ci = c.map(point);
+        let (pa, pb, pg) = p.scaled_partials_centred(y[0], y[1], ci[0], ci[1]);
+        let (qa, qb, qg) = q.scaled_partials_centred(y[2], y[3], ci[2], ci[3]);
+        let (ps, pt) = (pa.map(|x| x / pg), pb.map(|x| x / pg));
+        let (qu, qv) = (qa.map(|x| x / qg), qb.map(|x| x / qg));
+        let off = |i: usize| y[i] - point(c[i]);
+        let g = dot(&pc) - dot(&qc) + dot(&ps) * off(0) + dot(&pt) * off(1)
+            - dot(&qu) * off(2)
+            - dot(&qv) * off(3);
+        !g.is_empty() && !g.contains(0.0)
+    }
 
     /// The cover as it was computed before the parallel bisection: one stack, one budget.
     fn sequential_cover(
@@ -347,7 +418,7 @@ mod tests {
             let near_leaf = (0..4).all(|i| y[i].wid() <= NORMAL_TEST_LEAVES * leaf[i]);
             if near_leaf {
                 cover.evaluations += 1;
-                if normal_separates(p, q, &y) {
+                if old_normal_separates(p, q, &y) {
                     continue;
                 }
             }
