@@ -46,10 +46,14 @@ impl StepBudget {
         deadline: None,
     };
 
-    /// The default of the contact tracer.
+    /// The default of the contact tracer. Its steps are sized by the validated remainder over
+    /// the a-priori box, not by the term target (halving the target shortens them by ≈ 3%), so
+    /// a tight target costs little and keeps the tube thin; measured on the cubic × quadratic
+    /// contact (ratio form): order 16 / 1e-14 took 242 steps (tube radius 2.1e-11), order 20 /
+    /// 5e-15 201 steps (1.0e-11) in the same time.
     pub const CONTACT: StepBudget = StepBudget {
-        order: 16,
-        term_target: 1e-14,
+        order: 20,
+        term_target: 5e-15,
         h_min: 1e-8,
         h_max: 0.125,
         max_steps: 1000,

@@ -5,7 +5,9 @@
 //! and reports three things with different strengths:
 //!
 //! 1. **Tube** (a solution, not an intersection proof): the tangential field
-//!    ([`TangentialOde`]) is integrated both ways on the validated engine. Each step proves that
+//!    ([`TangentialOde`]) is integrated both ways on the validated engine, the halves on two
+//!    threads (the engine sees the same field in ratio form, [`RatioTangentialOde`], on lean
+//!    polynomial patches, [`ContactPatch`], for longer and cheaper steps). Each step proves that
 //!    every solution from the start box exists and lies in the step's a-priori box and within
 //!    the tube piece's radius of its polynomial. Exact tangency along a curve cannot be proven in
 //!    interval arithmetic, so this is "the solution of the tangential direction field from the
@@ -23,8 +25,11 @@
 
 use crate::certify::budget::{h_max_for, StepBudget};
 use crate::certify::contact_cover::{contact_cover, ContactCover, CoverOptions};
+use crate::certify::contact_patch::ContactPatch;
 use crate::certify::curve::TubePiece;
-use crate::certify::tangential_ode::{ScaledContact, TangentialOde};
+use crate::certify::tangential_ode::{
+    pivot_sign, RatioTangentialOde, ScaledContact, TangentialOde,
+};
 use crate::certify::trace::tube_piece;
 use crate::error::{Error, Result};
 use crate::geometry::surface::{pair_bounds, pair_widths};
@@ -35,8 +40,9 @@ use crate::pair::centred_second_order::CentredSecondOrder;
 use crate::pair::contact_quadratic::{
     classify, contact_quadratic, tangential_velocity, ContactCase, Proven, TangentialFormula,
 };
-use crate::validated::{Integrator, IntegratorState};
+use crate::validated::{Integrator, IntegratorOptions, IntegratorState};
 use inari::Interval;
+use rayon::prelude::*;
 
 /// What one parameter box is, decided in interval arithmetic.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -302,8 +308,14 @@ pub fn certify_contact(
         if v_ref.iter().any(|x| !x.is_finite()) {
             return Err(fail("the tangential direction is undefined at the start"));
         }
-        let backward = trace_half(p, q, &y0, v_ref.map(|x| -x), -1.0, opts)?;
-        let forward = trace_half(p, q, &y0, v_ref, 1.0, opts)?;
+        let (lp, lq) = (ContactPatch::new(p), ContactPatch::new(q));
+        let lean = (&lp, &lq);
+        // The halves are independent: one thread each.
+        let (backward, forward) = rayon::join(
+            || trace_half(p, q, lean, &y0, v_ref.map(|x| -x), -1.0, opts),
+            || trace_half(p, q, lean, &y0, v_ref, 1.0, opts),
+        );
+        let (backward, forward) = (backward?, forward?);
         steps.extend(backward.steps.into_iter().rev());
         tubes.extend(backward.tubes.into_iter().rev());
         steps.extend(forward.steps);
@@ -319,9 +331,10 @@ pub fn certify_contact(
     };
     let cover = contact_cover(p, q, &region, &opts.cover);
     let samples = tube_samples(p, &tubes, start);
+    // (Boxes × samples distances: on two threads; the maximum does not depend on the order.)
     let cover_band = cover
         .boxes
-        .iter()
+        .par_iter()
         .map(|b| {
             let c = b.xyz.map(|x| x.mid());
             samples
@@ -330,7 +343,7 @@ pub fn certify_contact(
                 .fold(f64::INFINITY, f64::min)
                 .sqrt()
         })
-        .fold(0.0, f64::max);
+        .reduce(|| 0.0, f64::max);
     let tube_radius = tubes.iter().map(|t| t.radius_xyz).fold(0.0, f64::max);
     let proven_statement = statement(&steps, tube_radius, &cover, opts);
     Ok(CertifiedContact {
@@ -348,6 +361,11 @@ pub fn certify_contact(
 
 /// [`certify_contact`] from a marcher's contact events: one result per [`EventKind::Singular`]
 /// event whose parameters are not already inside the searched region of an earlier result.
+///
+/// Each result starts from the pending event nearest the centroid of all pending events (in
+/// parameters), not from the first one: along a contact curve the marcher reports events all
+/// the way, and a start in their middle gives two halves of similar length, which trace on two
+/// threads (from an end, one half would carry the whole curve).
 pub fn certify_contact_events(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -356,24 +374,43 @@ pub fn certify_contact_events(
 ) -> Result<Vec<CertifiedContact>> {
     let mut out: Vec<CertifiedContact> = Vec::new();
     let (dp, dq) = (p.domain(), q.domain());
-    for e in events.iter().filter(|e| e.kind == EventKind::Singular) {
-        // A located contact point may sit a rounding-sized distance outside a domain: clamp it
-        // in, so that it is recognised inside an earlier contact's (clipped) region.
-        let y: [f64; 4] = std::array::from_fn(|i| {
-            let [lo, hi] = pair_bounds(&dp, &dq, i);
-            [e.p[0], e.p[1], e.q[0], e.q[1]][i].clamp(lo, hi)
-        });
-        let seen = out.iter().any(|c| {
-            c.cover
-                .region
-                .iter()
-                .any(|r| r.iter().zip(&y).all(|(x, v)| x.contains(*v)))
-        });
-        if !seen {
-            out.push(certify_contact(p, q, y, opts)?);
+    // A located contact point may sit a rounding-sized distance outside a domain: clamp it in,
+    // so that it is recognised inside an earlier contact's (clipped) region.
+    let mut pending: Vec<[f64; 4]> = events
+        .iter()
+        .filter(|e| e.kind == EventKind::Singular)
+        .map(|e| {
+            std::array::from_fn(|i| {
+                let [lo, hi] = pair_bounds(&dp, &dq, i);
+                [e.p[0], e.p[1], e.q[0], e.q[1]][i].clamp(lo, hi)
+            })
+        })
+        .collect();
+    loop {
+        if let Some(last) = out.last() {
+            pending.retain(|y| {
+                !last
+                    .cover
+                    .region
+                    .iter()
+                    .any(|r| r.iter().zip(y).all(|(x, v)| x.contains(*v)))
+            });
         }
+        let Some(start) = central(&pending) else {
+            return Ok(out);
+        };
+        let y = pending.remove(start);
+        out.push(certify_contact(p, q, y, opts)?);
     }
-    Ok(out)
+}
+
+/// The index of the point nearest the centroid of `points` (the first of equals); `None` if
+/// there are none.
+fn central(points: &[[f64; 4]]) -> Option<usize> {
+    let n = points.len() as f64;
+    let c: [f64; 4] = std::array::from_fn(|i| points.iter().map(|y| y[i]).sum::<f64>() / n);
+    let dist = |y: &[f64; 4]| (0..4).map(|i| (y[i] - c[i]).powi(2)).sum::<f64>();
+    (0..points.len()).min_by(|&a, &b| dist(&points[a]).total_cmp(&dist(&points[b])))
 }
 
 /// The searched region: runs of consecutive a-priori boxes whose hull spans at most two
@@ -459,6 +496,31 @@ fn statement(
     )
 }
 
+/// The validated integrator of the tangential field of `p`, `q` with root formula `formula` and
+/// orientation `orientation`, from the start set `start`: both patches in their lean centred
+/// form ([`ContactPatch`]), the field in ratio form ([`RatioTangentialOde`], longer steps) when
+/// the sign of its pivot is proven on `start`, else in the scaled form ([`TangentialOde`]). All
+/// are the same field on every box the engine proves anything over.
+fn tangential_integrator(
+    p: &ContactPatch<'_>,
+    q: &ContactPatch<'_>,
+    formula: TangentialFormula,
+    orientation: f64,
+    start: &[Interval; 4],
+    options: IntegratorOptions,
+) -> Result<Integrator> {
+    let field = TangentialOde {
+        p,
+        q,
+        formula,
+        orientation,
+    };
+    match pivot_sign(p, q, formula, start) {
+        Some(pivot_sign) => Integrator::new(&RatioTangentialOde { field, pivot_sign }, options),
+        None => Integrator::new(&field, options),
+    }
+}
+
 struct HalfTrace {
     steps: Vec<ContactStep>,
     tubes: Vec<TubePiece>,
@@ -475,9 +537,11 @@ struct Active {
 
 /// One half of the trace, along `dir` (+1 forward, −1 backward); `heading` is the f64 parameter
 /// velocity the first step should agree with.
+#[allow(clippy::too_many_arguments)]
 fn trace_half(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
+    lean: (&ContactPatch<'_>, &ContactPatch<'_>),
     y0: &[Interval; 4],
     heading: [f64; 4],
     dir: f64,
@@ -514,13 +578,11 @@ fn trace_half(
                 return Ok(half);
             }
             let orientation = if along >= 0.0 { 1.0 } else { -1.0 };
-            let ode = TangentialOde {
-                p,
-                q,
-                formula,
-                orientation,
-            };
-            let integ = Integrator::new(&ode, opts.steps.integrator_options(h_max))?;
+            let options = opts.steps.integrator_options(h_max);
+            let (lp, lq) = lean;
+            let mut integ = tangential_integrator(lp, lq, formula, orientation, &current, options)?;
+            // Sound for any guess; the thin restarted sets of this tracer do not widen by it.
+            integ.set_adaptive_guess(true);
             let state = integ.start(&current, t)?;
             active = Some(Active {
                 formula,

@@ -16,12 +16,16 @@
 //! `d ≈ √(rounding/κ)` where `κ d²` drowns in rounding (≈ 1e-8 in double precision), which no
 //! affordable number of 4-D boxes reaches.
 
+use crate::certify::contact_net::{CoverPatch, Net4, Scratch};
 use crate::geometry::enclosure::boxes_disjoint;
 use crate::geometry::surface::{pair_bounds, pair_widths};
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::scalar::{interval, point};
 use crate::numeric::vec3::{self, cross};
 use inari::Interval;
+use rayon::prelude::*;
+use std::rc::Rc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Parameters of [`contact_cover`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,7 +116,8 @@ const NORMAL_TEST_LEAVES: f64 = 1.0;
 /// with the partials enclosed over the box. Near a contact the partials of `g` are `O(w)` (the
 /// tangents are normal to `n`), so this excludes boxes at distance `≳ w` from the contact where
 /// the hull test, whose ranges carry the surfaces' slope `O(w)`, needs distance `≳ √w`.
-fn normal_separates(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Interval; 4]) -> bool {
+fn normal_separates(cp: &CoverPatch<'_>, cq: &CoverPatch<'_>, y: &[Interval; 4]) -> bool {
+    let (p, q) = (cp.patch(), cq.patch());
     let c = y.map(|x| x.mid());
     let d = p.derivs_f64(c[0], c[1]);
     let n = cross(&d.su, &d.sv);
@@ -125,8 +130,8 @@ fn normal_separates(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Inter
     let qc = q.eval(point(c[2]), point(c[3]));
     // Partials over the box, written around its centre (tight: no Bernstein cancellation).
     let ci = c.map(point);
-    let (pa, pb, pg) = p.scaled_partials_centred(y[0], y[1], ci[0], ci[1]);
-    let (qa, qb, qg) = q.scaled_partials_centred(y[2], y[3], ci[2], ci[3]);
+    let (pa, pb, pg) = cp.scaled_partials_centred(y[0], y[1], ci[0], ci[1]);
+    let (qa, qb, qg) = cq.scaled_partials_centred(y[2], y[3], ci[2], ci[3]);
     let (ps, pt) = (pa.map(|x| x / pg), pb.map(|x| x / pg));
     let (qu, qv) = (qa.map(|x| x / qg), qb.map(|x| x / qg));
     let off = |i: usize| y[i] - point(c[i]);
@@ -138,6 +143,11 @@ fn normal_separates(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Inter
 
 /// Bisects every box of `region` (clipped to both domains) and keeps the sub-boxes on which
 /// `P` and `Q` may meet; see [`ContactCover`] for the guarantee.
+///
+/// The region boxes are independent and are bisected in parallel; the result is the one of
+/// bisecting them one after another (last box first, one shared evaluation budget), box for
+/// box: a box whose bisection might have met the budget at its place in that order is bisected
+/// again in order with the budget (so the result never depends on the threads).
 pub fn contact_cover(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -146,68 +156,305 @@ pub fn contact_cover(
 ) -> ContactCover {
     let widths = pair_widths(&p.domain(), &q.domain());
     let leaf: [f64; 4] = std::array::from_fn(|i| opts.leaf_fraction * widths[i]);
+    let clipped: Vec<[Interval; 4]> = region
+        .iter()
+        .filter_map(|y| clip_to_domains(p, q, y))
+        .collect();
+    let (cp, cq) = (CoverPatch::new(p), CoverPatch::new(q));
+    let roots: Vec<Root> = clipped
+        .par_iter()
+        .map(|y| Root {
+            y: *y,
+            bp: cp.enclose(y[0], y[1]),
+            bq: cq.enclose(y[2], y[3]),
+        })
+        .collect();
+    let ctx = Bisection {
+        p: &cp,
+        q: &cq,
+        widths,
+        leaf,
+        max_evaluations: opts.max_evaluations,
+    };
+    // Each root's enclosures count as two evaluations, all spent before any bisection.
+    let mut evaluations = 2 * roots.len();
+    // Optimistic parallel pass: each root without a budget, all of them stopped once together
+    // they spent what the budget leaves.
+    let spent = AtomicUsize::new(evaluations);
+    let free: Vec<Option<RootCover>> = roots
+        .par_iter()
+        .map(|r| ctx.bisect(r, Limit::Shared(&spent)))
+        .collect();
     let mut cover = ContactCover {
+        region: clipped,
         resolved: true,
         ..Default::default()
     };
-    // Each work item carries the enclosures of its P- and Q-halves, so bisecting σ or t only
-    // re-encloses P, and u or v only Q.
-    let mut stack: Vec<([Interval; 4], [Interval; 3], [Interval; 3])> = Vec::new();
-    for y in region.iter().filter_map(|y| clip_to_domains(p, q, y)) {
-        cover.region.push(y);
-        cover.evaluations += 2;
-        stack.push((y, p.enclose(y[0], y[1]), q.enclose(y[2], y[3])));
+    for (root, free) in roots.iter().zip(free).rev() {
+        // A root whose bisection stays below the budget from its place in the sequential order
+        // never meets the budget there: its free result is the sequential one.
+        let part = match free {
+            Some(part) if evaluations + part.evaluations < opts.max_evaluations => part,
+            _ => ctx
+                .bisect(root, Limit::From(evaluations))
+                .unwrap_or_default(),
+        };
+        evaluations += part.evaluations;
+        cover.resolved &= part.resolved;
+        cover.max_xyz_width = cover.max_xyz_width.max(part.max_xyz_width);
+        cover.boxes.extend(part.boxes);
     }
-    while let Some((y, bp, bq)) = stack.pop() {
-        if boxes_disjoint(&bp, &bq) {
-            continue;
-        }
-        // The normal test pays off only on the smallest boxes (it is far costlier than the hull).
-        let near_leaf = (0..4).all(|i| y[i].wid() <= NORMAL_TEST_LEAVES * leaf[i]);
-        if near_leaf {
-            cover.evaluations += 1;
-            if normal_separates(p, q, &y) {
+    cover.evaluations = evaluations;
+    cover
+}
+
+/// One region box with the enclosures of its two halves.
+struct Root {
+    y: [Interval; 4],
+    bp: [Interval; 3],
+    bq: [Interval; 3],
+}
+
+/// A box waiting to be tested, with what its bisection can reuse.
+struct Item {
+    y: [Interval; 4],
+    /// `P([σ], [t])` and `Q([u], [v])`.
+    bp: [Interval; 3],
+    bq: [Interval; 3],
+    /// The u-columns of the sub-nets over `[σ]` and `[u]` ([`CoverPatch::columns`]).
+    cols_p: Rc<Vec<Net4>>,
+    cols_q: Rc<Vec<Net4>>,
+}
+
+/// The kept boxes of one root.
+#[derive(Default)]
+struct RootCover {
+    boxes: Vec<CoverBox>,
+    evaluations: usize,
+    resolved: bool,
+    max_xyz_width: f64,
+}
+
+/// The budget of one root's bisection.
+#[derive(Clone, Copy)]
+enum Limit<'a> {
+    /// No budget of its own; every evaluation is added to the shared count, and the bisection
+    /// is abandoned (`None`) once that reaches the budget.
+    Shared(&'a AtomicUsize),
+    /// The sequential budget: this many evaluations were spent before the root.
+    From(usize),
+}
+
+/// What every root's bisection shares.
+struct Bisection<'a> {
+    p: &'a CoverPatch<'a>,
+    q: &'a CoverPatch<'a>,
+    widths: [f64; 4],
+    leaf: [f64; 4],
+    max_evaluations: usize,
+}
+
+impl Bisection<'_> {
+    /// Bisects one root depth first (the order of the sequential cover).
+    fn bisect(&self, root: &Root, limit: Limit<'_>) -> Option<RootCover> {
+        let (p, q, widths, leaf) = (self.p, self.q, self.widths, self.leaf);
+        let mut out = RootCover {
+            resolved: true,
+            ..Default::default()
+        };
+        let spend = |out: &mut RootCover, n: usize| -> bool {
+            out.evaluations += n;
+            match limit {
+                Limit::Shared(s) => s.fetch_add(n, Ordering::Relaxed) + n < self.max_evaluations,
+                Limit::From(_) => true,
+            }
+        };
+        // Each work item carries the enclosures of its P- and Q-halves, so bisecting σ or t
+        // only re-encloses P, and u or v only Q; and the u-columns of both sub-nets, so
+        // bisecting t (or v) only restricts the rows again.
+        let mut scratch = Scratch::default();
+        let mut stack: Vec<Item> = vec![Item {
+            y: root.y,
+            bp: root.bp,
+            bq: root.bq,
+            cols_p: Rc::new(p.columns(root.y[0], &mut scratch)),
+            cols_q: Rc::new(q.columns(root.y[2], &mut scratch)),
+        }];
+        while let Some(Item {
+            y,
+            bp,
+            bq,
+            cols_p,
+            cols_q,
+        }) = stack.pop()
+        {
+            if boxes_disjoint(&bp, &bq) {
                 continue;
             }
-        }
-        let widest = (0..4)
-            .max_by(|&a, &b| (y[a].wid() / widths[a]).total_cmp(&(y[b].wid() / widths[b])))
-            .unwrap_or(0);
-        let is_leaf = (0..4).all(|i| y[i].wid() <= leaf[i]);
-        if is_leaf || cover.evaluations >= opts.max_evaluations {
-            cover.resolved &= is_leaf;
-            let xyz: [Interval; 3] = std::array::from_fn(|c| bp[c].intersection(bq[c]));
-            cover.max_xyz_width = xyz.iter().fold(cover.max_xyz_width, |m, x| m.max(x.wid()));
-            cover.boxes.push(CoverBox {
-                p: [y[0], y[1]],
-                q: [y[2], y[3]],
-                xyz,
-            });
-            continue;
-        }
-        let x = y[widest];
-        let mid = x.mid();
-        for half in [interval(x.inf(), mid), interval(mid, x.sup())]
-            .into_iter()
-            .flatten()
-        {
-            let mut z = y;
-            z[widest] = half;
-            cover.evaluations += 1;
-            if widest < 2 {
-                stack.push((z, p.enclose(z[0], z[1]), bq));
-            } else {
-                stack.push((z, bp, q.enclose(z[2], z[3])));
+            // The normal test pays off only on the smallest boxes (far costlier than the hull).
+            let near_leaf = (0..4).all(|i| y[i].wid() <= NORMAL_TEST_LEAVES * leaf[i]);
+            if near_leaf {
+                if !spend(&mut out, 1) {
+                    return None;
+                }
+                if normal_separates(p, q, &y) {
+                    continue;
+                }
+            }
+            let widest = (0..4)
+                .max_by(|&a, &b| (y[a].wid() / widths[a]).total_cmp(&(y[b].wid() / widths[b])))
+                .unwrap_or(0);
+            let is_leaf = (0..4).all(|i| y[i].wid() <= leaf[i]);
+            let spent_all = match limit {
+                Limit::From(n) => n + out.evaluations >= self.max_evaluations,
+                Limit::Shared(_) => false,
+            };
+            if is_leaf || spent_all {
+                out.resolved &= is_leaf;
+                let xyz: [Interval; 3] = std::array::from_fn(|c| bp[c].intersection(bq[c]));
+                out.max_xyz_width = xyz.iter().fold(out.max_xyz_width, |m, x| m.max(x.wid()));
+                out.boxes.push(CoverBox {
+                    p: [y[0], y[1]],
+                    q: [y[2], y[3]],
+                    xyz,
+                });
+                continue;
+            }
+            let x = y[widest];
+            let mid = x.mid();
+            for half in [interval(x.inf(), mid), interval(mid, x.sup())]
+                .into_iter()
+                .flatten()
+            {
+                let mut z = y;
+                z[widest] = half;
+                if !spend(&mut out, 1) {
+                    return None;
+                }
+                let mut item = Item {
+                    y: z,
+                    bp,
+                    bq,
+                    cols_p: cols_p.clone(),
+                    cols_q: cols_q.clone(),
+                };
+                match widest {
+                    0 => item.cols_p = Rc::new(p.columns(z[0], &mut scratch)),
+                    2 => item.cols_q = Rc::new(q.columns(z[2], &mut scratch)),
+                    _ => {}
+                }
+                if widest < 2 {
+                    item.bp = p.enclose_rows(&item.cols_p, z[0], z[1], &mut scratch);
+                } else {
+                    item.bq = q.enclose_rows(&item.cols_q, z[2], z[3], &mut scratch);
+                }
+                stack.push(item);
             }
         }
+        Some(out)
     }
-    cover
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::{Domain, PowerSurface};
+
+    /// The normal test as it was (on the patches' own functions).
+    fn old_normal_separates(
+        p: &RationalBezierPatch,
+        q: &RationalBezierPatch,
+        y: &[Interval; 4],
+    ) -> bool {
+        let c = y.map(|x| x.mid());
+        let d = p.derivs_f64(c[0], c[1]);
+        let n = cross(&d.su, &d.sv);
+        if !n.iter().all(|x| x.is_finite()) {
+            return false;
+        }
+        let n = [point(n[0]), point(n[1]), point(n[2])];
+        let dot = |a: &[Interval; 3]| vec3::dot(&n, a);
+        let pc = p.eval(point(c[0]), point(c[1]));
+        let qc = q.eval(point(c[2]), point(c[3]));
+        // Partials over the box, written around its centre (tight: no Bernstein cancellation).
+        let ci = c.map(point);
+        let (pa, pb, pg) = p.scaled_partials_centred(y[0], y[1], ci[0], ci[1]);
+        let (qa, qb, qg) = q.scaled_partials_centred(y[2], y[3], ci[2], ci[3]);
+        let (ps, pt) = (pa.map(|x| x / pg), pb.map(|x| x / pg));
+        let (qu, qv) = (qa.map(|x| x / qg), qb.map(|x| x / qg));
+        let off = |i: usize| y[i] - point(c[i]);
+        let g = dot(&pc) - dot(&qc) + dot(&ps) * off(0) + dot(&pt) * off(1)
+            - dot(&qu) * off(2)
+            - dot(&qv) * off(3);
+        !g.is_empty() && !g.contains(0.0)
+    }
+
+    /// The cover as it was computed before the parallel bisection: one stack, one budget.
+    fn sequential_cover(
+        p: &RationalBezierPatch,
+        q: &RationalBezierPatch,
+        region: &[[Interval; 4]],
+        opts: &CoverOptions,
+    ) -> ContactCover {
+        let widths = pair_widths(&p.domain(), &q.domain());
+        let leaf: [f64; 4] = std::array::from_fn(|i| opts.leaf_fraction * widths[i]);
+        let mut cover = ContactCover {
+            resolved: true,
+            ..Default::default()
+        };
+        // Each work item carries the enclosures of its P- and Q-halves, so bisecting σ or t only
+        // re-encloses P, and u or v only Q.
+        let mut stack: Vec<([Interval; 4], [Interval; 3], [Interval; 3])> = Vec::new();
+        for y in region.iter().filter_map(|y| clip_to_domains(p, q, y)) {
+            cover.region.push(y);
+            cover.evaluations += 2;
+            stack.push((y, p.enclose(y[0], y[1]), q.enclose(y[2], y[3])));
+        }
+        while let Some((y, bp, bq)) = stack.pop() {
+            if boxes_disjoint(&bp, &bq) {
+                continue;
+            }
+            // The normal test pays off only on the smallest boxes (it is far costlier than the hull).
+            let near_leaf = (0..4).all(|i| y[i].wid() <= NORMAL_TEST_LEAVES * leaf[i]);
+            if near_leaf {
+                cover.evaluations += 1;
+                if old_normal_separates(p, q, &y) {
+                    continue;
+                }
+            }
+            let widest = (0..4)
+                .max_by(|&a, &b| (y[a].wid() / widths[a]).total_cmp(&(y[b].wid() / widths[b])))
+                .unwrap_or(0);
+            let is_leaf = (0..4).all(|i| y[i].wid() <= leaf[i]);
+            if is_leaf || cover.evaluations >= opts.max_evaluations {
+                cover.resolved &= is_leaf;
+                let xyz: [Interval; 3] = std::array::from_fn(|c| bp[c].intersection(bq[c]));
+                cover.max_xyz_width = xyz.iter().fold(cover.max_xyz_width, |m, x| m.max(x.wid()));
+                cover.boxes.push(CoverBox {
+                    p: [y[0], y[1]],
+                    q: [y[2], y[3]],
+                    xyz,
+                });
+                continue;
+            }
+            let x = y[widest];
+            let mid = x.mid();
+            for half in [interval(x.inf(), mid), interval(mid, x.sup())]
+                .into_iter()
+                .flatten()
+            {
+                let mut z = y;
+                z[widest] = half;
+                cover.evaluations += 1;
+                if widest < 2 {
+                    stack.push((z, p.enclose(z[0], z[1]), bq));
+                } else {
+                    stack.push((z, bp, q.enclose(z[2], z[3])));
+                }
+            }
+        }
+        cover
+    }
 
     #[test]
     fn disjoint_patches_leave_an_empty_cover_and_crossing_ones_do_not() {
@@ -234,6 +481,50 @@ mod tests {
             let a = k as f64 * std::f64::consts::TAU / 200.0;
             let y = [0.5 * a.cos(), 0.5 * a.sin(), 0.5 * a.cos(), 0.5 * a.sin()];
             assert!(c.boxes.iter().any(|b| b.contains(&y)), "{y:?} not covered");
+        }
+    }
+
+    #[test]
+    fn parallel_cover_is_the_sequential_cover_with_and_without_budget() {
+        let d = Domain::new(-1.0, 1.0, -1.0, 1.0);
+        let q = PowerSurface::graph(d, vec![(0, 2, 1.0), (2, 0, 0.5), (1, 1, 0.3)])
+            .to_bezier()
+            .unwrap();
+        let p = PowerSurface::graph(
+            d,
+            vec![
+                (0, 2, 2.0),
+                (2, 0, 0.75),
+                (1, 1, -0.7),
+                (1, 2, 0.3),
+                (2, 1, -0.3),
+                (3, 0, 0.075),
+            ],
+        )
+        .to_bezier()
+        .unwrap();
+        // Boxes along the contact curve (x, x/2, x, x/2), overlapping, one partly outside.
+        let region: Vec<[Interval; 4]> = (0..9)
+            .map(|k| {
+                let x = -1.05 + 0.25 * k as f64;
+                let r = |c: f64, h: f64| interval(c - h, c + h).unwrap();
+                [r(x, 0.14), r(0.5 * x, 0.1), r(x, 0.14), r(0.5 * x, 0.1)]
+            })
+            .collect();
+        for max_evaluations in [400_000, 3_000, 700, 40, 5] {
+            let opts = CoverOptions {
+                leaf_fraction: 1.0 / 64.0,
+                max_evaluations,
+            };
+            let want = sequential_cover(&p, &q, &region, &opts);
+            let got = contact_cover(&p, &q, &region, &opts);
+            assert_eq!(got, want, "budget {max_evaluations}");
+            // The small budgets do bind.
+            assert_eq!(
+                got.resolved,
+                max_evaluations > 3_000,
+                "budget {max_evaluations}"
+            );
         }
     }
 }

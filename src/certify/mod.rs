@@ -15,6 +15,8 @@ pub mod chain;
 mod closing;
 pub mod contact;
 pub mod contact_cover;
+mod contact_net;
+pub mod contact_patch;
 pub mod curve;
 pub mod ode;
 mod segment;

@@ -1,0 +1,371 @@
+//! The two patch enclosures the contact cover evaluates thousands of times, without the work
+//! that does not depend on the box.
+//!
+//! [`CoverPatch::enclose`] is [`RationalBezierPatch::enclose`] (naive evaluation ∩ hull of the
+//! sub-patch net) and [`CoverPatch::scaled_partials_centred`] is
+//! [`RationalBezierPatch::scaled_partials_centred`], operation for operation in the same order,
+//! so their intervals are the same bit for bit (tested); only what the patch's own functions
+//! redo on every call is done once or not at all: the forward differences of the net are
+//! computed once per patch, and the de Casteljau restriction works in fixed buffers instead of
+//! allocating per column.
+
+use crate::geometry::enclosure::hull_of_net;
+use crate::geometry::RationalBezierPatch;
+use crate::numeric::scalar::point;
+use inari::Interval;
+
+/// Largest degree handled in the fixed buffers; higher degrees use the patch's own functions.
+const MAX_DEGREE: usize = 15;
+
+/// A homogeneous control point `(w·x, w·y, w·z, w)`.
+pub(crate) type Net4 = [Interval; 4];
+
+/// `C(n, k)` (exact in `f64` for the degrees of a patch), as the patch computes it.
+fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+/// Bernstein values `B_i^deg(t)` into `b`, as the patch computes them.
+fn bernstein_values(deg: usize, t: Interval, b: &mut [Interval]) {
+    let one_minus = point(1.0) - t;
+    b[0] = point(1.0);
+    for k in 1..=deg {
+        b[k] = t * b[k - 1];
+        for i in (1..k).rev() {
+            b[i] = one_minus * b[i] + t * b[i - 1];
+        }
+        b[0] = one_minus * b[0];
+    }
+}
+
+/// The normalised parameter `(x − lo)/(hi − lo)`, as the patch computes it.
+fn normalised(x: f64, [lo, hi]: [f64; 2]) -> Interval {
+    (point(x) - point(lo)) / (point(hi) - point(lo))
+}
+
+/// Reusable buffers of [`CoverPatch::enclose_with`] (no allocation per enclosure).
+#[derive(Debug, Default)]
+pub(crate) struct Scratch {
+    /// The de Casteljau triangle at `a`, level `l` at `l·(deg + 1)`.
+    triangle: Vec<Net4>,
+    pts: Vec<Net4>,
+    column: Vec<Net4>,
+    restricted: Vec<Net4>,
+    out: Vec<Net4>,
+}
+
+/// Restricts the Bézier curve `net[..=deg]` to `[a, b]` into `out[..=deg]`: the de Casteljau
+/// blossoms of the patch's own restriction, in the same order.
+fn restrict_curve(
+    net: &[Net4],
+    deg: usize,
+    a: Interval,
+    b: Interval,
+    triangle: &mut Vec<Net4>,
+    pts: &mut Vec<Net4>,
+    out: &mut [Net4],
+) {
+    let lerp = |pts: &mut [Net4], len: usize, t: Interval| {
+        let one_minus = point(1.0) - t;
+        for i in 0..len - 1 {
+            let next = pts[i + 1];
+            for (x, y) in pts[i].iter_mut().zip(next) {
+                *x = one_minus * *x + t * y;
+            }
+        }
+    };
+    let w = deg + 1;
+    triangle.clear();
+    triangle.extend_from_slice(&net[..w]);
+    for l in 1..=deg {
+        // Level l: level l − 1 (deg − l + 2 points) with one de Casteljau step at a.
+        let from = (l - 1) * w;
+        triangle.extend_from_within(from..from + w);
+        lerp(&mut triangle[l * w..], deg - l + 2, a);
+    }
+    for (k, o) in out.iter_mut().enumerate().take(w) {
+        let len = k + 1;
+        let from = (deg - k) * w;
+        pts.clear();
+        pts.extend_from_slice(&triangle[from..from + len]);
+        for level in 0..k {
+            lerp(pts, len - level, b);
+        }
+        *o = pts[0];
+    }
+}
+
+/// A patch with the box-independent parts of its cover enclosures prepared.
+#[derive(Debug, Clone)]
+pub(crate) struct CoverPatch<'a> {
+    patch: &'a RationalBezierPatch,
+    /// `Δₛᵏ Δᵣˡ` of the homogeneous net at `(i, j)`, index `((k·(n+1) + l)·(m+1) + i)·(n+1) + j`
+    /// (empty above [`MAX_DEGREE`]).
+    diffs: Vec<Net4>,
+}
+
+impl<'a> CoverPatch<'a> {
+    /// The patch with its forward differences.
+    pub(crate) fn new(patch: &'a RationalBezierPatch) -> Self {
+        let [m, n] = patch.degree();
+        let mut diffs = Vec::new();
+        if m <= MAX_DEGREE && n <= MAX_DEGREE {
+            let net = patch.homogeneous();
+            let z = point(0.0);
+            diffs = vec![[z; 4]; (m + 1) * (n + 1) * (m + 1) * (n + 1)];
+            for k in 0..=m {
+                for l in 0..=n {
+                    for i in 0..=m - k {
+                        for j in 0..=n - l {
+                            let mut out = [z; 4];
+                            for a in 0..=k {
+                                for b in 0..=l {
+                                    let c = binomial(k, a) * binomial(l, b);
+                                    let sign = if (k - a + l - b).is_multiple_of(2) {
+                                        c
+                                    } else {
+                                        -c
+                                    };
+                                    let p = net[(i + a) * (n + 1) + j + b];
+                                    let f = point(sign);
+                                    for x in 0..4 {
+                                        out[x] += f * p[x];
+                                    }
+                                }
+                            }
+                            diffs[((k * (n + 1) + l) * (m + 1) + i) * (n + 1) + j] = out;
+                        }
+                    }
+                }
+            }
+        }
+        CoverPatch { patch, diffs }
+    }
+
+    /// The patch.
+    pub(crate) fn patch(&self) -> &'a RationalBezierPatch {
+        self.patch
+    }
+
+    /// [`RationalBezierPatch::enclose`], bit for bit.
+    pub(crate) fn enclose(&self, u: Interval, v: Interval) -> [Interval; 3] {
+        self.enclose_with(u, v, &mut Scratch::default())
+    }
+
+    /// [`enclose`](Self::enclose) with reusable buffers.
+    pub(crate) fn enclose_with(&self, u: Interval, v: Interval, s: &mut Scratch) -> [Interval; 3] {
+        if self.diffs.is_empty() || u.is_empty() || v.is_empty() {
+            return self.patch.enclose(u, v);
+        }
+        let columns = self.columns(u, s);
+        self.enclose_rows(&columns, u, v, s)
+    }
+
+    /// The first half of the sub-patch net over `u × v`: every u-column restricted to `u` (it
+    /// does not depend on `v`, so boxes that differ only in `v` share it). Empty where the
+    /// patch's own functions are used.
+    pub(crate) fn columns(&self, u: Interval, s: &mut Scratch) -> Vec<Net4> {
+        let [m, n] = self.patch.degree();
+        if self.diffs.is_empty() || u.is_empty() {
+            return Vec::new();
+        }
+        let d = self.patch.domain();
+        let (ua, ub) = (normalised(u.inf(), d.u), normalised(u.sup(), d.u));
+        let net = self.patch.homogeneous();
+        let z = [point(0.0); 4];
+        let mut sub = vec![z; net.len()];
+        s.restricted.clear();
+        s.restricted.resize(m.max(n) + 1, z);
+        for j in 0..=n {
+            s.column.clear();
+            s.column.extend((0..=m).map(|i| net[i * (n + 1) + j]));
+            restrict_curve(
+                &s.column,
+                m,
+                ua,
+                ub,
+                &mut s.triangle,
+                &mut s.pts,
+                &mut s.restricted,
+            );
+            for i in 0..=m {
+                sub[i * (n + 1) + j] = s.restricted[i];
+            }
+        }
+        sub
+    }
+
+    /// [`enclose`](Self::enclose) over `u × v` from the [`columns`](Self::columns) of `u`.
+    pub(crate) fn enclose_rows(
+        &self,
+        columns: &[Net4],
+        u: Interval,
+        v: Interval,
+        s: &mut Scratch,
+    ) -> [Interval; 3] {
+        let [m, n] = self.patch.degree();
+        if columns.is_empty() || u.is_empty() || v.is_empty() {
+            return self.patch.enclose(u, v);
+        }
+        let naive = self.patch.naive_bound(u, v);
+        let d = self.patch.domain();
+        let (va, vb) = (normalised(v.inf(), d.v), normalised(v.sup(), d.v));
+        let z = [point(0.0); 4];
+        s.restricted.clear();
+        s.restricted.resize(m.max(n) + 1, z);
+        s.out.clear();
+        for i in 0..=m {
+            let row = &columns[i * (n + 1)..(i + 1) * (n + 1)];
+            restrict_curve(
+                row,
+                n,
+                va,
+                vb,
+                &mut s.triangle,
+                &mut s.pts,
+                &mut s.restricted,
+            );
+            s.out.extend_from_slice(&s.restricted[..=n]);
+        }
+        match hull_of_net(&s.out) {
+            Some(hull) => {
+                let mut enc = naive;
+                for c in 0..3 {
+                    let both = naive[c].intersection(hull[c]);
+                    if !both.is_empty() {
+                        enc[c] = both;
+                    }
+                }
+                enc
+            }
+            None => naive,
+        }
+    }
+
+    /// [`RationalBezierPatch::scaled_partials_centred`] in intervals, bit for bit.
+    #[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
+    pub(crate) fn scaled_partials_centred(
+        &self,
+        u: Interval,
+        v: Interval,
+        cu: Interval,
+        cv: Interval,
+    ) -> ([Interval; 3], [Interval; 3], Interval) {
+        if self.diffs.is_empty() {
+            return self.patch.scaled_partials_centred(u, v, cu, cv);
+        }
+        let [m, n] = self.patch.degree();
+        let d = self.patch.domain();
+        let du = point(d.u[1]) - point(d.u[0]);
+        let dv = point(d.v[1]) - point(d.v[0]);
+        let cs = (cu - point(d.u[0])) / du;
+        let cr = (cv - point(d.v[0])) / dv;
+        let ds = (u - cu) / du;
+        let dr = (v - cv) / dv;
+        let (ku, kv) = (point(1.0) / du, point(1.0) / dv);
+        let z = point(0.0);
+        let mut t = vec![[z; 4]; (m + 1) * (n + 1)];
+        let mut bs = [z; MAX_DEGREE + 1];
+        let mut br = [z; MAX_DEGREE + 1];
+        for k in 0..=m {
+            bernstein_values(m - k, cs, &mut bs);
+            for l in 0..=n {
+                bernstein_values(n - l, cr, &mut br);
+                let mut acc = [z; 4];
+                for i in 0..=m - k {
+                    for j in 0..=n - l {
+                        let diff = self.diffs[((k * (n + 1) + l) * (m + 1) + i) * (n + 1) + j];
+                        let b = bs[i] * br[j];
+                        for c in 0..4 {
+                            acc[c] += b * diff[c];
+                        }
+                    }
+                }
+                let scale = point(binomial(m, k) * binomial(n, l));
+                t[k * (n + 1) + l] = acc.map(|x| x * scale);
+            }
+        }
+        // H, H_s, H_r by Horner in (ds, dr).
+        let mut h = [z; 4];
+        let mut hs = [z; 4];
+        let mut hr = [z; 4];
+        for k in (0..=m).rev() {
+            let mut row = [z; 4];
+            let mut row_r = [z; 4];
+            for l in (0..=n).rev() {
+                let c = t[k * (n + 1) + l];
+                for x in 0..4 {
+                    row[x] = row[x] * dr + c[x];
+                    if l >= 1 {
+                        row_r[x] = row_r[x] * dr + c[x] * point(l as f64);
+                    }
+                }
+            }
+            for x in 0..4 {
+                h[x] = h[x] * ds + row[x];
+                hr[x] = hr[x] * ds + row_r[x];
+                if k >= 1 {
+                    hs[x] = hs[x] * ds + row[x] * point(k as f64);
+                }
+            }
+        }
+        let w = h[3];
+        let (mut a, mut b) = ([z; 3], [z; 3]);
+        for c in 0..3 {
+            a[c] = (hs[c] * w - h[c] * hs[3]) * ku;
+            b[c] = (hr[c] * w - h[c] * hr[3]) * kv;
+        }
+        (a, b, w.sqr().sqrt().sqr())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Domain;
+    use crate::numeric::scalar::interval;
+
+    fn wavy(weights: bool) -> RationalBezierPatch {
+        let (m, n) = (3, 2);
+        let mut pts = Vec::new();
+        let mut ws = Vec::new();
+        for i in 0..=m {
+            for j in 0..=n {
+                let (x, y) = (i as f64, j as f64);
+                pts.push([x + 0.1 * y, y - 0.2 * x, (x * 1.3 + y * 0.7).sin()]);
+                ws.push(1.0 + 0.4 * ((i + 2 * j) % 3) as f64);
+            }
+        }
+        let w = weights.then_some(ws.as_slice());
+        RationalBezierPatch::from_f64_points([m, n], &pts, w, Domain::new(-1.0, 2.0, 0.5, 1.5))
+            .unwrap()
+    }
+
+    #[test]
+    fn cover_enclosures_are_the_patch_ones_bit_for_bit() {
+        for weights in [false, true] {
+            let p = wavy(weights);
+            let c = CoverPatch::new(&p);
+            for k in 0..60 {
+                let s = k as f64;
+                let u0 = -1.0 + 3.0 * ((s * 0.37).fract());
+                let v0 = 0.5 + ((s * 0.61).fract());
+                let (wu, wv) = (0.3 / (1.0 + s), 0.2 / (1.0 + 0.5 * s));
+                let u = interval(u0, (u0 + wu).min(2.0)).unwrap();
+                let v = interval(v0, (v0 + wv).min(1.5)).unwrap();
+                assert_eq!(c.enclose(u, v), p.enclose(u, v), "{u:?} {v:?}");
+                let (cu, cv) = (point(u.mid()), point(v.mid()));
+                assert_eq!(
+                    c.scaled_partials_centred(u, v, cu, cv),
+                    p.scaled_partials_centred(u, v, cu, cv),
+                    "{u:?} {v:?}"
+                );
+            }
+            // Degenerate and whole-domain ranges.
+            let whole = (interval(-1.0, 2.0).unwrap(), interval(0.5, 1.5).unwrap());
+            assert_eq!(c.enclose(whole.0, whole.1), p.enclose(whole.0, whole.1));
+            let pt = (point(0.25), point(0.75));
+            assert_eq!(c.enclose(pt.0, pt.1), p.enclose(pt.0, pt.1));
+        }
+    }
+}

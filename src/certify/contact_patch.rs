@@ -1,0 +1,333 @@
+//! A patch as the tangential field sees it: second-order data written around a centre in the
+//! power basis, with the terms that vanish identically left out.
+//!
+//! The validated engine pays for every operation of the recorded field that varies in time
+//! (`O(k²)` per product of two such values at order `k`), while values built from constants and
+//! the expansion's centre cost one evaluation. [`RationalBezierPatch`]'s own centred form
+//! ([`CentredSecondOrder`]) handles any rational patch: it applies the quotient rule to the
+//! homogeneous net, multiplies each derivative term separately by its monomial, and keeps terms
+//! whose coefficients are zero for every centre. When all weights are one and the same exact
+//! number (a polynomial patch, e.g. every `"polynomial"` scene surface), [`ContactPatch`] writes
+//!
+//! ```text
+//! S(u, v) = Σ_{k,l} T_kl · dsᵏ · drˡ,   ds = (u − cu)/Δu,  dr = (v − cv)/Δv,
+//! T_kl = C(m,k)·C(n,l)·Σ_{i,j} Δ^{k,l}p_ij · B_i^{m−k}(cs) · B_j^{n−l}(cr)
+//! ```
+//!
+//! (the Taylor coefficients at the centre `(cs, cr)`, Δ the forward differences of the Cartesian
+//! net divided by the common weight) and every partial up to order two from the same monomials,
+//! each computed once. Differences that are exactly zero (a coordinate that is linear in one
+//! parameter, as the `x` and `y` of a height field) drop their terms, so such partials are
+//! constants of the expansion. The function is the patch's (the same polynomial, written about
+//! another point); only rounding and interval widths differ, and every coefficient is an
+//! outward-rounded enclosure.
+
+use crate::geometry::RationalBezierPatch;
+use crate::numeric::scalar::point;
+use crate::pair::centred_second_order::CentredSecondOrder;
+use crate::pair::field::ScalarSurface;
+use crate::Scalar;
+use inari::Interval;
+
+/// `C(n, k)` as an exact small float.
+fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+/// Bernstein values `B_i^d(t)`, `i = 0..=d`.
+fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
+    let mut a = vec![T::one(); d + 1];
+    let mut b = vec![T::one(); d + 1];
+    let one_minus = T::one() - t;
+    for i in 1..=d {
+        a[i] = a[i - 1] * t;
+        b[i] = b[i - 1] * one_minus;
+    }
+    (0..=d)
+        .map(|i| T::from_f64(binomial(d, i)) * a[i] * b[d - i])
+        .collect()
+}
+
+/// The forward differences of a polynomial patch's Cartesian net.
+#[derive(Debug, Clone)]
+struct PowerNet {
+    m: usize,
+    n: usize,
+    /// Per `(k, l)` (index `k·(n+1) + l`) and coordinate: the differences `Δ^{k,l}p_ij` for
+    /// `i ≤ m − k`, `j ≤ n − l` (index `i·(n−l+1) + j`), or `None` where all are exactly zero.
+    diffs: Vec<[Option<Vec<Interval>>; 3]>,
+}
+
+impl PowerNet {
+    /// The differences of `patch` if all its weights are the same exact (thin) number.
+    fn of(patch: &RationalBezierPatch) -> Option<PowerNet> {
+        let net = patch.homogeneous();
+        let w = net.first()?[3];
+        let thin = w.inf() == w.sup();
+        if !thin
+            || net
+                .iter()
+                .any(|h| h[3].inf() != w.inf() || h[3].sup() != w.sup())
+        {
+            return None;
+        }
+        let [m, n] = patch.degree();
+        // Cartesian points: the homogeneous entries divided by the common weight (exact for
+        // weight 1, an enclosure otherwise).
+        let at = |i: usize, j: usize, x: usize| net[i * (n + 1) + j][x] / w;
+        let mut diffs = Vec::with_capacity((m + 1) * (n + 1));
+        for k in 0..=m {
+            for l in 0..=n {
+                let per_coord: [Option<Vec<Interval>>; 3] = std::array::from_fn(|x| {
+                    let mut out = Vec::with_capacity((m - k + 1) * (n - l + 1));
+                    for i in 0..=m - k {
+                        for j in 0..=n - l {
+                            let mut d = point(0.0);
+                            for a in 0..=k {
+                                for b in 0..=l {
+                                    let c = binomial(k, a) * binomial(l, b);
+                                    let sign = if (k - a + l - b) % 2 == 0 { c } else { -c };
+                                    d += point(sign) * at(i + a, j + b, x);
+                                }
+                            }
+                            out.push(d);
+                        }
+                    }
+                    let zero = out.iter().all(|d| d.inf() == 0.0 && d.sup() == 0.0);
+                    (!zero).then_some(out)
+                });
+                diffs.push(per_coord);
+            }
+        }
+        Some(PowerNet { m, n, diffs })
+    }
+}
+
+/// A patch for the tangential field: [`RationalBezierPatch`] with a leaner centred second-order
+/// form for polynomial patches (module documentation); everything else is the patch's own.
+#[derive(Debug, Clone)]
+pub struct ContactPatch<'a> {
+    patch: &'a RationalBezierPatch,
+    power: Option<PowerNet>,
+}
+
+impl<'a> ContactPatch<'a> {
+    /// The patch, with its forward differences prepared if all its weights are equal and exact.
+    pub fn new(patch: &'a RationalBezierPatch) -> Self {
+        ContactPatch {
+            patch,
+            power: PowerNet::of(patch),
+        }
+    }
+
+    /// Whether the lean polynomial form is used.
+    pub fn is_polynomial(&self) -> bool {
+        self.power.is_some()
+    }
+}
+
+impl ScalarSurface for ContactPatch<'_> {
+    fn first_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 3] {
+        self.patch.first_order(u, v)
+    }
+    fn second_order<T: Scalar>(&self, u: T, v: T) -> [[T; 3]; 6] {
+        self.patch.second_order(u, v)
+    }
+    fn scaled_first_order<T: Scalar>(&self, u: T, v: T) -> ([T; 3], [T; 3], T) {
+        self.patch.scaled_first_order(u, v)
+    }
+    fn scaled_first_order_centred<T: Scalar>(
+        &self,
+        u: T,
+        v: T,
+        cu: T,
+        cv: T,
+    ) -> ([T; 3], [T; 3], T) {
+        self.patch.scaled_first_order_centred(u, v, cu, cv)
+    }
+}
+
+/// The six partial orders `(a, b)` of `[S, S_u, S_v, S_uu, S_uv, S_vv]`.
+const ORDERS: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
+
+impl CentredSecondOrder for ContactPatch<'_> {
+    fn second_order_centred<T: Scalar>(&self, u: T, v: T, cu: T, cv: T) -> [[T; 3]; 6] {
+        let Some(net) = &self.power else {
+            return self.patch.second_order_centred(u, v, cu, cv);
+        };
+        let (m, n) = (net.m, net.n);
+        let d = self.patch.domain();
+        let du = T::from_f64(d.u[1]) - T::from_f64(d.u[0]);
+        let dv = T::from_f64(d.v[1]) - T::from_f64(d.v[0]);
+        let cs = (cu - T::from_f64(d.u[0])) / du;
+        let cr = (cv - T::from_f64(d.v[0])) / dv;
+        let (ds, dr) = ((u - cu) / du, (v - cv) / dv);
+        let (ku, kv) = (T::one() / du, T::one() / dv);
+        // Powers of the offsets, and each mixed monomial once (on demand).
+        let mut ps = vec![T::one(); m + 1];
+        let mut pr = vec![T::one(); n + 1];
+        for i in 1..=m {
+            ps[i] = if i == 2 { ds.sqr() } else { ps[i - 1] * ds };
+        }
+        for j in 1..=n {
+            pr[j] = if j == 2 { dr.sqr() } else { pr[j - 1] * dr };
+        }
+        let mut mono: Vec<Option<T>> = vec![None; (m + 1) * (n + 1)];
+        let mut monomial = |a: usize, b: usize| -> T {
+            *mono[a * (n + 1) + b].get_or_insert_with(|| match (a, b) {
+                (0, _) => pr[b],
+                (_, 0) => ps[a],
+                _ => ps[a] * pr[b],
+            })
+        };
+        // Bernstein values at the centre per degree (constants of the expansion).
+        let bs: Vec<Vec<T>> = (0..=m).map(|k| bernstein(m - k, cs)).collect();
+        let br: Vec<Vec<T>> = (0..=n).map(|l| bernstein(n - l, cr)).collect();
+        let zero = T::zero();
+        let mut out = [[zero; 3]; 6];
+        for x in 0..3 {
+            // Taylor coefficients T_kl of this coordinate (None where identically zero).
+            let coeff: Vec<Option<T>> = (0..=m)
+                .flat_map(|k| (0..=n).map(move |l| (k, l)))
+                .map(|(k, l)| {
+                    let diffs = net.diffs[k * (n + 1) + l][x].as_ref()?;
+                    let mut acc: Option<T> = None;
+                    for i in 0..=m - k {
+                        for j in 0..=n - l {
+                            let c = diffs[i * (n - l + 1) + j];
+                            if c.inf() == 0.0 && c.sup() == 0.0 {
+                                continue;
+                            }
+                            let term = T::from_interval(c) * bs[k][i] * br[l][j];
+                            acc = Some(acc.map_or(term, |a| a + term));
+                        }
+                    }
+                    let scale = T::from_f64(binomial(m, k) * binomial(n, l));
+                    acc.map(|a| a * scale)
+                })
+                .collect();
+            for (slot, &(a, b)) in out.iter_mut().zip(&ORDERS) {
+                let mut acc: Option<T> = None;
+                for k in a..=m {
+                    for l in b..=n {
+                        let Some(t) = coeff[k * (n + 1) + l] else {
+                            continue;
+                        };
+                        // ∂ᵃ_s ∂ᵇ_r (dsᵏ drˡ) = k!/(k−a)! · l!/(l−b)! · ds^{k−a} dr^{l−b}.
+                        let falling = (0..a).fold(1.0, |f, i| f * (k - i) as f64)
+                            * (0..b).fold(1.0, |f, i| f * (l - i) as f64);
+                        let c = t * T::from_f64(falling);
+                        let term = if k == a && l == b {
+                            c
+                        } else {
+                            c * monomial(k - a, l - b)
+                        };
+                        acc = Some(acc.map_or(term, |s| s + term));
+                    }
+                }
+                // The chain rule to (u, v): one factor 1/Δu per s-derivative, 1/Δv per r.
+                slot[x] = match acc {
+                    None => zero,
+                    Some(s) => match (a, b) {
+                        (0, 0) => s,
+                        (1, 0) => s * ku,
+                        (0, 1) => s * kv,
+                        (2, 0) => s * (ku * ku),
+                        (1, 1) => s * (ku * kv),
+                        _ => s * (kv * kv),
+                    },
+                };
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Domain, PowerSurface};
+    use crate::numeric::scalar::interval;
+
+    fn cubic() -> RationalBezierPatch {
+        let d = Domain::new(-1.0, 1.0, -0.5, 2.0);
+        PowerSurface::graph(
+            d,
+            vec![
+                (0, 2, 2.0),
+                (2, 0, 0.75),
+                (1, 1, -0.7),
+                (1, 2, 0.3),
+                (2, 1, -0.3),
+                (3, 0, 0.075),
+            ],
+        )
+        .to_bezier()
+        .unwrap()
+    }
+
+    #[test]
+    fn lean_form_equals_the_patch_and_encloses_it() {
+        let p = cubic();
+        let lean = ContactPatch::new(&p);
+        assert!(lean.is_polynomial());
+        for k in 0..25 {
+            let (u, v) = (-0.9 + 0.07 * k as f64, -0.4 + 0.09 * k as f64);
+            let (cu, cv) = (0.1 - 0.02 * k as f64, 0.7 + 0.01 * k as f64);
+            let want = p.second_order(u, v);
+            let got = lean.second_order_centred(u, v, cu, cv);
+            for (a, b) in want.iter().zip(&got) {
+                for x in 0..3 {
+                    assert!(
+                        (a[x] - b[x]).abs() < 1e-12 * (1.0 + a[x].abs()),
+                        "{a:?} vs {b:?}"
+                    );
+                }
+            }
+            // Interval evaluation at the point: encloses the f64 value of the Bernstein form.
+            let iv = lean.second_order_centred(point(u), point(v), point(cu), point(cv));
+            for (a, b) in want.iter().zip(&iv) {
+                for x in 0..3 {
+                    assert!(
+                        (b[x].inf() - 1e-12..=b[x].sup() + 1e-12).contains(&a[x]),
+                        "{a:?} vs {b:?}"
+                    );
+                }
+            }
+        }
+        // Over a box: encloses sampled values.
+        let (u, v) = (interval(0.2, 0.25).unwrap(), interval(1.0, 1.04).unwrap());
+        let iv = lean.second_order_centred(u, v, point(0.225), point(1.02));
+        for a in 0..=4 {
+            for b in 0..=4 {
+                let y = p.second_order(0.2 + 0.0125 * a as f64, 1.0 + 0.01 * b as f64);
+                for (s, e) in y.iter().zip(&iv) {
+                    for x in 0..3 {
+                        assert!(e[x].inf() - 1e-12 <= s[x] && s[x] <= e[x].sup() + 1e-12);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rational_patches_keep_the_patch_form() {
+        let pts = [
+            [0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.2],
+            [1.0, 0.0, 0.1],
+            [1.0, 1.0, 0.5],
+        ];
+        let p = RationalBezierPatch::from_f64_points(
+            [1, 1],
+            &pts,
+            Some(&[1.0, 2.0, 1.0, 1.0]),
+            Domain::UNIT,
+        )
+        .unwrap();
+        let lean = ContactPatch::new(&p);
+        assert!(!lean.is_polynomial());
+        let want = p.second_order_centred(0.3, 0.6, 0.5, 0.5);
+        assert_eq!(lean.second_order_centred(0.3, 0.6, 0.5, 0.5), want);
+    }
+}
