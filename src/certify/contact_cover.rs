@@ -117,7 +117,27 @@ const NORMAL_TEST_LEAVES: f64 = 1.0;
 /// tangents are normal to `n`), so this excludes boxes at distance `≳ w` from the contact where
 /// the hull test, whose ranges carry the surfaces' slope `O(w)`, needs distance `≳ √w`.
 fn normal_separates(cp: &CoverPatch<'_>, cq: &CoverPatch<'_>, y: &[Interval; 4]) -> bool {
-    let (p, q) = (cp.patch(), cq.patch());
+    normal_separates_with(
+        cp.patch(),
+        cq.patch(),
+        y,
+        |a, b, c, d| cp.scaled_partials_centred(a, b, c, d),
+        |a, b, c, d| cq.scaled_partials_centred(a, b, c, d),
+    )
+}
+
+/// The scaled partials `(a, b, g)` of a patch over a box, written around a centre.
+type Partials = ([Interval; 3], [Interval; 3], Interval);
+
+/// [`normal_separates`] with the partials of P and Q over the box given by `p_partials` and
+/// `q_partials` (the cover's fast enclosures, or, in the tests, the patches' own).
+fn normal_separates_with(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    y: &[Interval; 4],
+    p_partials: impl Fn(Interval, Interval, Interval, Interval) -> Partials,
+    q_partials: impl Fn(Interval, Interval, Interval, Interval) -> Partials,
+) -> bool {
     let c = y.map(|x| x.mid());
     let d = p.derivs_f64(c[0], c[1]);
     let n = cross(&d.su, &d.sv);
@@ -130,8 +150,8 @@ fn normal_separates(cp: &CoverPatch<'_>, cq: &CoverPatch<'_>, y: &[Interval; 4])
     let qc = q.eval(point(c[2]), point(c[3]));
     // Partials over the box, written around its centre (tight: no Bernstein cancellation).
     let ci = c.map(point);
-    let (pa, pb, pg) = cp.scaled_partials_centred(y[0], y[1], ci[0], ci[1]);
-    let (qa, qb, qg) = cq.scaled_partials_centred(y[2], y[3], ci[2], ci[3]);
+    let (pa, pb, pg) = p_partials(y[0], y[1], ci[0], ci[1]);
+    let (qa, qb, qg) = q_partials(y[2], y[3], ci[2], ci[3]);
     let (ps, pt) = (pa.map(|x| x / pg), pb.map(|x| x / pg));
     let (qu, qv) = (qa.map(|x| x / qg), qb.map(|x| x / qg));
     let off = |i: usize| y[i] - point(c[i]);
@@ -366,27 +386,13 @@ mod tests {
         q: &RationalBezierPatch,
         y: &[Interval; 4],
     ) -> bool {
-        let c = y.map(|x| x.mid());
-        let d = p.derivs_f64(c[0], c[1]);
-        let n = cross(&d.su, &d.sv);
-        if !n.iter().all(|x| x.is_finite()) {
-            return false;
-        }
-        let n = [point(n[0]), point(n[1]), point(n[2])];
-        let dot = |a: &[Interval; 3]| vec3::dot(&n, a);
-        let pc = p.eval(point(c[0]), point(c[1]));
-        let qc = q.eval(point(c[2]), point(c[3]));
-        // Partials over the box, written around its centre (tight: no Bernstein cancellation).
-        let ci = c.map(point);
-        let (pa, pb, pg) = p.scaled_partials_centred(y[0], y[1], ci[0], ci[1]);
-        let (qa, qb, qg) = q.scaled_partials_centred(y[2], y[3], ci[2], ci[3]);
-        let (ps, pt) = (pa.map(|x| x / pg), pb.map(|x| x / pg));
-        let (qu, qv) = (qa.map(|x| x / qg), qb.map(|x| x / qg));
-        let off = |i: usize| y[i] - point(c[i]);
-        let g = dot(&pc) - dot(&qc) + dot(&ps) * off(0) + dot(&pt) * off(1)
-            - dot(&qu) * off(2)
-            - dot(&qv) * off(3);
-        !g.is_empty() && !g.contains(0.0)
+        normal_separates_with(
+            p,
+            q,
+            y,
+            |a, b, c, d| p.scaled_partials_centred(a, b, c, d),
+            |a, b, c, d| q.scaled_partials_centred(a, b, c, d),
+        )
     }
 
     /// The cover as it was computed before the parallel bisection: one stack, one budget.
