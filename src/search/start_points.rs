@@ -302,8 +302,11 @@ fn pair_search(
         // Pairs inside a proven neighbourhood of a singular point are settled.
         next.retain(|(a, b)| !nodes.settles(a, b));
         if next.len() > ctx.max_frontier {
+            // Hundreds of regions along a tangential contact: a Newton projection from each
+            // centre gives points all along it; the corners' would add four times as many
+            // (each Gauss–Newton run slow where the surfaces touch) and nothing new.
             for (a, b) in next.drain(..) {
-                undecided_pair(ctx, p, q, &a, &b, report);
+                undecided_pair_at(ctx, p, q, &a, &b, report, false);
             }
         }
         frontier = next;
@@ -322,6 +325,19 @@ fn undecided_pair(
     b: &Piece,
     report: &mut SearchReport,
 ) {
+    undecided_pair_at(ctx, p, q, a, b, report, true);
+}
+
+/// [`undecided_pair`], offering the projections from the corners only if `corners`.
+fn undecided_pair_at(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    a: &Piece,
+    b: &Piece,
+    report: &mut SearchReport,
+    corners: bool,
+) {
     let (dp, dq) = (p.domain(), q.domain());
     let (bp, bq) = (a.declared(&dp, 0.0), b.declared(&dq, 0.0));
     report.undecided_regions.push(UndecidedRegion {
@@ -336,7 +352,8 @@ fn undecided_pair(
         [bp[0].sup(), bp[1].inf()],
         [bp[0].sup(), bp[1].sup()],
     ];
-    for [pu, pv] in guesses {
+    let offered = if corners { &guesses[..] } else { &guesses[..1] };
+    for &[pu, pv] in offered {
         if let Some(x) = project_onto_intersection(p, q, [pu, pv, qu, qv], ctx.tol) {
             if dp.contains(x[0], x[1], 1e-12) && dq.contains(x[2], x[3], 1e-12) {
                 report.interior.push(StartPoint {
