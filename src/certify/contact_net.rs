@@ -25,19 +25,6 @@ fn binomial(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
 }
 
-/// Bernstein values `B_i^deg(t)` into `b`, as the patch computes them.
-fn bernstein_values(deg: usize, t: Interval, b: &mut [Interval]) {
-    let one_minus = point(1.0) - t;
-    b[0] = point(1.0);
-    for k in 1..=deg {
-        b[k] = t * b[k - 1];
-        for i in (1..k).rev() {
-            b[i] = one_minus * b[i] + t * b[i - 1];
-        }
-        b[0] = one_minus * b[0];
-    }
-}
-
 /// The normalised parameter `(x − lo)/(hi − lo)`, as the patch computes it.
 fn normalised(x: f64, [lo, hi]: [f64; 2]) -> Interval {
     (point(x) - point(lo)) / (point(hi) - point(lo))
@@ -242,8 +229,8 @@ impl<'a> CoverPatch<'a> {
         }
     }
 
-    /// [`RationalBezierPatch::scaled_partials_centred`] in intervals, bit for bit.
-    #[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
+    /// [`RationalBezierPatch::scaled_partials_centred`] in intervals, bit for bit (the same code,
+    /// with the forward differences computed once per patch).
     pub(crate) fn scaled_partials_centred(
         &self,
         u: Interval,
@@ -255,67 +242,10 @@ impl<'a> CoverPatch<'a> {
             return self.patch.scaled_partials_centred(u, v, cu, cv);
         }
         let [m, n] = self.patch.degree();
-        let d = self.patch.domain();
-        let du = point(d.u[1]) - point(d.u[0]);
-        let dv = point(d.v[1]) - point(d.v[0]);
-        let cs = (cu - point(d.u[0])) / du;
-        let cr = (cv - point(d.v[0])) / dv;
-        let ds = (u - cu) / du;
-        let dr = (v - cv) / dv;
-        let (ku, kv) = (point(1.0) / du, point(1.0) / dv);
-        let z = point(0.0);
-        let mut t = vec![[z; 4]; (m + 1) * (n + 1)];
-        let mut bs = [z; MAX_DEGREE + 1];
-        let mut br = [z; MAX_DEGREE + 1];
-        for k in 0..=m {
-            bernstein_values(m - k, cs, &mut bs);
-            for l in 0..=n {
-                bernstein_values(n - l, cr, &mut br);
-                let mut acc = [z; 4];
-                for i in 0..=m - k {
-                    for j in 0..=n - l {
-                        let diff = self.diffs[((k * (n + 1) + l) * (m + 1) + i) * (n + 1) + j];
-                        let b = bs[i] * br[j];
-                        for c in 0..4 {
-                            acc[c] += b * diff[c];
-                        }
-                    }
-                }
-                let scale = point(binomial(m, k) * binomial(n, l));
-                t[k * (n + 1) + l] = acc.map(|x| x * scale);
-            }
-        }
-        // H, H_s, H_r by Horner in (ds, dr).
-        let mut h = [z; 4];
-        let mut hs = [z; 4];
-        let mut hr = [z; 4];
-        for k in (0..=m).rev() {
-            let mut row = [z; 4];
-            let mut row_r = [z; 4];
-            for l in (0..=n).rev() {
-                let c = t[k * (n + 1) + l];
-                for x in 0..4 {
-                    row[x] = row[x] * dr + c[x];
-                    if l >= 1 {
-                        row_r[x] = row_r[x] * dr + c[x] * point(l as f64);
-                    }
-                }
-            }
-            for x in 0..4 {
-                h[x] = h[x] * ds + row[x];
-                hr[x] = hr[x] * ds + row_r[x];
-                if k >= 1 {
-                    hs[x] = hs[x] * ds + row[x] * point(k as f64);
-                }
-            }
-        }
-        let w = h[3];
-        let (mut a, mut b) = ([z; 3], [z; 3]);
-        for c in 0..3 {
-            a[c] = (hs[c] * w - h[c] * hs[3]) * ku;
-            b[c] = (hr[c] * w - h[c] * hr[3]) * kv;
-        }
-        (a, b, w.sqr().sqrt().sqr())
+        self.patch
+            .scaled_partials_centred_by(u, v, cu, cv, |i, j, k, l| {
+                self.diffs[((k * (n + 1) + l) * (m + 1) + i) * (n + 1) + j]
+            })
     }
 }
 

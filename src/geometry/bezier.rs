@@ -401,6 +401,25 @@ impl RationalBezierPatch {
         cu: S,
         cv: S,
     ) -> ([S; 3], [S; 3], S) {
+        let n = self.degree[1];
+        let net = |i: usize, j: usize| self.homogeneous[i * (n + 1) + j].map(S::from_interval);
+        self.scaled_partials_centred_by(u, v, cu, cv, |i, j, k, l| {
+            forward_difference(&net, i, j, k, l)
+        })
+    }
+
+    /// [`scaled_partials_centred`](Self::scaled_partials_centred) with the forward differences
+    /// `Δₛᵏ Δᵣˡ` of the homogeneous net at `(i, j)` given by `diff(i, j, k, l)` (a caller that
+    /// evaluates one patch many times computes them once).
+    #[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
+    pub(crate) fn scaled_partials_centred_by<S: Scalar>(
+        &self,
+        u: S,
+        v: S,
+        cu: S,
+        cv: S,
+        diff: impl Fn(usize, usize, usize, usize) -> [S; 4],
+    ) -> ([S; 3], [S; 3], S) {
         let [m, n] = self.degree;
         let d = &self.domain;
         let du = S::from_f64(d.u[1]) - S::from_f64(d.u[0]);
@@ -412,7 +431,6 @@ impl RationalBezierPatch {
         let (ku, kv) = (S::one() / du, S::one() / dv);
         let z = S::zero();
         // Forward differences Δₛᵏ Δᵣˡ of the homogeneous net, then the coefficients T_kl.
-        let net = |i: usize, j: usize| self.homogeneous[i * (n + 1) + j].map(S::from_interval);
         let mut t = vec![[z; 4]; (m + 1) * (n + 1)];
         let mut bs = vec![z; m + 1];
         let mut br = vec![z; n + 1];
@@ -423,7 +441,7 @@ impl RationalBezierPatch {
                 let mut acc = [z; 4];
                 for i in 0..=m - k {
                     for j in 0..=n - l {
-                        let diff = forward_difference(&net, i, j, k, l);
+                        let diff = diff(i, j, k, l);
                         let b = bs[i] * br[j];
                         for c in 0..4 {
                             acc[c] = acc[c] + b * diff[c];
