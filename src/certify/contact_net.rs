@@ -252,29 +252,12 @@ impl<'a> CoverPatch<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Domain;
     use crate::numeric::scalar::interval;
-
-    fn wavy(weights: bool) -> RationalBezierPatch {
-        let (m, n) = (3, 2);
-        let mut pts = Vec::new();
-        let mut ws = Vec::new();
-        for i in 0..=m {
-            for j in 0..=n {
-                let (x, y) = (i as f64, j as f64);
-                pts.push([x + 0.1 * y, y - 0.2 * x, (x * 1.3 + y * 0.7).sin()]);
-                ws.push(1.0 + 0.4 * ((i + 2 * j) % 3) as f64);
-            }
-        }
-        let w = weights.then_some(ws.as_slice());
-        RationalBezierPatch::from_f64_points([m, n], &pts, w, Domain::new(-1.0, 2.0, 0.5, 1.5))
-            .unwrap()
-    }
 
     #[test]
     fn cover_enclosures_are_the_patch_ones_bit_for_bit() {
         for weights in [false, true] {
-            let p = wavy(weights);
+            let p = crate::pair::fixtures::wavy_patch(weights);
             let c = CoverPatch::new(&p);
             for k in 0..60 {
                 let s = k as f64;

@@ -154,33 +154,12 @@ impl CentredSecondOrder for RationalBezierPatch {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Domain;
     use crate::numeric::scalar::{interval, point};
     use inari::Interval;
 
-    fn wavy() -> RationalBezierPatch {
-        let (m, n) = (3, 2);
-        let mut pts = Vec::new();
-        let mut ws = Vec::new();
-        for i in 0..=m {
-            for j in 0..=n {
-                let (x, y) = (i as f64, j as f64);
-                pts.push([x + 0.1 * y, y - 0.2 * x, (x * 1.3 + y * 0.7).sin()]);
-                ws.push(1.0 + 0.4 * ((i + 2 * j) % 3) as f64);
-            }
-        }
-        RationalBezierPatch::from_f64_points(
-            [m, n],
-            &pts,
-            Some(&ws),
-            Domain::new(-1.0, 2.0, 0.5, 1.5),
-        )
-        .unwrap()
-    }
-
     #[test]
     fn centred_derivatives_equal_the_bernstein_ones_and_are_tighter() {
-        let p = wavy();
+        let p = crate::pair::fixtures::wavy_patch(true);
         for k in 0..30 {
             let (u, v) = (-1.0 + 0.1 * k as f64, 0.5 + 0.033 * k as f64);
             let want = p.second_order(u, v);

@@ -1,4 +1,5 @@
-//! Small closed-form surfaces shared by the unit tests of this module.
+//! Small closed-form surfaces shared by the unit tests of this module, and a wavy rational
+//! patch shared by the unit tests of the layers above.
 
 use crate::pair::field::ScalarSurface;
 use crate::Scalar;
@@ -38,4 +39,23 @@ impl ScalarSurface for Bowl {
             [z, z, two_a],
         ]
     }
+}
+
+/// A wavy bicubic × biquadratic patch over `[−1, 2] × [0.5, 1.5]`, rational (uneven weights) or
+/// polynomial.
+#[cfg(test)]
+pub(crate) fn wavy_patch(weights: bool) -> crate::geometry::RationalBezierPatch {
+    let (m, n) = (3, 2);
+    let mut pts = Vec::new();
+    let mut ws = Vec::new();
+    for i in 0..=m {
+        for j in 0..=n {
+            let (x, y) = (i as f64, j as f64);
+            pts.push([x + 0.1 * y, y - 0.2 * x, (x * 1.3 + y * 0.7).sin()]);
+            ws.push(1.0 + 0.4 * ((i + 2 * j) % 3) as f64);
+        }
+    }
+    let w = weights.then_some(ws.as_slice());
+    let domain = crate::geometry::Domain::new(-1.0, 2.0, 0.5, 1.5);
+    crate::geometry::RationalBezierPatch::from_f64_points([m, n], &pts, w, domain).unwrap()
 }
