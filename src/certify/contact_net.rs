@@ -9,6 +9,7 @@
 //! computed once per patch, and the de Casteljau restriction works in fixed buffers instead of
 //! allocating per column.
 
+use crate::geometry::bernstein::binomial;
 use crate::geometry::enclosure::hull_of_net;
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::scalar::point;
@@ -19,11 +20,6 @@ const MAX_DEGREE: usize = 15;
 
 /// A homogeneous control point `(w·x, w·y, w·z, w)`.
 pub(crate) type Net4 = [Interval; 4];
-
-/// `C(n, k)` (exact in `f64` for the degrees of a patch), as the patch computes it.
-fn binomial(n: usize, k: usize) -> f64 {
-    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
-}
 
 /// The normalised parameter `(x − lo)/(hi − lo)`, as the patch computes it.
 fn normalised(x: f64, [lo, hi]: [f64; 2]) -> Interval {

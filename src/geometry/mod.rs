@@ -1,6 +1,7 @@
 //! Geometry: surfaces, rational Bézier patches, power-basis conversion, rigorous bounds.
 
 pub mod analytic;
+pub(crate) mod bernstein;
 pub mod bezier;
 pub mod enclosure;
 pub mod nurbs;

@@ -7,6 +7,7 @@
 //! `(cu, cv)` the terms are powers of the small offsets `u − cu`, `v − cv`, as
 //! [`RationalBezierPatch::scaled_partials_centred`] does for first order.
 
+use crate::geometry::bernstein::binomial;
 use crate::geometry::RationalBezierPatch;
 use crate::pair::field::ScalarSurface;
 use crate::Scalar;
@@ -19,10 +20,6 @@ pub trait CentredSecondOrder: ScalarSurface {
         let _ = (cu, cv);
         self.second_order(u, v)
     }
-}
-
-fn binomial(n: usize, k: usize) -> f64 {
-    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
 }
 
 /// `[x⁰, x¹, …, xᵈ]`.
