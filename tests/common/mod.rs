@@ -10,6 +10,7 @@ pub(crate) mod intervals;
 pub(crate) mod mangle;
 pub(crate) mod near_crossing;
 pub(crate) mod odes;
+pub(crate) mod oracle;
 pub(crate) mod rng;
 pub(crate) mod scenes;
 pub(crate) mod surfaces;
