@@ -41,10 +41,21 @@ pub(crate) fn sign_change_brackets(
     hi: f64,
     samples: usize,
 ) -> Vec<[f64; 2]> {
+    let at = (0..=samples).map(|i| lo + (hi - lo) * i as f64 / samples as f64);
+    sign_change_brackets_at(sign, at)
+}
+
+/// As [`sign_change_brackets`], at the given increasing sample points.
+pub(crate) fn sign_change_brackets_at(
+    sign: impl Fn(f64) -> i32,
+    mut at: impl Iterator<Item = f64>,
+) -> Vec<[f64; 2]> {
     let mut out = Vec::new();
-    let mut prev = (lo, sign(lo));
-    for i in 1..=samples {
-        let s = lo + (hi - lo) * i as f64 / samples as f64;
+    let Some(first) = at.next() else {
+        return out;
+    };
+    let mut prev = (first, sign(first));
+    for s in at {
         let sg = sign(s);
         if sg != 0 && prev.1 != 0 && sg != prev.1 {
             let (mut a, mut b, sa) = (prev.0, s, prev.1);
@@ -137,13 +148,28 @@ pub(crate) struct PairsWith {
     pub(crate) not_certified: usize,
 }
 
-/// The smallest distance in P's parameters from the reference point's centre to a marched point.
-pub(crate) fn params_distance(b: &Branch, r: &RefPoint) -> f64 {
-    let (x, y) = (0.5 * (r.x[0] + r.x[1]), 0.5 * (r.y[0] + r.y[1]));
-    b.points
-        .iter()
-        .map(|p| (p.p[0] - x).hypot(p.p[1] - y))
-        .fold(f64::INFINITY, f64::min)
+/// Whether the reference point's centre lies near the marched polyline in P's parameters: within
+/// `near` of a marched point or chord, or within a quarter of a chord's length of it (a chord
+/// round a sharp bend strays from the curve by a fraction of its length).
+pub(crate) fn near_polyline(b: &Branch, r: &RefPoint, near: f64) -> bool {
+    let x = [0.5 * (r.x[0] + r.x[1]), 0.5 * (r.y[0] + r.y[1])];
+    let close = |a: [f64; 2], c: [f64; 2]| {
+        let d = [c[0] - a[0], c[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        let t = if len2 > 0.0 {
+            (((x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let dist = (a[0] + t * d[0] - x[0]).hypot(a[1] + t * d[1] - x[1]);
+        dist < near.max(0.25 * len2.sqrt())
+    };
+    let pts: Vec<[f64; 2]> = b.points.iter().map(|p| [p.p[0], p.p[1]]).collect();
+    match pts.len() {
+        0 => false,
+        1 => close(pts[0], pts[0]),
+        _ => pts.windows(2).any(|w| close(w[0], w[1])),
+    }
 }
 
 /// The certification engine: the default, or `SSITRACE_ORACLE_ENGINE=taylor` (for comparing
@@ -169,8 +195,8 @@ pub(crate) struct Comparison<'a> {
     pub(crate) widen: f64,
     /// The requested tolerance.
     pub(crate) required: f64,
-    /// A reference point closer than this (in P's parameters) to a marched point is on that
-    /// branch's component.
+    /// A reference point closer than this (in P's parameters) to a branch's marched polyline
+    /// is on that branch's component.
     pub(crate) near: f64,
 }
 
@@ -260,7 +286,7 @@ fn check_reference_point(c: &Comparison<'_>, r: &RefPoint, fig: &mut Figures) {
     }
     let near: Vec<_> = branches
         .iter()
-        .filter(|b| params_distance(&b.marched, r) < c.near)
+        .filter(|b| near_polyline(&b.marched, r, c.near))
         .collect();
     if near.is_empty() {
         let undecided = c.result.undecided_regions().iter().any(|u| {

@@ -1,0 +1,419 @@
+//! Random pieces of spheres, cylinders, cones and tori against random planes, against an
+//! independent reference intersection.
+//!
+//! The second family of the random oracle (the first, `tests/oracle_random.rs`, has height
+//! fields). P is a piece of a surface of revolution, as a rational biquadratic Bézier patch: an
+//! arc of a circle in `u` (weights `1, cos(α/2), 1`) swept along a meridian in `v` — a circular
+//! arc (sphere, torus) or a segment (cylinder, cone) — then moved by a random rotation and
+//! translation, its control points rounded to `f64`. Q is a parallelogram whose corners are
+//! dyadic, so the bilinear patch is exactly planar; it is large enough to hold the whole
+//! intersection. Two kinds of pairs:
+//! - **crossing**: the plane passes through a random point of P in a random direction;
+//! - **near-tangent**: the plane is P's tangent plane at a random point, moved by `δ` (1e-2 down
+//!   to 1e-8 of a unit model) into P or away from it. Into a sphere, a cone's or torus's outer
+//!   side it cuts a tiny loop of radius about `√(2δ/κ)`; into a cylinder two lines `2√(2Rδ)`
+//!   apart; on a torus's inner (saddle) side two near-crossing arcs; away from P, nothing there.
+//!
+//! **The reference** is computed without the code under test, from P's control data as given:
+//! on grid lines `u = c` and `v = c` of P's parameters, and on the two lines through the
+//! tangent point of a near-tangent pair, the sign of `n·S − d` (the plane `n·x = d` held in
+//! intervals, `S` P's homogeneous point by de Casteljau in `inari`, divided by nothing since the
+//! weight is positive) is sampled, and each sign change is bisected on proven signs. Every
+//! bracket holds a point of the true intersection; the checks are those of
+//! `tests/common/oracle.rs` (soundness against boxes and tubes, completeness, each arc once,
+//! tolerance).
+//!
+//! `cargo test --release --test oracle_quadric -- --nocapture` prints the figures; the soak is
+//! `SSITRACE_ORACLE_PAIRS=10000 cargo test --release --test oracle_quadric soak -- --ignored
+//! --nocapture` (same options as the height-field soak).
+
+mod common;
+
+use common::oracle::{
+    assert_clean, assert_sound, compare, engine, env_parse, fresh_base, point, run_with_progress,
+    sign_change_brackets, sign_change_brackets_at, sign_of, Comparison, Figures, RefPoint,
+};
+use common::rng::Rng;
+use inari::Interval;
+use ssitrace::geometry::{Domain, RationalBezierPatch};
+use ssitrace::{intersect, Method, Options, SurfaceIntersection};
+use std::time::Instant;
+
+/// The homogeneous 3×3 net of P (index `3i + j`, `i` along `u`), in intervals.
+struct Net {
+    h: Vec<[Interval; 4]>,
+}
+
+impl Net {
+    fn new(points: &[[f64; 3]], weights: &[f64]) -> Self {
+        let h = points
+            .iter()
+            .zip(weights)
+            .map(|(p, &w)| {
+                let w = point(w);
+                [point(p[0]) * w, point(p[1]) * w, point(p[2]) * w, w]
+            })
+            .collect();
+        Net { h }
+    }
+
+    /// The homogeneous point at `(u, v)` (de Casteljau along `v`, then `u`).
+    fn eval(&self, u: Interval, v: Interval) -> [Interval; 4] {
+        let one = point(1.0);
+        let quad = |a: [Interval; 4], b: [Interval; 4], c: [Interval; 4], t: Interval| {
+            let s = one - t;
+            std::array::from_fn(|k| {
+                let ab = s * a[k] + t * b[k];
+                let bc = s * b[k] + t * c[k];
+                s * ab + t * bc
+            })
+        };
+        let rows: Vec<[Interval; 4]> = (0..3)
+            .map(|i| quad(self.h[3 * i], self.h[3 * i + 1], self.h[3 * i + 2], v))
+            .collect();
+        quad(rows[0], rows[1], rows[2], u)
+    }
+
+    /// The Cartesian point in `f64` (midpoints; only to place the plane).
+    fn point_f64(&self, u: f64, v: f64) -> [f64; 3] {
+        let h = self.eval(point(u), point(v));
+        std::array::from_fn(|k| h[k].mid() / h[3].mid())
+    }
+}
+
+/// The plane `n·x = d`, `n` and `d` enclosed in intervals.
+struct Plane {
+    n: [Interval; 3],
+    d: Interval,
+}
+
+impl Plane {
+    /// The proven sign of `n·S − d` at P's parameters `(u, v)` (`0` when undecided).
+    fn side(&self, net: &Net, u: f64, v: f64) -> i32 {
+        let h = net.eval(point(u), point(v));
+        let nx = self.n[0] * h[0] + self.n[1] * h[1] + self.n[2] * h[2];
+        sign_of(nx - self.d * h[3])
+    }
+}
+
+/// What P is a piece of.
+#[derive(Clone, Copy, Debug)]
+enum Kind {
+    Sphere,
+    Cylinder,
+    Cone,
+    Torus,
+}
+
+/// A meridian `(r, z)` as a rational quadratic: three control points and weights.
+type Meridian = ([[f64; 2]; 3], [f64; 3]);
+
+/// The arc of the circle of centre `(rc, 0)` and radius `a` from angle `f0` through `beta`.
+fn circle_arc(rc: f64, a: f64, f0: f64, beta: f64) -> Meridian {
+    let (f1, fm) = (f0 + beta, f0 + 0.5 * beta);
+    let c = (0.5 * beta).cos();
+    (
+        [
+            [rc + a * f0.cos(), a * f0.sin()],
+            [rc + a * fm.cos() / c, a * fm.sin() / c],
+            [rc + a * f1.cos(), a * f1.sin()],
+        ],
+        [1.0, c, 1.0],
+    )
+}
+
+fn segment(a: [f64; 2], b: [f64; 2]) -> Meridian {
+    ([a, [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], b], [1.0; 3])
+}
+
+fn random_meridian(rng: &mut Rng, kind: Kind) -> Meridian {
+    match kind {
+        Kind::Sphere => {
+            let r = rng.uniform(0.5, 2.0);
+            let f0 = rng.uniform(-1.3, 0.6);
+            let beta = rng.uniform(0.4, (1.4 - f0).min(2.0));
+            circle_arc(0.0, r, f0, beta)
+        }
+        Kind::Cylinder => {
+            let r = rng.uniform(0.3, 1.5);
+            segment([r, 0.0], [r, rng.uniform(0.5, 2.0)])
+        }
+        Kind::Cone => segment(
+            [rng.uniform(0.3, 1.2), 0.0],
+            [rng.uniform(0.3, 1.2), rng.uniform(0.5, 1.5)],
+        ),
+        Kind::Torus => {
+            let big = rng.uniform(1.0, 2.0);
+            let a = rng.uniform(0.2, 0.8) * big;
+            circle_arc(big, a, rng.uniform(0.0, 6.28), rng.uniform(0.4, 2.5))
+        }
+    }
+}
+
+/// A piece of a surface of revolution of `kind`, moved by a random rotation and translation:
+/// its control points and weights (index `3i + j`).
+fn random_piece(rng: &mut Rng, kind: Kind) -> (Vec<[f64; 3]>, Vec<f64>) {
+    let (mer, mw) = random_meridian(rng, kind);
+    let (t0, alpha) = (rng.uniform(0.0, 6.28), rng.uniform(0.4, 2.5));
+    let c = (0.5 * alpha).cos();
+    let arc = [
+        ([t0.cos(), t0.sin()], 1.0),
+        (
+            [(t0 + 0.5 * alpha).cos() / c, (t0 + 0.5 * alpha).sin() / c],
+            c,
+        ),
+        ([(t0 + alpha).cos(), (t0 + alpha).sin()], 1.0),
+    ];
+    let rot = rng.rotation();
+    let shift: [f64; 3] = std::array::from_fn(|_| rng.uniform(-2.0, 2.0));
+    let mut points = Vec::with_capacity(9);
+    let mut weights = Vec::with_capacity(9);
+    for (xy, wu) in arc {
+        for (rz, wv) in mer.iter().zip(mw) {
+            let x = [rz[0] * xy[0], rz[0] * xy[1], rz[1]];
+            points.push(std::array::from_fn(|i| {
+                (0..3).map(|k| rot[i][k] * x[k]).sum::<f64>() + shift[i]
+            }));
+            weights.push(wu * wv);
+        }
+    }
+    (points, weights)
+}
+
+/// Rounds to a multiple of 2⁻²⁰ (so sums of a few such numbers below 2⁸ are exact).
+fn dyadic(x: f64) -> f64 {
+    (x * (1u64 << 20) as f64).round() / (1u64 << 20) as f64
+}
+
+/// The parallelogram `c ± a/2 ± b/2` (dyadic data, so exactly planar) as a bilinear patch, and
+/// its plane in intervals.
+fn plane_patch(
+    c: [f64; 3],
+    a: [f64; 3],
+    b: [f64; 3],
+) -> (RationalBezierPatch, Plane, [[f64; 3]; 4]) {
+    let (c, a, b) = (c.map(dyadic), a.map(dyadic), b.map(dyadic));
+    let q00: [f64; 3] = std::array::from_fn(|k| c[k] - 0.5 * a[k] - 0.5 * b[k]);
+    let corners = [
+        q00,
+        std::array::from_fn(|k| q00[k] + b[k]),
+        std::array::from_fn(|k| q00[k] + a[k]),
+        std::array::from_fn(|k| q00[k] + a[k] + b[k]),
+    ];
+    let patch = RationalBezierPatch::from_f64_points(
+        [1, 1],
+        &corners,
+        None,
+        Domain::new(0.0, 1.0, 0.0, 1.0),
+    )
+    .expect("a parallelogram");
+    let (ai, bi) = (a.map(point), b.map(point));
+    let n = [
+        ai[1] * bi[2] - ai[2] * bi[1],
+        ai[2] * bi[0] - ai[0] * bi[2],
+        ai[0] * bi[1] - ai[1] * bi[0],
+    ];
+    let d = n[0] * point(q00[0]) + n[1] * point(q00[1]) + n[2] * point(q00[2]);
+    (patch, Plane { n, d }, corners)
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|k| a[k] - b[k])
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn unit(a: [f64; 3]) -> [f64; 3] {
+    let n = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+    a.map(|x| x / n)
+}
+
+/// One random pair and what the reference needs: P, Q, P's net, the plane, the extra reference
+/// lines through the tangent point (near-tangent pairs) and the nearness scale of the check.
+struct Pair {
+    /// Both patches' control data, as a scene file (`SSITRACE_ORACLE_SCENE_DIR` writes it).
+    scene: String,
+    p: RationalBezierPatch,
+    q: RationalBezierPatch,
+    net: Net,
+    plane: Plane,
+    /// P's parameters of the tangent point of a near-tangent pair.
+    tangent_point: Option<[f64; 2]>,
+    near: f64,
+    label: String,
+}
+
+fn random_pair(seed: u64) -> Pair {
+    let mut rng = Rng::new(seed);
+    let kind = [Kind::Sphere, Kind::Cylinder, Kind::Cone, Kind::Torus][(seed % 4) as usize];
+    let near_tangent = (seed / 4) % 2 == 1;
+    let (points, weights) = random_piece(&mut rng, kind);
+    let p = RationalBezierPatch::from_f64_points(
+        [2, 2],
+        &points,
+        Some(&weights),
+        Domain::new(0.0, 1.0, 0.0, 1.0),
+    )
+    .expect("a valid piece");
+    let net = Net::new(&points, &weights);
+    // The plane's size: 2.5 times P's control-net diameter, round a point of P.
+    let diam = points
+        .iter()
+        .flat_map(|a| points.iter().map(move |b| sub(*a, *b)))
+        .map(|d| d.iter().map(|x| x * x).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
+    let (u0, v0) = (rng.uniform(0.1, 0.9), rng.uniform(0.1, 0.9));
+    let x0 = net.point_f64(u0, v0);
+    let (normal, tangent_point, near, label) = if near_tangent {
+        let h = 1e-6;
+        let du = sub(net.point_f64(u0 + h, v0), net.point_f64(u0 - h, v0));
+        let dv = sub(net.point_f64(u0, v0 + h), net.point_f64(u0, v0 - h));
+        let n = unit(cross(du, dv));
+        let delta = [1e-2, 1e-4, 1e-6, 1e-8][rng.below(4)];
+        let into = rng.uniform(0.0, 1.0) < 0.75;
+        // Moving the plane by ±δ along n; which side is "into" P depends on its curvature, so
+        // both happen: the label says which way it went.
+        let s = if into { 1.0 } else { -1.0 };
+        let shifted: [f64; 3] = std::array::from_fn(|k| x0[k] + s * delta * n[k]);
+        (
+            (n, shifted),
+            Some([u0, v0]),
+            0.25 * delta.sqrt(),
+            format!("{kind:?} near-tangent δ = {:e}", s * delta),
+        )
+    } else {
+        let n = unit(std::array::from_fn(|_| rng.uniform(-1.0, 1.0)));
+        ((n, x0), None, 0.02, format!("{kind:?} crossing"))
+    };
+    let (n, centre) = normal;
+    let e1 = unit(cross(
+        n,
+        if n[0].abs() < 0.6 {
+            [1.0, 0.0, 0.0]
+        } else {
+            [0.0, 1.0, 0.0]
+        },
+    ));
+    let e2 = cross(n, e1);
+    let side = 2.5 * diam;
+    let (q, plane, corners) = plane_patch(centre, e1.map(|x| side * x), e2.map(|x| side * x));
+    let scene = format!(
+        "{{\"surfaces\": [{{\"kind\": \"bezier\", \"degree\": [2, 2], \"points\": {points:?}, \"weights\": {weights:?}}}, {{\"kind\": \"bezier\", \"degree\": [1, 1], \"points\": {corners:?}}}], \"options\": {{\"name\": \"oracle-quadric-{seed}\", \"method\": \"validated\"}}}}\n"
+    );
+    Pair {
+        scene,
+        p,
+        q,
+        net,
+        plane,
+        tangent_point,
+        near,
+        label,
+    }
+}
+
+/// Reference points on the grid lines `u, v = k/16`, away from P's boundary by `margin`, and for
+/// a near-tangent pair on the lines `u = u₀` and `v = v₀` through its tangent point, sampled
+/// geometrically outward from it (a loop round it may be far smaller than the grid).
+fn reference(pair: &Pair, margin: f64) -> Vec<RefPoint> {
+    let side = |u: f64, v: f64| pair.plane.side(&pair.net, u, v);
+    let (lo, hi) = (margin, 1.0 - margin);
+    let mut out = Vec::new();
+    for c in (1..16).map(|k| k as f64 / 16.0) {
+        for x in sign_change_brackets(|s| side(s, c), lo, hi, 400) {
+            out.push(RefPoint { x, y: [c, c] });
+        }
+        for y in sign_change_brackets(|s| side(c, s), lo, hi, 400) {
+            out.push(RefPoint { x: [c, c], y });
+        }
+    }
+    if let Some(&[u0, v0]) = pair.tangent_point.as_ref() {
+        // Offsets 1e-9·1.25^k on both sides of the tangent point, inside the margin.
+        let around = |c: f64| {
+            let steps: Vec<f64> = (0..100)
+                .map(|k| 1e-9 * 1.25f64.powi(k))
+                .take_while(|d| *d < 1.0)
+                .collect();
+            let mut at: Vec<f64> = steps.iter().rev().map(|d| c - d).collect();
+            at.push(c);
+            at.extend(steps.iter().map(|d| c + d));
+            at.retain(|s| lo <= *s && *s <= hi);
+            at
+        };
+        for x in sign_change_brackets_at(|s| side(s, v0), around(u0).into_iter()) {
+            out.push(RefPoint { x, y: [v0, v0] });
+        }
+        for y in sign_change_brackets_at(|s| side(u0, s), around(v0).into_iter()) {
+            out.push(RefPoint { x: [u0, u0], y });
+        }
+    }
+    out
+}
+
+fn check_pair(seed: u64, fig: &mut Figures) {
+    let pair = random_pair(seed);
+    if let Ok(dir) = std::env::var("SSITRACE_ORACLE_SCENE_DIR") {
+        let path = format!("{dir}/oracle_quadric_{seed}.json");
+        std::fs::write(&path, &pair.scene).expect("scene written");
+    }
+    let opts = Options {
+        method: Method::Validated,
+        engine: engine(),
+        ..Options::default()
+    };
+    let clock = Instant::now();
+    let result: SurfaceIntersection = intersect(&pair.p, &pair.q, &opts).expect("valid options");
+    fig.times.push(clock.elapsed().as_secs_f64());
+    let refs = reference(&pair, 1e-3);
+    let before = fig.notes.len();
+    let cmp = Comparison {
+        seed,
+        result: &result,
+        refs: &refs,
+        widen: 0.0,
+        required: opts.required_tolerance,
+        near: pair.near,
+    };
+    compare(&cmp, fig);
+    for n in &mut fig.notes[before..] {
+        n.push_str(&format!(" ({})", pair.label));
+    }
+}
+
+fn run(seeds: impl Iterator<Item = u64>) -> Figures {
+    run_with_progress(seeds, 0, check_pair)
+}
+
+#[test]
+fn quadric_pieces_against_planes_fixed_seeds_0() {
+    assert_clean(&run(0..80));
+}
+
+#[test]
+fn quadric_pieces_against_planes_fixed_seeds_1() {
+    assert_clean(&run(80..160));
+}
+
+/// Fresh pairs on every run (the seed is printed; replay with `SSITRACE_ORACLE_SEED`).
+#[test]
+fn quadric_pieces_against_planes_fresh_seeds() {
+    let base = fresh_base();
+    assert_sound(&run((0..16).map(|k| base.wrapping_add(k))));
+}
+
+/// The soak: `SSITRACE_ORACLE_PAIRS` pairs (default 10 000) from `SSITRACE_ORACLE_FIRST`
+/// (default 1 000 000); `SSITRACE_ORACLE_PROGRESS=k` prints the figures every `k` pairs.
+#[test]
+#[ignore = "soak: run by hand, see the module doc"]
+fn soak() {
+    let n = env_parse("SSITRACE_ORACLE_PAIRS").unwrap_or(10_000u64);
+    let first = env_parse("SSITRACE_ORACLE_FIRST").unwrap_or(1_000_000u64);
+    let every = env_parse("SSITRACE_ORACLE_PROGRESS").unwrap_or(0usize);
+    assert_sound(&run_with_progress(first..first + n, every, check_pair));
+}
