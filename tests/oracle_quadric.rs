@@ -37,6 +37,7 @@ use common::rng::Rng;
 use inari::Interval;
 use ssitrace::geometry::{Domain, RationalBezierPatch};
 use ssitrace::{intersect, Method, Options, SurfaceIntersection};
+use std::f64::consts::TAU;
 use std::time::Instant;
 
 /// The homogeneous 3×3 net of P (index `3i + j`, `i` along `u`), in intervals.
@@ -145,7 +146,7 @@ fn random_meridian(rng: &mut Rng, kind: Kind) -> Meridian {
         Kind::Torus => {
             let big = rng.uniform(1.0, 2.0);
             let a = rng.uniform(0.2, 0.8) * big;
-            circle_arc(big, a, rng.uniform(0.0, 6.28), rng.uniform(0.4, 2.5))
+            circle_arc(big, a, rng.uniform(0.0, TAU), rng.uniform(0.4, 2.5))
         }
     }
 }
@@ -154,7 +155,7 @@ fn random_meridian(rng: &mut Rng, kind: Kind) -> Meridian {
 /// its control points and weights (index `3i + j`).
 fn random_piece(rng: &mut Rng, kind: Kind) -> (Vec<[f64; 3]>, Vec<f64>) {
     let (mer, mw) = random_meridian(rng, kind);
-    let (t0, alpha) = (rng.uniform(0.0, 6.28), rng.uniform(0.4, 2.5));
+    let (t0, alpha) = (rng.uniform(0.0, TAU), rng.uniform(0.4, 2.5));
     let c = (0.5 * alpha).cos();
     let arc = [
         ([t0.cos(), t0.sin()], 1.0),
