@@ -11,8 +11,9 @@ use crate::numeric::vec3::{dist3, dot, norm3};
 /// covered).
 ///
 /// A chord of length `c` spanning an arc that turns by `φ` stays within the sagitta `≈ c·φ/8` of
-/// it. The turning is estimated by the angles to the neighbouring chords (`φ`; the largest one,
-/// `π/2` for a lone chord) and the bound taken four times over: `c·φ/2`, plus `floor` (the
+/// it. The turning is estimated from the curvature at the joints up to two chords away (angle
+/// between the chords over their mean length, the largest, times `c`; `π/2` for a lone chord,
+/// and at most `π/2`) and the bound taken four times over: `c·φ/2`, plus `floor` (the
 /// accuracy of the points, e.g. a multiple of the Newton tolerance). So a separate curve closer
 /// to the branch than its step (concentric loops 0.002 apart, step 0.05) is not covered, while a
 /// point refined onto the traced curve is.
@@ -41,15 +42,16 @@ pub(crate) fn covers<P: ParametricSurface + ?Sized>(
         let (a, b) = (&branch.points[k].xyz, &branch.points[k + 1].xyz);
         std::array::from_fn(|i| b[i] - a[i])
     };
-    // Angle between chords k and k + 1 (None if either is degenerate).
-    let bend = |k: usize| -> Option<f64> {
+    // Turning per unit length at the joint of chords k and k + 1: their angle over their mean
+    // length (None if either is degenerate).
+    let curvature = |k: usize| -> Option<f64> {
         let (a, b) = (chord(k), chord(k + 1));
         let (la, lb) = (norm3(&a), norm3(&b));
         if la == 0.0 || lb == 0.0 {
             return None;
         }
         let cos = dot(&a, &b) / (la * lb);
-        Some(cos.clamp(-1.0, 1.0).acos())
+        Some(cos.clamp(-1.0, 1.0).acos() / (0.5 * (la + lb)))
     };
     if n == 1 {
         let a = &branch.points[0].xyz;
@@ -57,13 +59,18 @@ pub(crate) fn covers<P: ParametricSurface + ?Sized>(
     }
     (0..n - 1).any(|k| {
         let (a, b) = (&branch.points[k].xyz, &branch.points[k + 1].xyz);
-        let before = (k >= 1).then(|| bend(k - 1)).flatten();
-        let after = (k + 2 < n).then(|| bend(k)).flatten();
-        let turning = match (before, after) {
-            (None, None) => std::f64::consts::FRAC_PI_2,
-            (x, y) => x.unwrap_or(0.0).max(y.unwrap_or(0.0)),
-        };
-        let radius = 0.5 * dist3(a, b) * turning + floor;
+        let length = dist3(a, b);
+        // The turning over this chord, from the largest curvature at the two joints on either
+        // side (the curvature can change fast: near a boundary end a long last chord, the step
+        // clipped onto the boundary, may turn more than its neighbour did).
+        let joints = k.saturating_sub(2)..(k + 2).min(n - 2);
+        let turning = joints
+            .filter_map(curvature)
+            .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))))
+            .map_or(std::f64::consts::FRAC_PI_2, |kappa| {
+                (kappa * length).min(std::f64::consts::FRAC_PI_2)
+            });
+        let radius = 0.5 * length * turning + floor;
         segment_distance(&c, a, b) <= radius && between(&params(k), &params(k + 1))
     })
 }
@@ -126,6 +133,39 @@ mod tests {
             }
         }
         let [x, y] = at(0.3, 5.5);
+        assert!(!covers(&branch, &[x, y, x, y], &plane, 1e-8, &scales));
+    }
+
+    #[test]
+    fn covers_a_last_chord_past_an_inflection() {
+        // The cubic y = x³ traced at x = −1.5, −1, −0.5, 0, 0.5: the two chords meeting at the
+        // inflection x = 0 are parallel (no bend there), yet the last chord stays 0.048 off the
+        // curve (at x = 1/√12). The curvature two joints back bounds it; a point 0.4 off the
+        // chord is still not covered. (Seen at a torus's boundary end in the quadric oracle:
+        // bends 0.025, 0.010, 0.0005 and then a longer, turning last step.)
+        let d = Domain::new(-2.0, 2.0, -2.0, 2.0);
+        let plane = AnalyticSurface::new(d, |u: Jet2, v: Jet2| [u, v, Jet2::constant(0.0)]);
+        let points: Vec<CurvePoint> = [-1.5f64, -1.0, -0.5, 0.0, 0.5]
+            .iter()
+            .map(|&x| CurvePoint {
+                p: [x, x * x * x],
+                q: [x, x * x * x],
+                xyz: [x, x * x * x, 0.0],
+            })
+            .collect();
+        let branch = Branch {
+            id: 0,
+            status: BranchStatus::Open,
+            ends: [EndReason::PointLimit, EndReason::PointLimit],
+            points,
+        };
+        let scales = [4.0; 4];
+        for k in 1..50 {
+            let x = 0.5 * k as f64 / 50.0;
+            let y = x * x * x;
+            assert!(covers(&branch, &[x, y, x, y], &plane, 1e-8, &scales), "{x}");
+        }
+        let (x, y) = (0.29, 0.29 * 0.25 + 0.4);
         assert!(!covers(&branch, &[x, y, x, y], &plane, 1e-8, &scales));
     }
 

@@ -148,10 +148,11 @@ pub(crate) struct PairsWith {
     pub(crate) not_certified: usize,
 }
 
-/// Whether the reference point's centre lies near the marched polyline in P's parameters: within
-/// `near` of a marched point or chord, or within a quarter of a chord's length of it (a chord
-/// round a sharp bend strays from the curve by a fraction of its length).
-pub(crate) fn near_polyline(b: &Branch, r: &RefPoint, near: f64) -> bool {
+/// Whether the reference point's centre lies within `near` of the marched polyline in P's
+/// parameters (its points and chords) or, when `chord_allowance`, within a quarter of a chord's
+/// length of that chord (a chord round a sharp bend strays from the curve by a fraction of its
+/// length).
+pub(crate) fn near_polyline(b: &Branch, r: &RefPoint, near: f64, chord_allowance: bool) -> bool {
     let x = [0.5 * (r.x[0] + r.x[1]), 0.5 * (r.y[0] + r.y[1])];
     let close = |a: [f64; 2], c: [f64; 2]| {
         let d = [c[0] - a[0], c[1] - a[1]];
@@ -162,7 +163,12 @@ pub(crate) fn near_polyline(b: &Branch, r: &RefPoint, near: f64) -> bool {
             0.0
         };
         let dist = (a[0] + t * d[0] - x[0]).hypot(a[1] + t * d[1] - x[1]);
-        dist < near.max(0.25 * len2.sqrt())
+        let allowance = if chord_allowance {
+            0.25 * len2.sqrt()
+        } else {
+            0.0
+        };
+        dist < near.max(allowance)
     };
     let pts: Vec<[f64; 2]> = b.points.iter().map(|p| [p.p[0], p.p[1]]).collect();
     match pts.len() {
@@ -284,9 +290,13 @@ fn check_reference_point(c: &Comparison<'_>, r: &RefPoint, fig: &mut Figures) {
     if !holders.is_empty() {
         return;
     }
+    // Completeness asks whether some branch traced the point's component: the marched polyline
+    // with its chords' allowance. Soundness (below) asks whether a branch claiming its whole
+    // component holds the point: only within `near` of its polyline, so a close neighbouring
+    // curve is not taken for it.
     let near: Vec<_> = branches
         .iter()
-        .filter(|b| near_polyline(&b.marched, r, c.near))
+        .filter(|b| near_polyline(&b.marched, r, c.near, true))
         .collect();
     if near.is_empty() {
         let undecided = c.result.undecided_regions().iter().any(|u| {
@@ -304,11 +314,12 @@ fn check_reference_point(c: &Comparison<'_>, r: &RefPoint, fig: &mut Figures) {
     // Near a marched branch but in no certified box: a violation if that branch's certificate
     // claims both ends proven (it then covers its whole component).
     let claimed = near.iter().any(|b| {
-        b.certified().is_some_and(|cb| {
-            cb.ends
-                .iter()
-                .all(|e| e.kind() == "boundary" || e.kind() == "closed_loop")
-        })
+        near_polyline(&b.marched, r, c.near, false)
+            && b.certified().is_some_and(|cb| {
+                cb.ends
+                    .iter()
+                    .all(|e| e.kind() == "boundary" || e.kind() == "closed_loop")
+            })
     });
     if claimed {
         fig.soundness_violations += 1;
