@@ -418,3 +418,16 @@ fn soak() {
     let every = env_parse("SSITRACE_ORACLE_PROGRESS").unwrap_or(0usize);
     assert_sound(&run_with_progress(first..first + n, every, check_pair));
 }
+
+/// Pairs the soak found where the marcher jumped at a near-crossing on a torus's saddle side
+/// (a plane within 1e-8 and 1e-6 of tangent): one arm was certified twice and another by no
+/// branch. The stretch a jump leaves uncertified is now traced again with a finer step and the
+/// jumping branches are dropped as duplicates: two curves, each certified from boundary to
+/// boundary, each arc once.
+#[test]
+fn near_crossings_on_a_torus_are_traced_once_each() {
+    let fig = run([1_000_103, 1_000_559].into_iter());
+    assert_clean(&fig);
+    assert_eq!(fig.unproven_ends, 0, "{:?}", fig.notes);
+    assert_eq!(fig.branches, 4, "two curves per pair");
+}

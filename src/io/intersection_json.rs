@@ -171,6 +171,7 @@ pub fn stats_json(r: &SurfaceIntersection) -> Map<String, Value> {
         put("unchecked_points", json!(c.unchecked_points));
         put("looping_branches", json!(c.looping_branches));
         put("duplicate_branches", json!(c.duplicate_branches));
+        put("retraced_branches", json!(c.retraced_branches));
         if r.contact_error.is_none() {
             put("certified_contacts", json!(r.contacts.len()));
         }

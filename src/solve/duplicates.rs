@@ -61,7 +61,7 @@ pub(crate) fn duplicate_branches(
 /// Whether the parameters `x` lie in the tube piece: its along coordinate in the piece's range
 /// and the others within the proven radius (plus `slack` scaled by the domain widths) of the
 /// reported curve there.
-fn in_piece(t: &TubePiece, x: &[f64; 4], scales: &[f64; 4], slack: f64) -> bool {
+pub(super) fn in_piece(t: &TubePiece, x: &[f64; 4], scales: &[f64; 4], slack: f64) -> bool {
     let Some(along) = t.along else {
         return false;
     };

@@ -8,6 +8,7 @@
 
 mod duplicates;
 mod options;
+mod repair;
 mod result;
 mod run;
 

@@ -122,6 +122,10 @@ pub struct CertifyStats {
     /// Marched branches dropped as traced twice: the marcher jumped between close curves and
     /// every point it marched lies in the certified tubes of other branches.
     pub duplicate_branches: usize,
+    /// Branches traced again with a finer step where a marcher jump left a stretch of curve
+    /// without a certificate (see `solve/repair.rs`); the branches they replace are dropped as
+    /// duplicates.
+    pub retraced_branches: usize,
 }
 
 /// Counts and timings of a run.

@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use super::duplicates::duplicate_branches;
 use super::options::{Engine, Options};
+use super::repair::uncovered_starts;
 use super::result::{
     end_box, BranchCertificate, CertifyStats, Stats, SurfaceIntersection, TracedBranch,
 };
@@ -20,13 +21,18 @@ use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
 use crate::march::branch::{Branch, BranchStatus};
 use crate::march::MarchOptions;
-use crate::topology::branch_ends::check_branch_ends;
+use crate::topology::branch_ends::{check_branch_ends, BranchEndCheck};
+use crate::topology::graph::trace_graph;
 use crate::topology::intersect::intersect as march_all;
 
 /// Scaled parameter distance, beyond a tube piece's proven radius, within which a marched point
 /// counts as lying on that piece when duplicates are looked for (the marcher's points are on the
 /// curve to about 1e-12 of the model; certified tubes are about 1e-9 wide).
 const DUPLICATE_SLACK: f64 = 1e-9;
+
+/// Rounds of tracing again what a marcher jump left uncertified ([`super::repair`]), with the
+/// step divided by 8, then by 64.
+const REPAIR_ROUNDS: i32 = 2;
 
 /// Finds, traces and (unless the method is [`Method::March`](super::Method::March)) certifies
 /// every branch of `P ∩ Q`.
@@ -77,10 +83,18 @@ pub fn intersect(
     let mut contact_error = None;
     if opts.method.certifies() {
         let certifying = Instant::now();
-        let certs: Vec<BranchCertificate> = marched
+        let mut certs: Vec<BranchCertificate> = marched
             .par_iter()
             .map(|b| certify_within(p, q, b, opts, deadline))
             .collect();
+        let retraced = retrace_uncovered(
+            p,
+            q,
+            (&mut marched, &mut certs, &mut boundary_ends),
+            &march,
+            opts,
+            deadline,
+        );
         let wall_seconds = certifying.elapsed().as_secs_f64();
         // A branch traced twice (the marcher jumped between close curves) is dropped.
         let dropped = {
@@ -134,6 +148,7 @@ pub fn intersect(
             unchecked_points: count(&|r| r.unchecked.len()),
             looping_branches: count(&|r| usize::from(r.looping)),
             duplicate_branches: duplicates,
+            retraced_branches: retraced,
         });
         certificates = certs.into_iter().map(Some).collect();
         straying = reports.into_iter().map(Some).collect();
@@ -161,6 +176,55 @@ pub fn intersect(
         contact_error,
         stats,
     })
+}
+
+/// The marched branches, their certificates and their checked boundary ends, index for index.
+type Traced<'a> = (
+    &'a mut Vec<Branch>,
+    &'a mut Vec<BranchCertificate>,
+    &'a mut Vec<Vec<Result<Vec<BranchEndCheck>>>>,
+);
+
+/// Traces again, with a finer step, what marcher jumps left uncertified ([`super::repair`]),
+/// certifies the new branches and appends them; returns how many were added.
+fn retrace_uncovered(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    (marched, certs, boundary_ends): Traced<'_>,
+    march: &MarchOptions,
+    opts: &Options,
+    deadline: Option<Instant>,
+) -> usize {
+    let mut added = 0;
+    let mut next_id = marched.iter().map(|b| b.id + 1).max().unwrap_or(0);
+    for round in 1..=REPAIR_ROUNDS {
+        let starts = {
+            let certified: Vec<Option<&CertifiedBranch>> =
+                certs.iter().map(BranchCertificate::certified).collect();
+            uncovered_starts(p, q, marched, &certified, DUPLICATE_SLACK)
+        };
+        if starts.is_empty() || deadline.is_some_and(|d| Instant::now() >= d) {
+            break;
+        }
+        let fine = MarchOptions {
+            step: march.step / 8f64.powi(round),
+            ..*march
+        };
+        let first = marched.len();
+        for mut b in trace_graph(p, q, &starts, &fine).branches {
+            b.id = next_id;
+            next_id += 1;
+            boundary_ends.push(check_branch_ends(p, q, &b, &opts.boundary));
+            marched.push(b);
+        }
+        added += marched.len() - first;
+        let new: Vec<BranchCertificate> = marched[first..]
+            .par_iter()
+            .map(|b| certify_within(p, q, b, opts, deadline))
+            .collect();
+        certs.extend(new);
+    }
+    added
 }
 
 /// Certifies one marched branch within the budgets of `opts`, with `opts.engine`: from its

@@ -1,0 +1,98 @@
+//! Stretches of curve that a marcher jump left without a certificate, traced again with a finer
+//! step.
+//!
+//! At a near-crossing of two curves (two arms of a hyperbola-like pair, closer together than the
+//! march step can tell apart) the marcher can step from one curve onto the other and go on as if
+//! nothing happened: its branch ends cleanly on boundaries, but the cover chain of that branch
+//! cannot follow the jump and stops there (`singular box`, `close branches` or `unproven`). The
+//! arm the marcher walked on the far side of the jump from the chain's start is then certified by
+//! no branch, and the arm it skipped may be traced by nobody (a torus's saddle side against a
+//! nearly tangent plane, in the quadric oracle).
+//!
+//! **The rule.** A branch is *suspect* when the marcher ended it cleanly (on boundaries, or closed)
+//! but its certificate stops short at some end as if at a singular point or at branches too close
+//! to resolve (a budget, a time limit or another unproven end is not a jump). A run of at least two of its marched points that
+//! lie in no tube piece of any certified branch (the same test as for duplicates) is *uncovered*;
+//! the middle point of each uncovered run is a start for a new trace with the step divided by 8
+//! (then by 64 in a second round, if uncovered runs remain). The new branches are certified like
+//! the others; the duplicate rule ([`super::duplicates`]) then drops the suspects whose marched
+//! points are all certified by other branches. Nothing here claims anything: it only decides
+//! what to trace again, so it is in `f64`.
+
+use super::duplicates::in_piece;
+use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
+use crate::geometry::surface::pair_widths;
+use crate::geometry::RationalBezierPatch;
+use crate::march::branch::{Branch, BranchStatus, EndReason};
+
+/// Uncovered runs shorter than this many marched points are not traced again (the last point of
+/// an arc ending at a node lies at the node, beyond the chain's proven approach to it).
+const MIN_UNCOVERED_RUN: usize = 2;
+
+/// Starts for tracing again: the middle point of every uncovered run of every suspect branch
+/// (see the module documentation).
+pub(crate) fn uncovered_starts(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    marched: &[Branch],
+    certified: &[Option<&CertifiedBranch>],
+    slack: f64,
+) -> Vec<[f64; 4]> {
+    let scales = pair_widths(&p.domain(), &q.domain());
+    let tubes: Vec<&TubePiece> = certified
+        .iter()
+        .flatten()
+        .flat_map(|c| &c.tubes)
+        .filter(|t| t.along.is_some())
+        .collect();
+    let mut starts = Vec::new();
+    for (b, c) in marched.iter().zip(certified) {
+        if !suspect(b, *c) {
+            continue;
+        }
+        let covered: Vec<bool> = b
+            .points
+            .iter()
+            .map(|pt| {
+                let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+                tubes.iter().any(|t| in_piece(t, &x, &scales, slack))
+            })
+            .collect();
+        let mut k = 0;
+        while k < covered.len() {
+            if covered[k] {
+                k += 1;
+                continue;
+            }
+            let run = k..covered[k..]
+                .iter()
+                .position(|c| *c)
+                .map_or(covered.len(), |n| k + n);
+            if run.len() >= MIN_UNCOVERED_RUN {
+                let pt = &b.points[(run.start + run.end) / 2];
+                starts.push([pt.p[0], pt.p[1], pt.q[0], pt.q[1]]);
+            }
+            k = run.end;
+        }
+    }
+    starts
+}
+
+/// Whether the marcher ended the branch cleanly but its certificate stops short as at a jump.
+fn suspect(b: &Branch, c: Option<&CertifiedBranch>) -> bool {
+    let clean = b.status == BranchStatus::Closed
+        || b.ends
+            .iter()
+            .all(|e| matches!(e, EndReason::Boundary { .. } | EndReason::ClosedLoop));
+    // A jump looks like a singular point or like two branches too close to resolve; an
+    // `unproven` end is a budget or a time limit, or a failure that a finer step does not mend.
+    let short = c.is_some_and(|c| {
+        c.ends.iter().any(|e| {
+            matches!(
+                e,
+                CertifiedEnd::Singular { .. } | CertifiedEnd::CloseBranches { .. }
+            )
+        })
+    });
+    clean && short
+}
