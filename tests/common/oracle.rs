@@ -329,6 +329,9 @@ fn check_reference_point(c: &Comparison<'_>, r: &RefPoint, fig: &mut Figures) {
     }
 }
 
+/// A pair that takes longer than this (check included) is named in the notes.
+const SLOW_PAIR_SECONDS: f64 = 5.0;
+
 /// Runs `check` on every seed, counting per failure class the pairs that had it.
 fn check_counted(seed: u64, fig: &mut Figures, check: &impl Fn(u64, &mut Figures)) {
     let before = (
@@ -339,7 +342,12 @@ fn check_counted(seed: u64, fig: &mut Figures, check: &impl Fn(u64, &mut Figures
         fig.unproven_ends,
         fig.not_certified,
     );
+    let clock = std::time::Instant::now();
     check(seed, fig);
+    let seconds = clock.elapsed().as_secs_f64();
+    if seconds > SLOW_PAIR_SECONDS {
+        fig.notes.push(format!("seed {seed}: slow, {seconds:.1} s"));
+    }
     let w = &mut fig.pairs_with;
     w.soundness += usize::from(fig.soundness_violations > before.0);
     w.missed += usize::from(fig.missed_points > before.1);
