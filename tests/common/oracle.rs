@@ -131,6 +131,8 @@ pub(crate) struct Figures {
     pub(crate) twice: usize,
     pub(crate) above_tolerance: usize,
     pub(crate) unproven_ends: usize,
+    /// Pairs whose search was not complete (undecided regions reported).
+    pub(crate) incomplete_searches: usize,
     pub(crate) times: Vec<f64>,
     pub(crate) notes: Vec<String>,
     /// Pairs with at least one of each failure (the closing notes count pairs, not points).
@@ -212,6 +214,7 @@ pub(crate) fn compare(c: &Comparison<'_>, fig: &mut Figures) {
     let seed = c.seed;
     fig.pairs += 1;
     fig.branches += c.result.branches.len();
+    fig.incomplete_searches += usize::from(!c.result.stats.search.search_complete);
     for b in &c.result.branches {
         match b.certified() {
             Some(cb) => {
@@ -371,8 +374,8 @@ pub(crate) fn print_figures(fig: &Figures) {
     );
     let w = &fig.pairs_with;
     println!(
-        "  pairs with: soundness violations {} | missed points {} | arcs twice {} | above tolerance {} | unproven or singular ends {} | uncertified branches {} | total time {:.1} s",
-        w.soundness, w.missed, w.twice, w.above_tolerance, w.unproven_ends, w.not_certified, total
+        "  pairs with: soundness violations {} | missed points {} | arcs twice {} | above tolerance {} | unproven or singular ends {} | uncertified branches {} | incomplete search {} | total time {:.1} s",
+        w.soundness, w.missed, w.twice, w.above_tolerance, w.unproven_ends, w.not_certified, fig.incomplete_searches, total
     );
 }
 
