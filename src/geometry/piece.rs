@@ -80,6 +80,47 @@ impl Piece {
         Some(Piece::new(s, r, whole.degree, net, whole.polynomial))
     }
 
+    /// A rigorous enclosure of `d·x` over the piece, `x` its points: the hull of `d·X` over the
+    /// Cartesian control points `X` (a rational Bézier piece with positive weights lies in their
+    /// convex hull). `None` if a weight is not provably positive.
+    pub fn range_along(&self, d: &[f64; 3]) -> Option<Interval> {
+        let d = d.map(point);
+        let mut out: Option<Interval> = None;
+        for h in &self.net {
+            if h[3].is_empty() || h[3].inf() <= 0.0 {
+                return None;
+            }
+            let x = d[0] * h[0] + d[1] * h[1] + d[2] * h[2];
+            let x = if self.polynomial { x } else { x / h[3] };
+            out = Some(out.map_or(x, |o| o.convex_hull(x)));
+        }
+        out
+    }
+
+    /// A direction across the piece (`f64`, from the chords between the corners of its control
+    /// net; any direction makes [`Piece::range_along`] rigorous): the normal of a flat piece.
+    /// `None` for a face or a degenerate net.
+    pub fn corner_normal(&self) -> Option<[f64; 3]> {
+        let [m, n] = self.degree;
+        if m == 0 || n == 0 {
+            return None;
+        }
+        let at = |i: usize, j: usize| {
+            let h = self.net[i * (n + 1) + j];
+            [0, 1, 2].map(|k| h[k].mid() / h[3].mid())
+        };
+        let (x00, x10, x01, x11) = (at(0, 0), at(m, 0), at(0, n), at(m, n));
+        let a: [f64; 3] = std::array::from_fn(|k| x11[k] - x00[k]);
+        let b: [f64; 3] = std::array::from_fn(|k| x10[k] - x01[k]);
+        let c = [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ];
+        let len = c.iter().map(|v| v * v).sum::<f64>().sqrt();
+        (len > 0.0 && len.is_finite()).then(|| c.map(|v| v / len))
+    }
+
     /// Degrees (0 in the fixed direction of a face).
     pub fn degree(&self) -> [usize; 2] {
         self.degree
@@ -520,5 +561,48 @@ mod tests {
         assert!(fu.is_some() && fv.is_none());
         let y = face.declared(&d, 0.0)[1];
         assert_eq!(y.inf(), y.sup());
+    }
+
+    #[test]
+    fn range_along_holds_the_piece_and_is_thin_across_a_flat_one() {
+        // The wavy rational patch: its points along several directions lie in the ranges of the
+        // pieces that hold them.
+        let p = wavy();
+        let d = p.domain();
+        let piece = Piece::over(&p, [0.25, 0.75], [0.125, 0.5]).unwrap();
+        for dir in [[1.0, 0.0, 0.0], [0.6, -0.8, 0.0], [0.3, 0.4, -0.866]] {
+            let range = piece.range_along(&dir).unwrap();
+            for i in 0..=10 {
+                for j in 0..=10 {
+                    let (a, b) = (0.25 + 0.05 * i as f64, 0.125 + 0.0375 * j as f64);
+                    let x = p.point(
+                        d.u[0] + a * (d.u[1] - d.u[0]),
+                        d.v[0] + b * (d.v[1] - d.v[0]),
+                    );
+                    let v = dir[0] * x.x + dir[1] * x.y + dir[2] * x.z;
+                    assert!(range.inf() - 1e-12 <= v && v <= range.sup() + 1e-12);
+                }
+            }
+        }
+        // A parallelogram in an oblique plane: across it, along its corner normal, the range is
+        // as thin as the rounding.
+        let corners = [
+            [0.0, 0.0, 1.0],
+            [0.5, 1.0, 1.25],
+            [1.0, -0.5, 2.0],
+            [1.5, 0.5, 2.25],
+        ];
+        let flat = RationalBezierPatch::from_f64_points(
+            [1, 1],
+            &corners,
+            None,
+            Domain::new(0.0, 1.0, 0.0, 1.0),
+        )
+        .unwrap();
+        let whole = Piece::whole(&flat);
+        let n = whole.corner_normal().unwrap();
+        assert!(whole.range_along(&n).unwrap().wid() < 1e-14);
+        assert!(whole.bounds()[2].wid() > 1.0);
+        assert!(whole.face(0, false).corner_normal().is_none());
     }
 }

@@ -1,4 +1,5 @@
-//! The neighbourhood of a singular point, settled once instead of subdivided to the level cap.
+//! The neighbourhood of a singular point or an isolated contact, settled once instead of
+//! subdivided to the level cap.
 //!
 //! Round a point where the normals of P and Q are parallel (a branch point, the crossing of
 //! Viviani's curve, two cylinders tangent at their top) no pair of pieces containing it is ever
@@ -40,26 +41,39 @@
 //! the declared (outward-rounded) one; the statement holds for the exact dyadic box inside it,
 //! whose faces are searched, because `(u, v)` is kept a rounding margin inside `N_Q`.
 //!
-//! Isolated contact points (`Δ < 0`, a possible tiny loop round the point) and tangential
-//! contact curves (critical points not isolated) are not settled here: the pair search goes on
-//! as before and reports them undecided. Nor is a node on a domain boundary (the matching
-//! `(u, v)` cannot be kept strictly inside a clipped `N_Q`, and the boundary search's own leaves
-//! at the node stay undecided): the search finds its arcs and reports a dozen small undecided
-//! regions there (tested).
+//! **An isolated contact** (`Δ < 0` over `X̂`: `f` has a strict extremum at the unique critical
+//! point `x*`, and the surfaces need not meet there). The same disc argument shows that a closed
+//! component of `C ∩ N` bounds a disc whose only critical point is `x*`, where `f` takes its
+//! extremum over the disc with the sign of `f(x*)`. The Hessian of `f` is `−B/(m·n)` (`B` the
+//! contact quadratic, `m` the common unit normal), so its sign is proven with `b₁₁` and `m·n`,
+//! and `f(x*)` is enclosed by the mean-value form over `X̂`. A minimum with `f(x*) > 0` or a
+//! maximum with `f(x*) < 0` rules a loop out: the region is settled like a saddle's. Otherwise
+//! one loop round `x*` is possible (two nested loops would bound an annulus with a critical
+//! point of its own), and it crosses every segment from a point `c` of its disc to `∂N_P`: with
+//! `f ≠ 0` proven over a small box `B ∋ x*, c`, `c` lies inside any loop, and the segment from
+//! `c` to the upper `σ`-face of `N_P` is searched with the faces. So a bump above or below a
+//! plane settles at once, and a tiny loop round the contact point is found.
+//!
+//! Tangential contact curves (critical points not isolated) and touching points (`f(x*)` not
+//! proven non-zero) are not settled here: the pair search goes on as before and reports them
+//! undecided. Nor is a node on a domain boundary (the matching `(u, v)` cannot be kept strictly
+//! inside a clipped `N_Q`, and the boundary search's own leaves at the node stay undecided): the
+//! search finds its arcs and reports a dozen small undecided regions there (tested).
 
 use super::{diameter, edge_search, Ctx, EdgeProblem, SearchReport, StartKind, REFINE_FAILED_LEAF};
 use crate::geometry::piece::Piece;
 use crate::geometry::{ParametricSurface, RationalBezierPatch};
 use crate::numeric::rounding::dot_point;
 use crate::numeric::scalar::point;
-use crate::numeric::vec3::cross;
+use crate::numeric::vec3::{cross, dot};
 use crate::pair::branch_point::locate_singular_point_within;
 use crate::pair::centred_second_order::CentredSecondOrder;
-use crate::pair::contact_quadratic::contact_quadratic;
+use crate::pair::contact_quadratic::{contact_quadratic, ContactQuadratic};
 use crate::pair::field::ScalarSurface;
 use crate::pair::krawczyk::krawczyk_image_n;
+use crate::Scalar;
 use inari::Interval;
-use nalgebra::{Matrix2, Matrix4, Vector3};
+use nalgebra::{Matrix2, Matrix4, Vector3, Vector4};
 
 /// A proven neighbourhood of a singular point (see the module documentation): every component
 /// of the intersection inside `p × q` reaches a face of `p`.
@@ -100,7 +114,8 @@ pub(super) struct NodeRegions {
 /// 3.5e-4 from a common plane) try and fail.
 const MAX_ATTEMPTS: usize = 32;
 
-/// Pairs are tried once both pieces are at most this fraction of the model size.
+/// Pairs are tried once one of the pieces is at most this fraction of the model size (a flat
+/// piece is never split, so its partner alone localises the point).
 const TRY_BELOW: f64 = 0.25;
 
 /// Model radii of the regions tried round a located point, as fractions of the model size,
@@ -138,7 +153,7 @@ impl NodeRegions {
     ) -> bool {
         let size = ctx.leaf * 64.0;
         if self.attempts >= MAX_ATTEMPTS
-            || diameter(&a.bounds()).max(diameter(&b.bounds())) > TRY_BELOW * size
+            || diameter(&a.bounds()).min(diameter(&b.bounds())) > TRY_BELOW * size
         {
             return false;
         }
@@ -179,7 +194,11 @@ impl NodeRegions {
         // Anywhere in the pair's box or next to it (a singular point on a subdivision line is
         // found from the pairs on both sides).
         let reach = bp.iter().chain(&bq).map(|i| i.wid()).fold(0.0, f64::max);
-        let Some(x) = locate_singular_point_within(p, q, x0, 1e-6 * size, 1e-6, reach, 30) else {
+        // A singular point (P = Q, normals parallel), or else a critical point of the height
+        // difference: an isolated contact, P ≠ Q there (a tiny loop round it, or none).
+        let located = locate_singular_point_within(p, q, x0, 1e-6 * size, 1e-6, reach, 30)
+            .or_else(|| locate_critical_point(p, q, x0, reach).filter(|x| definite(p, q, x)));
+        let Some(x) = located else {
             self.failed.push(boxes);
             return false;
         };
@@ -188,10 +207,10 @@ impl NodeRegions {
         }
         self.tried.push(x);
         for frac in RADII {
-            let Some(region) = prove_region(p, q, x, frac * size) else {
+            let Some((region, ray)) = prove_region(p, q, x, frac * size) else {
                 continue;
             };
-            if search_faces(ctx, p, q, &region, report) {
+            if search_faces(ctx, p, q, &region, ray, report) {
                 self.regions.push(region);
                 return true;
             }
@@ -216,17 +235,9 @@ fn normalised(d: [f64; 2], centre: f64, half: f64) -> Option<[f64; 2]> {
     (lo.is_finite() && hi.is_finite() && lo < hi).then_some([lo, hi])
 }
 
-/// Proves the region of model radius `radius` round the singular point `x` (see the module
-/// documentation), or `None`.
-fn prove_region(
-    p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
-    x: [f64; 4],
-    radius: f64,
-) -> Option<NodeRegion> {
-    let (dp, dq) = (p.domain(), q.domain());
-    let (a, b) = (p.derivs(x[0], x[1]), q.derivs(x[2], x[3]));
-    let n = a.normal().try_normalize(0.0)?;
+/// The basis `(e₁, e₂, n)` at P's point of `x`: `n` P's unit normal, `e₁`, `e₂` across it.
+fn frame_at(p: &RationalBezierPatch, x: &[f64; 4]) -> Option<Frame> {
+    let n = p.derivs(x[0], x[1]).normal().try_normalize(0.0)?;
     let axis = if n.x.abs() <= n.y.abs() && n.x.abs() <= n.z.abs() {
         Vector3::x()
     } else if n.y.abs() <= n.z.abs() {
@@ -236,7 +247,70 @@ fn prove_region(
     };
     let e1 = n.cross(&axis).try_normalize(0.0)?;
     let e2 = n.cross(&e1);
-    let frame = [[e1.x, e1.y, e1.z], [e2.x, e2.y, e2.z]];
+    Some([[e1.x, e1.y, e1.z], [e2.x, e2.y, e2.z], [n.x, n.y, n.z]])
+}
+
+/// `(e₁, e₂, n)`, rows.
+type Frame = [[f64; 3]; 3];
+
+/// Newton in `f64` on `Φ = 0` (the critical points of `f`, see the module documentation) from
+/// `x0`, in the frame at `x0`: a point to centre a region on, or `None` when it does not converge within
+/// the parameter distance `reach` inside both domains. Only places the region; the proof is
+/// [`prove_region`]'s.
+fn locate_critical_point(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    x0: [f64; 4],
+    reach: f64,
+) -> Option<[f64; 4]> {
+    let frame = frame_at(p, &x0)?;
+    let mut x = x0;
+    for _ in 0..12 {
+        let (f, jac) = phi_parts(
+            &frame,
+            &p.second_order(x[0], x[1]),
+            &q.second_order(x[2], x[3]),
+        );
+        let step = Matrix4::from_fn(|r, k| jac[r][k])
+            .lu()
+            .solve(&Vector4::from(f))?;
+        x = std::array::from_fn(|i| x[i] - step[i]);
+        let moved = step.amax();
+        if !moved.is_finite() {
+            return None;
+        }
+        if moved <= 1e-15 * (1.0 + x.iter().map(|v| v.abs()).fold(0.0, f64::max)) {
+            break;
+        }
+    }
+    let (dp, dq) = (p.domain(), q.domain());
+    let near = (0..4).all(|i| (x[i] - x0[i]).abs() <= reach);
+    (near && dp.contains(x[0], x[1], 0.0) && dq.contains(x[2], x[3], 0.0)).then_some(x)
+}
+
+/// Whether the contact quadratic at `x` (`f64`) is clearly definite: `−Δ` at least a thousandth
+/// of the squared size of its coefficients. A flatter extremum (near-tangent loops lying along a
+/// common plane, as in Fig. 7) is not proven unique by the interval tests and costs their price
+/// at every radius.
+fn definite(p: &RationalBezierPatch, q: &RationalBezierPatch, x: &[f64; 4]) -> bool {
+    let c = contact_quadratic(p, q, x);
+    let size = c.b11 * c.b11 + 2.0 * c.b12 * c.b12 + c.b22 * c.b22;
+    -c.discriminant >= 1e-3 * size && size.is_finite()
+}
+
+/// Proves the region of model radius `radius` round the singular or critical point `x` (see the
+/// module documentation), or `None`. With it comes the ray to search as well when a closed loop
+/// round an isolated contact is possible (see [`ray_from_extremum`]).
+fn prove_region(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    x: [f64; 4],
+    radius: f64,
+) -> Option<(NodeRegion, Option<Piece>)> {
+    let (dp, dq) = (p.domain(), q.domain());
+    let (a, b) = (p.derivs(x[0], x[1]), q.derivs(x[2], x[3]));
+    let frame = frame_at(p, &x)?;
+    let [e1, e2, _] = frame.map(Vector3::from);
     // N_P: the model radius in each parameter direction.
     let (hs, ht) = (radius / a.su.norm(), radius / a.sv.norm());
     let ps = normalised(dp.u, x[0], hs)?;
@@ -259,20 +333,45 @@ fn prove_region(
     };
     let xp = region.p.declared(&dp, 0.0);
     let xq = region.q.declared(&dq, 0.0);
-    (graph_over_p(p, q, &frame, &xp, &xq) && critical_point_is_saddle(p, q, &frame, xp, xq))
-        .then_some(region)
+    if !graph_over_p(p, q, &frame, &xp, &xq) {
+        return None;
+    }
+    match critical_points(p, q, &frame, xp, xq)? {
+        Critical::Settled => Some((region, None)),
+        Critical::LoopPossible(xhat) => {
+            let ray = ray_from_extremum(p, q, &frame, &region, &xhat)?;
+            Some((region, Some(ray)))
+        }
+    }
 }
 
 /// Step 1: for every `(σ, t) ∈ xp` exactly one `(u, v) ∈ xq` solves `G = 0`, kept a rounding
-/// margin inside `xq` (parametric Krawczyk, `G` at the centre of `xq` by the mean-value form over
-/// `xp`).
+/// margin inside `xq` (parametric Krawczyk, [`graph_image`]).
 fn graph_over_p(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
-    e: &[[f64; 3]; 2],
+    e: &Frame,
     xp: &[Interval; 2],
     xq: &[Interval; 2],
 ) -> bool {
+    graph_image(p, q, e, xp, xq).is_some_and(|k| {
+        k.iter().zip(xq).all(|(k, x)| {
+            let margin = 1e-12 * (1.0 + x.mag());
+            k.inf() > x.inf() + margin && k.sup() < x.sup() - margin
+        })
+    })
+}
+
+/// The parametric Krawczyk image of `G(σ, t, ·, ·) = 0` over `xq`, for all `(σ, t) ∈ xp` at once
+/// (`G` at the centre of `xq` by the mean-value form over `xp`): every solution `(u, v) ∈ xq` for
+/// some `(σ, t) ∈ xp` lies in it, and when it lies inside `xq` there is exactly one per `(σ, t)`.
+fn graph_image(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    e: &Frame,
+    xp: &[Interval; 2],
+    xq: &[Interval; 2],
+) -> Option<[Interval; 2]> {
     let mp = xp.map(|i| point(i.mid()));
     let cq = xq.map(|i| point(i.mid()));
     let [pm, ..] = p.first_order(mp[0], mp[1]);
@@ -285,116 +384,244 @@ fn graph_over_p(
         std::array::from_fn(|i| [dot_point(&e[i], &ps), dot_point(&e[i], &pt)]);
     let jac: [[Interval; 2]; 2] =
         std::array::from_fn(|i| [-dot_point(&e[i], &qu), -dot_point(&e[i], &qv)]);
-    let Some(c) = Matrix2::from_fn(|r, k| jac[r][k].mid()).try_inverse() else {
-        return false;
-    };
+    let c = Matrix2::from_fn(|r, k| jac[r][k].mid()).try_inverse()?;
     let c = [[c[(0, 0)], c[(0, 1)]], [c[(1, 0)], c[(1, 1)]]];
     // G(σ, t, c_q) ∈ G(m_p, c_q) + J_P·((σ, t) − m_p) (mean value over xp). Its term is added
     // as (C·J_P)·(xp − m_p), not C·(J_P·(xp − m_p)): the product C·J_P is nearly the tangent
     // map between the parameters, so the box maps to a box without wrapping.
     let k = krawczyk_image_n(xq, &cq, &f, &jac, &c);
-    let k: [Interval; 2] = std::array::from_fn(|r| {
+    Some(std::array::from_fn(|r| {
         let mut acc = k[r];
         for col in 0..2 {
             let cj = point(c[r][0]) * jp[0][col] + point(c[r][1]) * jp[1][col];
             acc -= cj * (xp[col] - mp[col]);
         }
         acc
-    });
-    k.iter().zip(xq).all(|(k, x)| {
-        let margin = 1e-12 * (1.0 + x.mag());
-        k.inf() > x.inf() + margin && k.sup() < x.sup() - margin
-    })
+    }))
 }
 
-/// Steps 2 and 3: `Φ = 0` has no zero in `xp × xq`, or exactly one, where the contact
-/// quadratic's discriminant is proven positive (a saddle of `f`).
-fn critical_point_is_saddle(
+/// What steps 2 and 3 proved about the critical points of `f` in the region.
+enum Critical {
+    /// Every component of `C ∩ N` reaches `∂N_P`: no critical point, a saddle, or an extremum
+    /// whose value rules a closed loop round it out.
+    Settled,
+    /// A unique critical point, in the box `X̂`, that is an extremum of `f` round which one
+    /// closed loop is possible (see [`ray_from_extremum`]).
+    LoopPossible([Interval; 4]),
+}
+
+/// Steps 2 and 3: `Φ = 0` has no zero in `xp × xq`, or exactly one, in a box `X̂` where the
+/// contact quadratic's discriminant is proven positive (a saddle of `f`) or negative (an
+/// extremum, [`extremum_excludes_loop`]); `None` when neither is proven.
+fn critical_points(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
-    e: &[[f64; 3]; 2],
+    e: &Frame,
     xp: [Interval; 2],
     xq: [Interval; 2],
-) -> bool {
+) -> Option<Critical> {
     let mut x = [xp[0], xp[1], xq[0], xq[1]];
     let mut unique = false;
     for _ in 0..4 {
-        let Some(k) = phi_image(p, q, e, &x) else {
-            return false;
-        };
+        let k = phi_image(p, q, e, &x)?;
         if k.iter().zip(&x).any(|(k, x)| k.disjoint(*x)) {
             // No zero of Φ: f has no critical point.
-            return true;
+            return Some(Critical::Settled);
         }
         unique |= k
             .iter()
             .zip(&x)
             .all(|(k, x)| x.inf() < k.inf() && k.sup() < x.sup());
         if !unique {
-            return false;
+            return None;
         }
         x = std::array::from_fn(|i| k[i].intersection(x[i]));
     }
     let c = contact_quadratic(p, q, &x);
-    c.discriminant.inf() > 0.0
+    if c.discriminant.inf() > 0.0 {
+        return Some(Critical::Settled);
+    }
+    match extremum_excludes_loop(p, q, &e[2], &c, &x)? {
+        true => Some(Critical::Settled),
+        false => Some(Critical::LoopPossible(x)),
+    }
 }
 
-/// The Krawczyk image of `Φ` over the box `x` (see [`critical_point_is_saddle`]).
-fn phi_image(
+/// The sign of an interval that excludes zero.
+fn sign(x: Interval) -> Option<f64> {
+    if x.inf() > 0.0 {
+        Some(1.0)
+    } else if x.sup() < 0.0 {
+        Some(-1.0)
+    } else {
+        None
+    }
+}
+
+/// At the unique critical point `x* ∈ X̂` with `Δ < 0` proven, `f` has a strict extremum: its
+/// Hessian is `−B/(m·n)`, `B` the contact quadratic's matrix `[[b₁₁, b₁₂], [b₁₂, b₂₂]]` (definite)
+/// and `m` P's unit normal (the normal of both surfaces there). A closed component of `f = 0` in
+/// `N_P` bounds a disc whose only critical point is `x*`, where `f` then has its extremum over
+/// the disc with the sign of `f(x*)`: a maximum if `f(x*) > 0`, a minimum if `f(x*) < 0`. So a
+/// minimum with `f(x*) > 0` or a maximum with `f(x*) < 0` rules it out (`Some(true)`); the other
+/// two allow one loop round `x*` (`Some(false)`); `None` when a sign is not proven (`f(x*)` may
+/// be zero: the surfaces may touch there).
+fn extremum_excludes_loop(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
-    e: &[[f64; 3]; 2],
+    n: &[f64; 3],
+    c: &ContactQuadratic<Interval>,
+    xhat: &[Interval; 4],
+) -> Option<bool> {
+    if c.discriminant.sup() >= 0.0 {
+        return None;
+    }
+    let [_, ps, pt] = p.first_order(xhat[0], xhat[1]);
+    let m_dot_n = sign(dot_point(n, &cross(&ps, &pt)))?;
+    let hessian = -sign(c.b11)? * m_dot_n;
+    let value = sign(height_over(p, q, n, xhat))?;
+    Some(value * hessian > 0.0)
+}
+
+/// An enclosure of `F = n·(P(σ, t) − Q(u, v))` over the box `x` by the mean-value form at its
+/// centre: near a point of parallel normals `∇F` nearly vanishes (`n` is almost the common
+/// normal), so this is far tighter than `n·(P(x_P) − Q(x_Q))` evaluated box by box.
+fn height_over(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    n: &[f64; 3],
     x: &[Interval; 4],
-) -> Option<[Interval; 4]> {
-    let xm = x.map(|i| point(i.mid()));
-    let [pm, pms, pmt] = p.first_order(xm[0], xm[1]);
-    let [qm, qmu, qmv] = q.first_order(xm[2], xm[3]);
+) -> Interval {
+    let m = x.map(|i| point(i.mid()));
+    let [pm, ..] = p.first_order(m[0], m[1]);
+    let [qm, ..] = q.first_order(m[2], m[3]);
     let gap: [Interval; 3] = std::array::from_fn(|k| pm[k] - qm[k]);
-    let normals = cross(&cross(&pms, &pmt), &cross(&qmu, &qmv));
-    let f = [
-        dot_point(&e[0], &gap),
-        dot_point(&e[1], &gap),
-        dot_point(&e[0], &normals),
-        dot_point(&e[1], &normals),
+    let [_, ps, pt] = p.first_order(x[0], x[1]);
+    let [_, qu, qv] = q.first_order(x[2], x[3]);
+    let grad = [
+        dot_point(n, &ps),
+        dot_point(n, &pt),
+        -dot_point(n, &qu),
+        -dot_point(n, &qv),
     ];
-    let [_, ps, pt, pss, pst, ptt] = p.second_order_centred(x[0], x[1], xm[0], xm[1]);
-    let [_, qu, qv, quu, quv, qvv] = q.second_order_centred(x[2], x[3], xm[2], xm[3]);
-    let (np, nq) = (cross(&ps, &pt), cross(&qu, &qv));
-    let add = |a: [Interval; 3], b: [Interval; 3]| -> [Interval; 3] {
-        std::array::from_fn(|k| a[k] + b[k])
+    (0..4).fold(dot_point(n, &gap), |acc, i| acc + grad[i] * (x[i] - m[i]))
+}
+
+/// Where one closed loop round the extremum `x*` is possible: it surrounds `x*`, so it crosses
+/// every segment from a point `c` of its disc to `∂N_P`. Take a box `B` round `X̂`'s `(σ, t)`
+/// (widened to a millionth of `N_P`) and `c` in it: if `f ≠ 0` is proven over `B` (with `(u, v)`
+/// from the graph image over `B`), no loop meets `B`, so `c` lies inside any loop (a loop missing
+/// the segment would leave `c` outside its disc, and the segment from `c` to `x*`, inside `B`,
+/// would cross it). Returns the segment from `c` along `σ` to the face `σ = ` upper end of `N_P`,
+/// as a face of a piece, to be searched with the faces.
+fn ray_from_extremum(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    e: &Frame,
+    region: &NodeRegion,
+    xhat: &[Interval; 4],
+) -> Option<Piece> {
+    let dp = p.domain();
+    let np = region.p.declared(&dp, 0.0);
+    let widen = |x: Interval, whole: Interval| {
+        let pad = 1e-6 * whole.wid();
+        inari::interval!(x.inf() - pad, x.sup() + pad).ok()
     };
-    let np_s = add(cross(&pss, &pt), cross(&ps, &pst));
-    let np_t = add(cross(&pst, &pt), cross(&ps, &ptt));
-    let nq_u = add(cross(&quu, &qv), cross(&qu, &quv));
-    let nq_v = add(cross(&quv, &qv), cross(&qu, &qvv));
+    let b = [widen(xhat[0], np[0])?, widen(xhat[1], np[1])?];
+    let nq = region.q.declared(&q.domain(), 0.0);
+    let y = graph_image(p, q, e, &b, &nq)?;
+    let y: [Interval; 2] = std::array::from_fn(|i| y[i].intersection(nq[i]));
+    if y.iter().any(|i| i.is_empty()) {
+        return None;
+    }
+    sign(height_over(p, q, &e[2], &[b[0], b[1], y[0], y[1]]))?;
+    // c: the normalised centre of X̂; the exact point it stands for must lie in B and in N_P.
+    let to_unit = |x: Interval, d: [f64; 2]| (x.mid() - d[0]) / (d[1] - d[0]);
+    let (cs, ct) = (to_unit(xhat[0], dp.u), to_unit(xhat[1], dp.v));
+    let exact = |c: f64, d: [f64; 2]| point(d[0]) + point(c) * (point(d[1]) - point(d[0]));
+    let inside = |c: f64, range: [f64; 2]| range[0] < c && c < range[1];
+    let in_b_and_n = inside(cs, region.p.s)
+        && inside(ct, region.p.r)
+        && exact(cs, dp.u).subset(b[0])
+        && exact(ct, dp.v).subset(b[1]);
+    if !in_b_and_n {
+        return None;
+    }
+    let strip = Piece::over(p, [cs, region.p.s[1]], [ct, region.p.r[1]])?;
+    Some(strip.face(1, false))
+}
+
+/// `Φ` and its Jacobian from second-order data `[S, S_u, S_v, S_uu, S_uv, S_vv]` of P and Q (at
+/// a point, or enclosed over a box), in the frame `e`.
+fn phi_parts<T: Scalar>(e: &Frame, pd: &[[T; 3]; 6], qd: &[[T; 3]; 6]) -> ([T; 4], [[T; 4]; 4]) {
+    let along = |r: usize, v: &[T; 3]| dot(&e[r].map(T::from_f64), v);
+    let [pp, ps, pt, pss, pst, ptt] = pd;
+    let [qq, qu, qv, quu, quv, qvv] = qd;
+    let gap: [T; 3] = std::array::from_fn(|k| pp[k] - qq[k]);
+    let (np, nq) = (cross(ps, pt), cross(qu, qv));
+    let normals = cross(&np, &nq);
+    let f = [
+        along(0, &gap),
+        along(1, &gap),
+        along(0, &normals),
+        along(1, &normals),
+    ];
+    let add = |a: [T; 3], b: [T; 3]| -> [T; 3] { std::array::from_fn(|k| a[k] + b[k]) };
+    let np_s = add(cross(pss, pt), cross(ps, pst));
+    let np_t = add(cross(pst, pt), cross(ps, ptt));
+    let nq_u = add(cross(quu, qv), cross(qu, quv));
+    let nq_v = add(cross(quv, qv), cross(qu, qvv));
     let cols = [
-        (ps, cross(&np_s, &nq)),
-        (pt, cross(&np_t, &nq)),
+        (*ps, cross(&np_s, &nq)),
+        (*pt, cross(&np_t, &nq)),
         (qu.map(|c| -c), cross(&np, &nq_u)),
         (qv.map(|c| -c), cross(&np, &nq_v)),
     ];
-    let jac: [[Interval; 4]; 4] = std::array::from_fn(|r| {
+    let jac = std::array::from_fn(|r| {
         std::array::from_fn(|k| {
             let (g, c) = &cols[k];
             if r < 2 {
-                dot_point(&e[r], g)
+                along(r, g)
             } else {
-                dot_point(&e[r - 2], c)
+                along(r - 2, c)
             }
         })
     });
+    (f, jac)
+}
+
+/// The Krawczyk image of `Φ` over the box `x` (see [`critical_points`]): `Φ` at the box's
+/// centre, its Jacobian enclosed over the box by the centred second-order forms.
+fn phi_image(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    e: &Frame,
+    x: &[Interval; 4],
+) -> Option<[Interval; 4]> {
+    let xm = x.map(|i| point(i.mid()));
+    let (f, _) = phi_parts(
+        e,
+        &p.second_order(xm[0], xm[1]),
+        &q.second_order(xm[2], xm[3]),
+    );
+    let (_, jac) = phi_parts(
+        e,
+        &p.second_order_centred(x[0], x[1], xm[0], xm[1]),
+        &q.second_order_centred(x[2], x[3], xm[2], xm[3]),
+    );
     let c = Matrix4::from_fn(|r, k| jac[r][k].mid()).try_inverse()?;
     let c: [[f64; 4]; 4] = std::array::from_fn(|r| std::array::from_fn(|k| c[(r, k)]));
     Some(krawczyk_image_n(x, &xm, &f, &jac, &c))
 }
 
-/// Searches the faces of `N_P` inside P's domain against `N_Q` (see the module
-/// documentation); true when every leaf was settled.
+/// Searches the faces of `N_P` inside P's domain, and the ray from an extremum if one is given,
+/// against `N_Q` (see the module documentation); true when every leaf was settled.
 fn search_faces(
     ctx: &Ctx,
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     region: &NodeRegion,
+    ray: Option<Piece>,
     report: &mut SearchReport,
 ) -> bool {
     let size = diameter(&region.p.bounds()).min(diameter(&region.q.bounds()));
@@ -425,6 +652,19 @@ fn search_faces(
         );
         settled &= undecided.is_empty();
     }
+    if let (Some(ray), true) = (ray, settled) {
+        let undecided = edge_search(
+            ctx,
+            &problem,
+            ray,
+            region.q.clone(),
+            leaf,
+            leaf * REFINE_FAILED_LEAF,
+            report,
+            &mut found,
+        );
+        settled &= undecided.is_empty();
+    }
     if settled {
         report.interior.extend(found);
     }
@@ -432,168 +672,5 @@ fn search_faces(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::super::{find_start_points, SearchOptions};
-    use super::*;
-    use crate::geometry::power::PowerTerm;
-    use crate::geometry::{Domain, PowerSurface};
-
-    /// The graph `z = Σ c·xⁱyʲ` over `domain`, as a Bézier patch.
-    fn graph(domain: Domain, terms: Vec<PowerTerm>) -> RationalBezierPatch {
-        PowerSurface::graph(domain, terms).to_bezier().unwrap()
-    }
-
-    #[test]
-    fn a_saddle_contact_is_settled_and_its_four_arcs_found() {
-        // z = x² + a·xy against z = b·y² − c·xy: tangent at the origin, where the height
-        // difference x² + (a + c)·xy − b·y² has a saddle, so two lines of the intersection cross
-        // there, y = m·x for both roots m of b·m² − (a + c)·m − 1 = 0. Asymmetric domains, the
-        // node off every subdivision line and on one.
-        for (a, b, c, dp, dq) in [
-            (
-                0.0,
-                1.0,
-                0.0,
-                Domain::new(-1.0, 1.0, -1.0, 1.0),
-                Domain::new(-1.0, 1.0, -1.0, 1.0),
-            ),
-            (
-                0.3,
-                0.5,
-                0.2,
-                Domain::new(-0.7, 1.3, -1.1, 0.6),
-                Domain::new(-0.9, 0.8, -0.5, 1.2),
-            ),
-            (
-                -0.4,
-                2.0,
-                0.1,
-                Domain::new(-0.3, 1.0, -0.6, 0.4),
-                Domain::new(-1.0, 0.35, -0.45, 0.9),
-            ),
-        ] {
-            let p = graph(dp, vec![(2, 0, 1.0), (1, 1, a), (0, 0, 0.0), (0, 1, 0.0)]);
-            let q = graph(dq, vec![(0, 2, b), (1, 1, -c), (0, 0, 0.0), (1, 0, 0.0)]);
-            let r = find_start_points(&p, &q, &SearchOptions::default());
-            assert!(r.complete, "{:?}", (a, b, c, r.undecided_regions.len()));
-            assert!(r.node_regions >= 1, "{:?}", (a, b, c));
-            let disc: f64 = ((a + c) * (a + c) + 4.0 * b).sqrt();
-            let slopes = [((a + c) + disc) / (2.0 * b), ((a + c) - disc) / (2.0 * b)];
-            // Every start point lies on one of the lines; each half-line from the node that
-            // reaches a domain boundary has one (boundary or interior).
-            let all: Vec<_> = r.boundary.iter().chain(&r.interior).collect();
-            for s in &all {
-                let [x, y, u, v] = s.params;
-                assert!((x - u).abs() < 1e-9 && (y - v).abs() < 1e-9, "{s:?}");
-                let off = slopes
-                    .iter()
-                    .map(|m| (y - m * x).abs())
-                    .fold(f64::MAX, f64::min);
-                assert!(off < 1e-8, "{:?} {s:?}", (a, b, c));
-            }
-            for m in slopes {
-                for sign in [1.0, -1.0] {
-                    // The half-line leaves the common domain; some start point lies on it.
-                    let hit = all.iter().any(|s| {
-                        let [x, y, ..] = s.params;
-                        x * sign > 1e-9 && (y - m * x).abs() < 1e-8
-                    });
-                    assert!(hit, "{:?} slope {m} side {sign}", (a, b, c));
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn a_saddle_contact_on_a_domain_edge_or_corner_is_found() {
-        // z = x² against z = y² (lines y = ±x through the origin) with the origin on an edge of
-        // both domains, and at a corner of both: no region is proven there (see the module
-        // documentation) and the search reports undecided regions, but every start point lies
-        // on a line and every half-line inside the domains is met.
-        for (dp, dq) in [
-            (
-                Domain::new(0.0, 1.0, -1.0, 1.0),
-                Domain::new(0.0, 1.0, -1.0, 1.0),
-            ),
-            (
-                Domain::new(0.0, 1.0, 0.0, 1.0),
-                Domain::new(0.0, 1.0, 0.0, 1.0),
-            ),
-            (
-                Domain::new(-0.5, 0.0, -0.5, 0.7),
-                Domain::new(-0.6, 0.0, -0.5, 0.5),
-            ),
-        ] {
-            let p = graph(dp, vec![(2, 0, 1.0), (0, 0, 0.0), (0, 1, 0.0)]);
-            let q = graph(dq, vec![(0, 2, 1.0), (0, 0, 0.0), (1, 0, 0.0)]);
-            let r = find_start_points(&p, &q, &SearchOptions::default());
-            let all: Vec<_> = r.boundary.iter().chain(&r.interior).collect();
-            assert!(!all.is_empty(), "{dp:?}");
-            // On a line, to 1e-6: where the surfaces touch, a point 1e-8 from the node is on
-            // both to 1e-16 (the boundary search offers such Newton points from its undecided
-            // leaves next to the node).
-            for s in &all {
-                let [x, y, ..] = s.params;
-                assert!((x.abs() - y.abs()).abs() < 1e-6, "{dp:?} {s:?}");
-            }
-            for m in [1.0, -1.0] {
-                for sign in [1.0, -1.0] {
-                    // A half-line that runs inside both domains has a start point on it.
-                    let (x, y) = (0.25 * sign, 0.25 * sign * m);
-                    let inside = dp.contains(x, y, 0.0) && dq.contains(x, y, 0.0);
-                    let hit = all.iter().any(|s| {
-                        let [a, b, ..] = s.params;
-                        a * sign > -1e-12 && (b - m * a).abs() < 1e-8
-                    });
-                    assert!(!inside || hit, "{dp:?} slope {m} side {sign}");
-                }
-            }
-            println!(
-                "{dp:?}: complete {}, {} regions, {} undecided",
-                r.complete,
-                r.node_regions,
-                r.undecided_regions.len()
-            );
-        }
-    }
-
-    #[test]
-    fn an_isolated_contact_point_is_not_settled() {
-        // z = x² + y² against z = 0: one contact point, where a tiny loop could hide; no region is
-        // proven there and the search says it is not complete.
-        let d = Domain::new(-1.0, 1.0, -1.0, 1.0);
-        let p = graph(d, vec![(2, 0, 1.0), (0, 2, 1.0), (0, 0, 0.0)]);
-        let q = graph(d, vec![(0, 0, 0.0), (1, 0, 0.0)]);
-        let r = find_start_points(&p, &q, &SearchOptions::default());
-        assert_eq!(r.node_regions, 0);
-        assert!(!r.complete);
-    }
-
-    #[test]
-    fn a_node_region_encloses_its_patch_piece() {
-        // Piece::over a box not on the halving grid: the patch over that box lies in the
-        // piece's bounds, and the piece's faces are the patch's boundary curves of the box.
-        let d = Domain::new(-0.7, 1.3, -1.1, 0.6);
-        let p = graph(d, vec![(2, 0, 1.0), (1, 1, 0.3), (0, 3, -0.5), (0, 0, 0.1)]);
-        let (s, r) = ([0.3125, 0.71875], [0.125, 0.1875]);
-        let piece = Piece::over(&p, s, r).unwrap();
-        let bounds = piece.bounds();
-        let at = |d: [f64; 2], x: f64| d[0] + x * (d[1] - d[0]);
-        for i in 0..=8 {
-            for j in 0..=8 {
-                let (a, b) = (
-                    s[0] + (s[1] - s[0]) * i as f64 / 8.0,
-                    r[0] + (r[1] - r[0]) * j as f64 / 8.0,
-                );
-                let x = p.point(at(d.u, a), at(d.v, b));
-                for (k, v) in [x.x, x.y, x.z].iter().enumerate() {
-                    assert!(bounds[k].inf() - 1e-12 <= *v && *v <= bounds[k].sup() + 1e-12);
-                }
-            }
-        }
-        // Tight: about the size of the box's image, not the whole patch's.
-        assert!(bounds[0].wid() < 1.1 * (s[1] - s[0]) * 2.0);
-        assert!(Piece::over(&p, [0.5, 0.5], r).is_none());
-        assert!(Piece::over(&p, [0.5, 1.5], r).is_none());
-    }
-}
+#[path = "node_region_tests.rs"]
+mod tests;

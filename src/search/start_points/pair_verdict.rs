@@ -28,7 +28,7 @@ pub(super) fn classify_pair(
     b: &Piece,
 ) -> PairVerdict {
     let (ea, eb) = (a.bounds(), b.bounds());
-    if boxes_disjoint(&ea, &eb) {
+    if boxes_disjoint(&ea, &eb) || separated_across(a, b) {
         return PairVerdict::Disjoint;
     }
     let test = loop_test(p, a, q, b);
@@ -67,4 +67,18 @@ pub(super) fn classify_pair(
             .collect()
     };
     PairVerdict::Split(halves)
+}
+
+/// Whether the pieces' control hulls are proven apart along the normal of one of them (a flat
+/// face, as a plane far larger than its partner, is never split, and its axis-aligned box holds
+/// everything near it; along its normal a piece of the other surface that does not reach it is
+/// separated at once).
+fn separated_across(a: &Piece, b: &Piece) -> bool {
+    [a.corner_normal(), b.corner_normal()]
+        .into_iter()
+        .flatten()
+        .any(|d| match (a.range_along(&d), b.range_along(&d)) {
+            (Some(x), Some(y)) => x.disjoint(y),
+            _ => false,
+        })
 }
