@@ -163,10 +163,21 @@ fn check_occt(what: &str, t: &Traced, circles: &[Circle], slack: f64) {
         eprintln!("{what}: OCCT reader not built (tests/data/README.md): skipped");
         return;
     };
+    let edges = occt_edges(what, &reader, &t.text);
+    assert_eq!(edges.len(), t.curves.len(), "{what}: edges OCCT read");
+    let worst_tol = t.curves.iter().map(|c| c.0).fold(0.0, f64::max);
+    for pts in edges {
+        check_loop(&format!("{what} (OCCT)"), &pts, circles, worst_tol, slack);
+    }
+}
+
+/// The edges OCCT's `reader` reads from the STEP text `text`, each sampled; every one must
+/// be a B-spline curve.
+fn occt_edges(what: &str, reader: &Path, text: &str) -> Vec<Vec<[f64; 3]>> {
     let dir = std::env::temp_dir().join(format!("ssitrace-step-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(format!("{}.step", what.replace(' ', "_")));
-    std::fs::write(&path, &t.text).unwrap();
+    std::fs::write(&path, text).unwrap();
     let out = std::process::Command::new(reader)
         .arg(&path)
         .output()
@@ -178,19 +189,19 @@ fn check_occt(what: &str, t: &Traced, circles: &[Circle], slack: f64) {
         .unwrap_or_else(|| panic!("{what}: OCCT printed no result: {stdout}"));
     let doc: serde_json::Value = serde_json::from_str(line).expect("OCCT JSON");
     let edges = doc["edges"].as_array().expect("edges");
-    assert_eq!(edges.len(), t.curves.len(), "{what}: edges OCCT read");
-    let worst_tol = t.curves.iter().map(|c| c.0).fold(0.0, f64::max);
-    for e in edges {
-        assert_eq!(e["type"], "Geom_BSplineCurve", "{what}");
-        let pts: Vec<[f64; 3]> = e["points"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|p| [0, 1, 2].map(|k| p[k].as_f64().unwrap()))
-            .collect();
-        check_loop(&format!("{what} (OCCT)"), &pts, circles, worst_tol, slack);
-    }
     let _ = std::fs::remove_file(&path);
+    edges
+        .iter()
+        .map(|e| {
+            assert_eq!(e["type"], "Geom_BSplineCurve", "{what}");
+            e["points"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| [0, 1, 2].map(|k| p[k].as_f64().unwrap()))
+                .collect()
+        })
+        .collect()
 }
 
 #[test]
@@ -278,15 +289,162 @@ fn sphere_against_cube_is_eight_closed_curves_across_faces() {
     let edges = edges_of_shells(a, b, &report.result);
     let (text, n) = step_curves_text("cube", &edges, Some("MILLI METRE"), None).expect("writes");
     eprintln!("sphere x cube: {n} of {} curves have an edge", edges.len());
-    for (label, c) in read_step_curves(&text).expect("reads back") {
+    let read = read_step_curves(&text).expect("reads back");
+    for (label, c) in &read {
         let tol: f64 = label.rsplit(' ').next().unwrap().parse().unwrap();
-        for p in dense(&c) {
+        for p in dense(c) {
             let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
             let cube = p[0].abs().max(p[1].abs()).max(p[2].abs());
             assert!((r - 1.0).abs() <= tol + 1e-12, "{label}: off the sphere");
             assert!((cube - 0.7).abs() <= tol + 1e-12, "{label}: off the cube");
         }
     }
+    // Every curve has an edge, within its tolerance of its corner's closed-form curve both
+    // ways, one curve per corner.
+    assert_eq!(n, 8, "every curve has an edge");
+    let mut met = [false; 8];
+    for (label, c) in &read {
+        let tol: f64 = label.rsplit(' ').next().unwrap().parse().unwrap();
+        // The chains are certified to 1e-9; the edge adds its fit and the cuts at the cube's
+        // edges (the crossing of a link whose parameter radius is ~5e-11 at a shallow angle).
+        assert!(tol <= 1e-8, "{label}: tolerance {tol:e}");
+        let pts = dense(c);
+        let corner = Corner::of(&pts);
+        assert!(!met[corner.index()], "{label}: corner {:?} twice", corner.0);
+        met[corner.index()] = true;
+        let worst = pts.iter().map(|p| corner.off(p)).fold(0.0, f64::max);
+        assert!(
+            worst <= tol + 1e-12,
+            "{label}: a point {worst:e} off the corner's curve"
+        );
+        let ss = spline_samples(c, 400);
+        let sp: Vec<[f64; 3]> = ss.iter().map(|&s| c.eval(s)).collect();
+        let back = corner
+            .points(3000)
+            .iter()
+            .map(|x| dist_to_spline(c, &ss, &sp, x))
+            .fold(0.0, f64::max);
+        assert!(
+            back <= tol + 1e-12,
+            "{label}: a true point {back:e} off the curve"
+        );
+        eprintln!(
+            "corner {:?}: {} control points, tolerance {tol:.2e}, curve to truth {worst:.2e}, truth to curve {back:.2e}",
+            corner.0,
+            c.points.len()
+        );
+    }
+    // OCCT's reader reads the eight curves, each on its corner's curve.
+    let Some(reader) = occt_reader() else {
+        eprintln!("cube: OCCT reader not built (tests/data/README.md): skipped");
+        return;
+    };
+    let worst_tol = read
+        .iter()
+        .map(|(l, _)| l.rsplit(' ').next().unwrap().parse::<f64>().unwrap())
+        .fold(0.0, f64::max);
+    let edges = occt_edges("cube", &reader, &text);
+    assert_eq!(edges.len(), 8, "cube: edges OCCT read");
+    for pts in edges {
+        let corner = Corner::of(&pts);
+        let worst = pts.iter().map(|p| corner.off(p)).fold(0.0, f64::max);
+        assert!(
+            worst <= worst_tol + 1e-12,
+            "cube (OCCT): a point {worst:e} off"
+        );
+    }
+}
+
+/// The curve of the sphere `|x| = 1` on the cube `[-0.7, 0.7]³` round the corner with the
+/// signs `.0`: three arcs of circles of radius `√0.51`, one on each face the corner touches.
+struct Corner([f64; 3]);
+
+impl Corner {
+    /// The corner whose curve the points `pts` run round (the signs of their mean).
+    fn of(pts: &[[f64; 3]]) -> Corner {
+        let m: [f64; 3] = std::array::from_fn(|i| pts.iter().map(|p| p[i]).sum::<f64>());
+        Corner(m.map(|x| if x < 0.0 { -1.0 } else { 1.0 }))
+    }
+
+    fn index(&self) -> usize {
+        (0..3).map(|i| usize::from(self.0[i] > 0.0) << i).sum()
+    }
+
+    /// The angle range of each arc: `φ` in its face's quarter, from the corner's sides.
+    fn range() -> [f64; 2] {
+        let r = 0.51f64.sqrt();
+        [(0.7 / r).acos(), (0.7 / r).asin()]
+    }
+
+    /// The point of the arc on the face `x_i = ±0.7` at the angle `φ`.
+    fn arc_point(&self, i: usize, phi: f64) -> [f64; 3] {
+        let r = 0.51f64.sqrt();
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let mut p = [0.0; 3];
+        p[i] = 0.7 * self.0[i];
+        p[j] = self.0[j] * r * phi.cos();
+        p[k] = self.0[k] * r * phi.sin();
+        p
+    }
+
+    /// The distance from `p` to the curve: to the nearest point of the nearest arc.
+    fn off(&self, p: &[f64; 3]) -> f64 {
+        let [a, b] = Corner::range();
+        (0..3)
+            .map(|i| {
+                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                let phi = (self.0[k] * p[k]).atan2(self.0[j] * p[j]).clamp(a, b);
+                let q = self.arc_point(i, phi);
+                ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// `n` points on each arc, ends included.
+    fn points(&self, n: usize) -> Vec<[f64; 3]> {
+        let [a, b] = Corner::range();
+        (0..3)
+            .flat_map(|i| (0..=n).map(move |m| (i, a + (b - a) * m as f64 / n as f64)))
+            .map(|(i, phi)| self.arc_point(i, phi))
+            .collect()
+    }
+}
+
+/// `per_span` parameters in every knot span of `c`, and its last knot.
+fn spline_samples(c: &BSpline<3>, per_span: usize) -> Vec<f64> {
+    let mut ks = c.knots.clone();
+    ks.dedup();
+    let mut out = Vec::new();
+    for w in ks.windows(2) {
+        out.extend((0..per_span).map(|m| w[0] + (w[1] - w[0]) * m as f64 / per_span as f64));
+    }
+    out.push(*ks.last().unwrap());
+    out
+}
+
+/// The distance from `x` to the spline: the nearest of the samples `pts` (at `ss`), refined by
+/// golden-section search between its neighbours.
+fn dist_to_spline(c: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
+    let d = |p: &[f64; 3]| {
+        ((p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) + (p[2] - x[2]).powi(2)).sqrt()
+    };
+    let (k, best) = pts
+        .iter()
+        .map(d)
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap();
+    let (mut lo, mut hi) = (ss[k.saturating_sub(1)], ss[(k + 1).min(ss.len() - 1)]);
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..100 {
+        let (a, b) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        if d(&c.eval(a)) < d(&c.eval(b)) {
+            hi = b;
+        } else {
+            lo = a;
+        }
+    }
+    d(&c.eval(0.5 * (lo + hi))).min(best)
 }
 
 /// The exact NURBS forms of the elementary surfaces lie on their closed forms: points of every

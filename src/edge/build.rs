@@ -1,7 +1,7 @@
 //! Building an edge from its parts: spans, the 3D curve, the p-curves and the bounds.
 
 use super::poly::{self, eval_mid, Poly, DEGREE};
-use super::span::{bezier, bounds, model_deviation, model_diameter, model_jet};
+use super::span::{bezier, bounds, box_diameter, model_box, model_deviation, model_jet};
 use super::{BSpline, Edge, EdgeBounds, EdgeError, PCurve, Part, Seg};
 use crate::geometry::RationalBezierPatch;
 
@@ -291,11 +291,20 @@ fn assemble_with(
     for pt in parts {
         for c in &pt.cuts {
             let t = &pt.cert.tubes[c.tube];
-            let d = model_diameter(pt.p, &t.coeffs, c.gap);
-            // A true point of the cut's arc is within radius_xyz of the reported curve there,
-            // that within the diameter d of the reported point at the cut, and that within
-            // `off` of each of the edge's three curves at its end.
-            let cut = poly::add_up(poly::add_up(t.radius_xyz, d), off);
+            let mut m = model_box(pt.p, &t.coeffs, c.gap);
+            let mut r = t.radius_xyz;
+            if let Some((tube, range)) = c.next {
+                // The cut's range goes on into the next link: its reported points there too.
+                let n = &pt.cert.tubes[tube];
+                let mn = model_box(pt.p, &n.coeffs, range);
+                m = std::array::from_fn(|i| m[i].convex_hull(mn[i]));
+                r = r.max(n.radius_xyz);
+            }
+            // A true point of the cut's arc is within `r` of the reported curve there, that
+            // within the diameter of the reported points over the cut's range of the reported
+            // point at the cut, and that within `off` of each of the edge's three curves at its
+            // end.
+            let cut = poly::add_up(poly::add_up(r, box_diameter(&m)), off);
             b.cuts = b.cuts.max(cut);
         }
     }

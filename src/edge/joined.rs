@@ -9,10 +9,16 @@
 //! `T` of `τ` around it is proven to hold every `τ` where the true curve can meet the side
 //! (the reported side coordinate, widened by `radius_param`, is strictly inside the piece
 //! before `T` on that link and strictly outside after it, on that link and every later one).
+//! When the crossing lies at the junction of two links (the marched branch, and so the chain,
+//! ends exactly on the side: the next link starts on the side to within an ulp, and cannot be
+//! proven outside at its start), `T` straddles the junction: the end of the cut link from
+//! `τ_c − w` on, and the next link's start up to where it is proven outside. The side
+//! coordinate is enclosed by its Taylor form at the centre of each checked range, on ranges
+//! growing geometrically away from the crossing, so `T` can be as narrow as the radius allows.
 //! The true arc over `T` is the cut's share of the tolerance (see [`super`]). Every join must be
 //! [`JoinStatus::Proven`]: the two parts' true end points are then one point on the side.
 
-use super::poly::{eval, eval_mid, reparametrised};
+use super::poly::{eval, eval_mid, reparametrised, taylor_shift, Poly};
 use super::{assemble, chain_segs, check_chain, Cut, Edge, EdgeError, Part, Seg};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::numeric::scalar::point;
@@ -200,74 +206,158 @@ fn cut_at_side(
         })
         .ok_or_else(|| fail("no link reaches inside the piece"))?;
     let seg = segs[k];
-    let tube = &cert.tubes[seg.tube];
     let y = poly_of(&seg);
-    let f = |u: f64| out_sign * (eval_mid(&y, u)[b] - bound);
-    if f(1.0) <= 0.0 {
-        return Err(fail("the cut link does not cross the side"));
-    }
-    let (mut a0, mut a1) = (u_in, 1.0);
-    for _ in 0..80 {
-        let m = 0.5 * (a0 + a1);
-        if f(m) > 0.0 {
-            a1 = m;
-        } else {
-            a0 = m;
-        }
-    }
-    let uc = 0.5 * (a0 + a1);
-    let along = tube.along.map(|a| a.index).unwrap_or(0);
-    let rp = if b == along { 0.0 } else { tube.radius_param };
-    // Signed side distance of the true curve over `u`: out_sign·(y_b(u) − bound) ± rp.
-    let side = |y: &super::poly::Poly<4>, u: Interval| {
-        point(out_sign) * (eval(y, u, b) - point(bound))
+    // Signed side distance of the true curve over `u` on the piece `s`: out_sign·(y_b(u) −
+    // bound) ± its radius (none in the along coordinate, which the tube holds exactly). The
+    // polynomial is enclosed by its Taylor form at the centre of `u` (excess quadratic in the
+    // width, so that ranges next to the crossing can be proven).
+    let side = |s: &Seg, y: &Poly<4>, u: Interval| {
+        let t = &cert.tubes[s.tube];
+        let along = t.along.map(|a| a.index).unwrap_or(0);
+        let rp = if b == along { 0.0 } else { t.radius_param };
+        let m = u.mid();
+        let centred = eval(&taylor_shift(y, point(m)), u - point(m), b);
+        point(out_sign) * (centred - point(bound))
             + inari::interval!(-rp, rp).unwrap_or(Interval::ENTIRE)
     };
-    let strictly = |y: &super::poly::Poly<4>, u0: f64, u1: f64, outside: bool| {
+    // Whether the true curve over `u ∈ [u0, u1]` of the piece `s` is proven strictly inside
+    // (`outside` false) or strictly outside the side. The crossing is near `u1` when inside,
+    // near `u0` when outside: the sub-ranges start at the width `first` there and double away
+    // from it, up to a [`CHECKS`]-th of the range.
+    let strictly = |s: &Seg, y: &Poly<4>, u0: f64, u1: f64, outside: bool, first: f64| {
         if u1 <= u0 {
             return true;
         }
-        (0..CHECKS).all(|m| {
-            let a = u0 + (u1 - u0) * m as f64 / CHECKS as f64;
-            let z = u0 + (u1 - u0) * (m + 1) as f64 / CHECKS as f64;
-            let s = side(y, inari::interval!(a, z).unwrap_or(Interval::ENTIRE));
-            if outside {
-                s.inf() > 0.0
+        let cap = (u1 - u0) / CHECKS as f64;
+        let mut width = first.min(cap);
+        let mut done = 0.0;
+        while done < u1 - u0 {
+            let next = (done + width).min(u1 - u0);
+            let (a, z) = if outside {
+                (u0 + done, if next >= u1 - u0 { u1 } else { u0 + next })
             } else {
-                s.sup() < 0.0
+                (if next >= u1 - u0 { u0 } else { u1 - next }, u1 - done)
+            };
+            let v = side(
+                s,
+                y,
+                inari::interval!(a.min(z), z.max(a)).unwrap_or(Interval::ENTIRE),
+            );
+            let ok = if outside {
+                v.inf() > 0.0
+            } else {
+                v.sup() < 0.0
+            };
+            if !ok {
+                return false;
+            }
+            done = next;
+            width = (2.0 * width).min(cap);
+        }
+        true
+    };
+    let all_outside = |from: usize| {
+        segs[from.min(segs.len())..]
+            .iter()
+            .all(|s| strictly(s, &poly_of(s), 0.0, 1.0, true, 1.0))
+    };
+    // The reported crossing on the cut link (its end when the reported curve crosses only
+    // at the junction with the next link).
+    let f = |u: f64| out_sign * (eval_mid(&y, u)[b] - bound);
+    let uc = if f(1.0) > 0.0 {
+        let (mut a0, mut a1) = (u_in, 1.0);
+        for _ in 0..80 {
+            let m = 0.5 * (a0 + a1);
+            if f(m) > 0.0 {
+                a1 = m;
+            } else {
+                a0 = m;
+            }
+        }
+        0.5 * (a0 + a1)
+    } else if k + 1 < segs.len() {
+        1.0
+    } else {
+        return Err(fail("the cut link does not cross the side"));
+    };
+    let later_outside = all_outside(k + 1);
+    // The next link, and the `e` from which on it is proven outside (`[0, e]` is where the
+    // crossing may lie past the cut link), when the links after it are outside.
+    let mut beyond: Option<Option<(Seg, f64)>> = None;
+    let mut straddle = || {
+        *beyond.get_or_insert_with(|| {
+            let ns = *segs.get(k + 1)?;
+            if !all_outside(k + 2) {
+                return None;
+            }
+            let ny = poly_of(&ns);
+            let mut e = 1e-12;
+            loop {
+                if strictly(&ns, &ny, e, 1.0, true, e) {
+                    break Some((ns, e));
+                }
+                if e >= 0.25 {
+                    break None;
+                }
+                e *= 4.0;
             }
         })
     };
-    let later_outside = segs[k + 1..].iter().all(|s| {
-        let other = reparametrised(&cert.tubes[s.tube].coeffs, s.ta, s.tb);
-        let r = cert.tubes[s.tube].radius_param;
-        (0..CHECKS).all(|m| {
-            let u = inari::interval!(m as f64 / CHECKS as f64, (m + 1) as f64 / CHECKS as f64)
-                .unwrap_or(Interval::ENTIRE);
-            let v = point(out_sign) * (eval(&other, u, b) - point(bound))
-                - inari::interval!(-r, r).unwrap_or(Interval::ENTIRE);
-            v.inf() > 0.0
-        })
-    });
-    if !later_outside {
-        return Err(fail("a later link is not proven outside the piece"));
-    }
-    let mut w = 1e-9;
-    let proven = loop {
+    // The range `[u0, u1]` of the cut link around the crossing, and how far into the next
+    // link the crossing may lie (`None`: not past the cut link).
+    let mut attempt = |w: f64| {
         let (u0, u1) = ((uc - w).max(0.0), (uc + w).min(1.0));
-        if strictly(&y, 0.0, u0, false) && strictly(&y, u1, 1.0, true) {
-            break Some((u0, u1));
+        if !strictly(&seg, &y, 0.0, u0, false, w) {
+            return None;
         }
-        if w >= 0.25 {
-            break None;
+        if u1 < 1.0 && later_outside && strictly(&seg, &y, u1, 1.0, true, w) {
+            return Some((u0, u1, None));
         }
-        w *= 4.0;
+        // The range straddles the junction: the rest of the cut link, and the start of the
+        // next one up to where that is proven outside.
+        straddle().map(|n| (u0, 1.0, Some(n)))
     };
-    let (u0, u1) = proven.ok_or_else(|| fail("the crossing could not be isolated"))?;
-    let len = point(seg.tb) - point(seg.ta);
-    let at = seg.ta + (seg.tb - seg.ta) * uc;
-    let gap = (point(seg.ta) + len * inari::interval!(u0, u1).unwrap_or(Interval::ENTIRE))
-        .convex_hull(point(at));
+    // The smallest half-width `w` on a ladder of factors of 4, then narrowed by bisection
+    // (geometric) between the last failure and the first success.
+    let (mut w, mut bad) = (1e-12, 0.0);
+    let mut proven = None;
+    while w <= 0.25 {
+        if let Some(r) = attempt(w) {
+            proven = Some(r);
+            break;
+        }
+        bad = w;
+        w *= 4.0;
+    }
+    if proven.is_some() && bad > 0.0 {
+        for _ in 0..6 {
+            let m = (bad * w).sqrt();
+            match attempt(m) {
+                Some(r) => {
+                    proven = Some(r);
+                    w = m;
+                }
+                None => bad = m,
+            }
+        }
+    }
+    let Some((u0, u1, beyond)) = proven else {
+        return Err(fail(if later_outside || straddle().is_some() {
+            "the crossing could not be isolated"
+        } else {
+            "a later link is not proven outside the piece"
+        }));
+    };
+    let range = |s: &Seg, a: f64, z: f64| {
+        let len = point(s.tb) - point(s.ta);
+        point(s.ta) + len * inari::interval!(a, z).unwrap_or(Interval::ENTIRE)
+    };
+    let at = if uc >= 1.0 {
+        seg.tb
+    } else {
+        seg.ta + (seg.tb - seg.ta) * uc
+    };
+    let gap = range(&seg, u0, u1).convex_hull(point(at));
     segs.truncate(k + 1);
     if let Some(s) = segs.last_mut() {
         s.tb = at;
@@ -275,5 +365,6 @@ fn cut_at_side(
     Ok(Cut {
         tube: seg.tube,
         gap,
+        next: beyond.map(|(ns, e)| (ns.tube, range(&ns, 0.0, e))),
     })
 }

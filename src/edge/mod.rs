@@ -208,11 +208,14 @@ pub(crate) struct Seg {
     pub(crate) tb: f64,
 }
 
-/// A cut of the chain on `tube`: the true end point and the cut's `τ` lie in the range `gap`.
+/// A cut of the chain on `tube` at the end of the range `gap` of its `τ` (or inside it): the
+/// true end point lies on the true arc over `gap`, or (`next`) over the range of the next
+/// link's `τ` where the cut range straddles the junction of the two links.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Cut {
     pub(crate) tube: usize,
     pub(crate) gap: Interval,
+    pub(crate) next: Option<(usize, Interval)>,
 }
 
 /// One branch's share of an edge.
@@ -379,6 +382,7 @@ fn close_loop(cert: &CertifiedBranch, segs: &mut [Seg], branch: usize) -> Result
     Ok(Cut {
         tube: last.tube,
         gap: if gap.is_empty() { point(at) } else { gap },
+        next: None,
     })
 }
 

@@ -189,16 +189,24 @@ pub(crate) fn bounds(
     }
 }
 
-/// The diameter (upper bound) of `P(y(τ))` for `τ ∈ tau`, the tube's coefficients in `τ`.
-pub(crate) fn model_diameter(p: &RationalBezierPatch, coeffs: &[[f64; 4]], tau: Interval) -> f64 {
+/// An enclosure of `P(y(τ))` for `τ ∈ tau`, the tube's coefficients in `τ`.
+pub(crate) fn model_box(
+    p: &RationalBezierPatch,
+    coeffs: &[[f64; 4]],
+    tau: Interval,
+) -> [Interval; 3] {
     let y: [Interval; 2] = std::array::from_fn(|d| {
         coeffs
             .iter()
             .rev()
             .fold(point(0.0), |acc, c| acc * tau + point(c[d]))
     });
-    let m = p.eval(y[0], y[1]);
-    // The widths, rounded up: the largest difference of two points of the box.
+    p.eval(y[0], y[1])
+}
+
+/// The diameter (upper bound) of a box: the largest difference of two of its points.
+pub(crate) fn box_diameter(m: &[Interval; 3]) -> f64 {
+    // The widths, rounded up.
     let w: Vec<Interval> = m.iter().map(|x| point(x.sup()) - point(x.inf())).collect();
     norm_sup(&w)
 }
