@@ -6,11 +6,11 @@
 //! [`RationalBezierPatch::scaled_partials_centred`], operation for operation in the same order,
 //! so their intervals are the same bit for bit (tested); only what the patch's own functions
 //! redo on every call is done once or not at all: the forward differences of the net are
-//! computed once per patch, and the de Casteljau restriction works in fixed buffers instead of
-//! allocating per column.
+//! computed once per patch, and the de Casteljau restriction ([`restrict_curve`], the one the
+//! patch uses) works in buffers kept across calls instead of allocating per column.
 
 use crate::geometry::bernstein::binomial;
-use crate::geometry::enclosure::hull_of_net;
+use crate::geometry::enclosure::{hull_of_net, restrict_curve, RestrictBuffers};
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::scalar::point;
 use inari::Interval;
@@ -29,53 +29,11 @@ fn normalised(x: f64, [lo, hi]: [f64; 2]) -> Interval {
 /// Reusable buffers of [`CoverPatch::enclose_with`] (no allocation per enclosure).
 #[derive(Debug, Default)]
 pub(crate) struct Scratch {
-    /// The de Casteljau triangle at `a`, level `l` at `l·(deg + 1)`.
-    triangle: Vec<Net4>,
-    pts: Vec<Net4>,
+    /// The de Casteljau restriction's buffers.
+    restrict: RestrictBuffers,
     column: Vec<Net4>,
     restricted: Vec<Net4>,
     out: Vec<Net4>,
-}
-
-/// Restricts the Bézier curve `net[..=deg]` to `[a, b]` into `out[..=deg]`: the de Casteljau
-/// blossoms of the patch's own restriction, in the same order.
-fn restrict_curve(
-    net: &[Net4],
-    deg: usize,
-    a: Interval,
-    b: Interval,
-    triangle: &mut Vec<Net4>,
-    pts: &mut Vec<Net4>,
-    out: &mut [Net4],
-) {
-    let lerp = |pts: &mut [Net4], len: usize, t: Interval| {
-        let one_minus = point(1.0) - t;
-        for i in 0..len - 1 {
-            let next = pts[i + 1];
-            for (x, y) in pts[i].iter_mut().zip(next) {
-                *x = one_minus * *x + t * y;
-            }
-        }
-    };
-    let w = deg + 1;
-    triangle.clear();
-    triangle.extend_from_slice(&net[..w]);
-    for l in 1..=deg {
-        // Level l: level l − 1 (deg − l + 2 points) with one de Casteljau step at a.
-        let from = (l - 1) * w;
-        triangle.extend_from_within(from..from + w);
-        lerp(&mut triangle[l * w..], deg - l + 2, a);
-    }
-    for (k, o) in out.iter_mut().enumerate().take(w) {
-        let len = k + 1;
-        let from = (deg - k) * w;
-        pts.clear();
-        pts.extend_from_slice(&triangle[from..from + len]);
-        for level in 0..k {
-            lerp(pts, len - level, b);
-        }
-        *o = pts[0];
-    }
 }
 
 /// A patch with the box-independent parts of its cover enclosures prepared.
@@ -162,15 +120,7 @@ impl<'a> CoverPatch<'a> {
         for j in 0..=n {
             s.column.clear();
             s.column.extend((0..=m).map(|i| net[i * (n + 1) + j]));
-            restrict_curve(
-                &s.column,
-                m,
-                ua,
-                ub,
-                &mut s.triangle,
-                &mut s.pts,
-                &mut s.restricted,
-            );
+            restrict_curve(&s.column, ua, ub, &mut s.restrict, &mut s.restricted);
             for i in 0..=m {
                 sub[i * (n + 1) + j] = s.restricted[i];
             }
@@ -199,15 +149,7 @@ impl<'a> CoverPatch<'a> {
         s.out.clear();
         for i in 0..=m {
             let row = &columns[i * (n + 1)..(i + 1) * (n + 1)];
-            restrict_curve(
-                row,
-                n,
-                va,
-                vb,
-                &mut s.triangle,
-                &mut s.pts,
-                &mut s.restricted,
-            );
+            restrict_curve(row, va, vb, &mut s.restrict, &mut s.restricted);
             s.out.extend_from_slice(&s.restricted[..=n]);
         }
         match hull_of_net(&s.out) {

@@ -17,42 +17,62 @@ use crate::geometry::surface::Domain;
 use crate::numeric::scalar::point;
 use inari::Interval;
 
+/// Reusable buffers of [`restrict_curve`] (no allocation per call once they have grown).
+#[derive(Debug, Default, Clone)]
+pub(crate) struct RestrictBuffers {
+    /// The de Casteljau triangle at `a`, level `l` at `l·(deg + 1)`.
+    triangle: Vec<[Interval; 4]>,
+    /// The points of one output's levels at `b`.
+    pts: Vec<[Interval; 4]>,
+}
+
 /// Control points of the polynomial curve with control points `net` (homogeneous, degree
 /// `net.len() − 1`) restricted to the normalised parameter range `[a, b]`, where `a`, `b` are
 /// intervals enclosing the exact range ends. Rigorous: each output encloses the exact control
-/// point `blossom(a, …, a, b, …, b)`.
-fn restrict_curve(net: &[[Interval; 4]], a: Interval, b: Interval) -> Vec<[Interval; 4]> {
-    // One de Casteljau level at parameter t: (1 − t)·Pᵢ + t·Pᵢ₊₁, exact for t = 0 and t = 1, so
-    // restricting to the whole range reproduces the net without rounding.
-    let level = |pts: &mut Vec<[Interval; 4]>, t: Interval| {
+/// point `blossom(a, …, a, b, …, b)`. Written to `out[..net.len()]` (`out` at least that long).
+#[inline]
+pub(crate) fn restrict_curve(
+    net: &[[Interval; 4]],
+    a: Interval,
+    b: Interval,
+    buf: &mut RestrictBuffers,
+    out: &mut [[Interval; 4]],
+) {
+    // One de Casteljau level at parameter t over the first `len` points: (1 − t)·Pᵢ + t·Pᵢ₊₁,
+    // exact for t = 0 and t = 1, so restricting to the whole range reproduces the net without
+    // rounding.
+    let lerp = |pts: &mut [[Interval; 4]], len: usize, t: Interval| {
         let one_minus = point(1.0) - t;
-        for i in 0..pts.len() - 1 {
+        for i in 0..len - 1 {
             let next = pts[i + 1];
             for (x, y) in pts[i].iter_mut().zip(next) {
                 *x = one_minus * *x + t * y;
             }
         }
-        pts.pop();
     };
-    let deg = net.len() - 1;
-    // The de Casteljau triangle at a: levels_a[l] holds the blossoms (a^l, ·) of the net.
-    let mut levels_a = Vec::with_capacity(deg + 1);
-    let mut work = net.to_vec();
-    levels_a.push(work.clone());
-    for _ in 0..deg {
-        level(&mut work, a);
-        levels_a.push(work.clone());
+    let w = net.len();
+    let deg = w - 1;
+    let RestrictBuffers { triangle, pts } = buf;
+    triangle.clear();
+    triangle.extend_from_slice(net);
+    for l in 1..=deg {
+        // Level l: level l − 1 (deg − l + 2 points) with one de Casteljau step at a; it holds
+        // the blossoms (a^l, ·) of the net.
+        let from = (l - 1) * w;
+        triangle.extend_from_within(from..from + w);
+        lerp(&mut triangle[l * w..], deg - l + 2, a);
     }
     // Control point k is blossom(a^(deg−k), b^k): k further levels at b from level deg − k.
-    (0..=deg)
-        .map(|k| {
-            let mut pts = levels_a[deg - k].clone();
-            for _ in 0..k {
-                level(&mut pts, b);
-            }
-            pts[0]
-        })
-        .collect()
+    for (k, o) in out.iter_mut().enumerate().take(w) {
+        let len = k + 1;
+        let from = (deg - k) * w;
+        pts.clear();
+        pts.extend_from_slice(&triangle[from..from + len]);
+        for level in 0..k {
+            lerp(pts, len - level, b);
+        }
+        *o = pts[0];
+    }
 }
 
 /// The homogeneous net (degrees `[m, n]`, row-major in the first parameter) restricted to the
@@ -65,18 +85,23 @@ pub(crate) fn restrict_net(
     [sa, sb]: [Interval; 2],
     [ra, rb]: [Interval; 2],
 ) -> Vec<[Interval; 4]> {
-    let mut tmp = vec![[point(0.0); 4]; net.len()];
+    let z = [point(0.0); 4];
+    let mut tmp = vec![z; net.len()];
+    let mut buf = RestrictBuffers::default();
     let mut column = Vec::with_capacity(m + 1);
+    let mut restricted = vec![z; m + 1];
     for j in 0..=n {
         column.clear();
         column.extend((0..=m).map(|i| net[i * (n + 1) + j]));
-        for (i, h) in restrict_curve(&column, sa, sb).into_iter().enumerate() {
-            tmp[i * (n + 1) + j] = h;
+        restrict_curve(&column, sa, sb, &mut buf, &mut restricted);
+        for (i, h) in restricted.iter().enumerate() {
+            tmp[i * (n + 1) + j] = *h;
         }
     }
-    let mut out = Vec::with_capacity(net.len());
+    let mut out = vec![z; net.len()];
     for i in 0..=m {
-        out.extend(restrict_curve(&tmp[i * (n + 1)..(i + 1) * (n + 1)], ra, rb));
+        let r = i * (n + 1)..(i + 1) * (n + 1);
+        restrict_curve(&tmp[r.clone()], ra, rb, &mut buf, &mut out[r]);
     }
     out
 }
@@ -218,17 +243,28 @@ mod tests {
                 ]
             })
             .collect();
-        let same = restrict_curve(&net, point(0.0), point(1.0));
+        let restrict = |a: f64, b: f64| {
+            let mut out = vec![[point(0.0); 4]; net.len()];
+            restrict_curve(
+                &net,
+                point(a),
+                point(b),
+                &mut RestrictBuffers::default(),
+                &mut out,
+            );
+            out
+        };
+        let same = restrict(0.0, 1.0);
         // (1 − t)·P + t·Q is exact at t = 0 and t = 1.
         assert_eq!(same, net);
         // x = 3t restricted to [1/4, 3/4] has equally spaced controls 3/4, 5/4, 7/4, 9/4.
-        let part = restrict_curve(&net, point(0.25), point(0.75));
+        let part = restrict(0.25, 0.75);
         for (k, h) in part.iter().enumerate() {
             let x = 0.75 + 0.5 * k as f64;
             assert!(h[0].contains(x) && h[0].wid() < 1e-14, "{k}: {h:?}");
         }
         // Restricting to [0.5, 0.5] collapses every control point onto the curve point there.
-        let mid = restrict_curve(&net, point(0.5), point(0.5));
+        let mid = restrict(0.5, 0.5);
         // Cubic with x-controls 0,1,2,3 is x = 3t; at t = 0.5, x = 1.5.
         assert!(mid.iter().all(|h| h[0].contains(1.5)));
     }
