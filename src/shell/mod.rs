@@ -140,6 +140,10 @@ impl ShellIntersection {
 /// Intersect every Bézier piece of every face of `a` with every piece of every face of `b`
 /// (see the module documentation), and join the branches into curves.
 ///
+/// [`Options::time_limit`] applies to the whole shell pair, counted from this call: each piece
+/// pair runs with what is left of it when it starts ([`pair_options`]), so a pair that starts
+/// after it has expired certifies its first links only and ends its halves unproven.
+///
 /// Errors: the first error of [`intersect`] in pair order (bad options).
 pub fn intersect_shells(a: &[Face], b: &[Face], opts: &Options) -> Result<ShellIntersection> {
     opts.check()?;
@@ -154,6 +158,7 @@ pub fn intersect_shells(a: &[Face], b: &[Face], opts: &Options) -> Result<ShellI
         }
     }
     let piece_pairs = all.len();
+    let deadline = opts.time_limit.map(|limit| Instant::now() + limit);
     let kept: Vec<([usize; 2], [usize; 2])> = all
         .into_iter()
         .filter(|&([fa, fb], [pa, pb])| !boxes_disjoint(&a[fa].boxes[pa], &b[fb].boxes[pb]))
@@ -164,10 +169,12 @@ pub fn intersect_shells(a: &[Face], b: &[Face], opts: &Options) -> Result<ShellI
         .map(|(faces, pieces)| {
             let p = &a[faces[0]].pieces[pieces[0]];
             let q = &b[faces[1]].pieces[pieces[1]];
-            intersect(p, q, opts).map(|result| PieceIntersection {
-                faces,
-                pieces,
-                result,
+            intersect(p, q, &pair_options(opts, deadline, Instant::now())).map(|result| {
+                PieceIntersection {
+                    faces,
+                    pieces,
+                    result,
+                }
             })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -181,4 +188,37 @@ pub fn intersect_shells(a: &[Face], b: &[Face], opts: &Options) -> Result<ShellI
         curves,
         join_seconds: started.elapsed().as_secs_f64(),
     })
+}
+
+/// The options of a piece pair that starts at `now`: `opts` with the time left before the
+/// shell's `deadline` (zero once it has passed) as its time limit.
+pub(crate) fn pair_options(opts: &Options, deadline: Option<Instant>, now: Instant) -> Options {
+    Options {
+        time_limit: deadline.map(|d| d.saturating_duration_since(now)),
+        ..*opts
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::Duration;
+
+    #[test]
+    fn the_time_limit_is_the_shells_not_each_pairs() {
+        let start = Instant::now();
+        let opts = Options {
+            time_limit: Some(Duration::from_secs(2)),
+            ..Options::default()
+        };
+        let deadline = opts.time_limit.map(|l| start + l);
+        let at = |s: u64| pair_options(&opts, deadline, start + Duration::from_secs(s));
+        assert_eq!(at(0).time_limit, Some(Duration::from_secs(2)));
+        assert_eq!(at(1).time_limit, Some(Duration::from_secs(1)));
+        // A pair that starts after the shell's deadline has no time left.
+        assert_eq!(at(3).time_limit, Some(Duration::ZERO));
+        let none = Options::default();
+        assert_eq!(pair_options(&none, None, start).time_limit, None);
+        assert_eq!(at(1).step, opts.step);
+    }
 }
