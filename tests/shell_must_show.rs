@@ -29,9 +29,10 @@ fn iv(lo: f64, hi: f64) -> Value {
     json!([lo, hi])
 }
 
-/// `√2/2` enclosed.
+/// `√2/2` enclosed (the nearest `f64` widened by an ulp each way).
 fn half_sqrt2() -> Value {
-    iv(0.7071067811865475, 0.7071067811865476)
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    iv(h.next_down(), h.next_up())
 }
 
 /// A full NURBS cylinder of radius `r` about the coordinate axis `axis`, the axis coordinate in

@@ -207,54 +207,14 @@ fn cut_at_side(
         .ok_or_else(|| fail("no link reaches inside the piece"))?;
     let seg = segs[k];
     let y = poly_of(&seg);
-    // Signed side distance of the true curve over `u` on the piece `s`: out_sign·(y_b(u) −
-    // bound) ± its radius (none in the along coordinate, which the tube holds exactly). The
-    // polynomial is enclosed by its Taylor form at the centre of `u` (excess quadratic in the
-    // width, so that ranges next to the crossing can be proven).
-    let side = |s: &Seg, y: &Poly<4>, u: Interval| {
-        let t = &cert.tubes[s.tube];
-        let along = t.along.map(|a| a.index).unwrap_or(0);
-        let rp = if b == along { 0.0 } else { t.radius_param };
-        let m = u.mid();
-        let centred = eval(&taylor_shift(y, point(m)), u - point(m), b);
-        point(out_sign) * (centred - point(bound))
-            + inari::interval!(-rp, rp).unwrap_or(Interval::ENTIRE)
+    let side = Side {
+        cert,
+        b,
+        bound,
+        out_sign,
     };
-    // Whether the true curve over `u ∈ [u0, u1]` of the piece `s` is proven strictly inside
-    // (`outside` false) or strictly outside the side. The crossing is near `u1` when inside,
-    // near `u0` when outside: the sub-ranges start at the width `first` there and double away
-    // from it, up to a [`CHECKS`]-th of the range.
     let strictly = |s: &Seg, y: &Poly<4>, u0: f64, u1: f64, outside: bool, first: f64| {
-        if u1 <= u0 {
-            return true;
-        }
-        let cap = (u1 - u0) / CHECKS as f64;
-        let mut width = first.min(cap);
-        let mut done = 0.0;
-        while done < u1 - u0 {
-            let next = (done + width).min(u1 - u0);
-            let (a, z) = if outside {
-                (u0 + done, if next >= u1 - u0 { u1 } else { u0 + next })
-            } else {
-                (if next >= u1 - u0 { u0 } else { u1 - next }, u1 - done)
-            };
-            let v = side(
-                s,
-                y,
-                inari::interval!(a.min(z), z.max(a)).unwrap_or(Interval::ENTIRE),
-            );
-            let ok = if outside {
-                v.inf() > 0.0
-            } else {
-                v.sup() < 0.0
-            };
-            if !ok {
-                return false;
-            }
-            done = next;
-            width = (2.0 * width).min(cap);
-        }
-        true
+        side.strictly(s, y, [u0, u1], outside, first)
     };
     let all_outside = |from: usize| {
         segs[from.min(segs.len())..]
@@ -263,22 +223,10 @@ fn cut_at_side(
     };
     // The reported crossing on the cut link (its end when the reported curve crosses only
     // at the junction with the next link).
-    let f = |u: f64| out_sign * (eval_mid(&y, u)[b] - bound);
-    let uc = if f(1.0) > 0.0 {
-        let (mut a0, mut a1) = (u_in, 1.0);
-        for _ in 0..80 {
-            let m = 0.5 * (a0 + a1);
-            if f(m) > 0.0 {
-                a1 = m;
-            } else {
-                a0 = m;
-            }
-        }
-        0.5 * (a0 + a1)
-    } else if k + 1 < segs.len() {
-        1.0
-    } else {
-        return Err(fail("the cut link does not cross the side"));
+    let uc = match side.reported_crossing(&y, u_in) {
+        Some(uc) => uc,
+        None if k + 1 < segs.len() => 1.0,
+        None => return Err(fail("the cut link does not cross the side")),
     };
     let later_outside = all_outside(k + 1);
     // The next link, and the `e` from which on it is proven outside (`[0, e]` is where the
@@ -317,30 +265,7 @@ fn cut_at_side(
         // next one up to where that is proven outside.
         straddle().map(|n| (u0, 1.0, Some(n)))
     };
-    // The smallest half-width `w` on a ladder of factors of 4, then narrowed by bisection
-    // (geometric) between the last failure and the first success.
-    let (mut w, mut bad) = (1e-12, 0.0);
-    let mut proven = None;
-    while w <= 0.25 {
-        if let Some(r) = attempt(w) {
-            proven = Some(r);
-            break;
-        }
-        bad = w;
-        w *= 4.0;
-    }
-    if proven.is_some() && bad > 0.0 {
-        for _ in 0..6 {
-            let m = (bad * w).sqrt();
-            match attempt(m) {
-                Some(r) => {
-                    proven = Some(r);
-                    w = m;
-                }
-                None => bad = m,
-            }
-        }
-    }
+    let proven = smallest(&mut attempt);
     let Some((u0, u1, beyond)) = proven else {
         return Err(fail(if later_outside || straddle().is_some() {
             "the crossing could not be isolated"
@@ -367,4 +292,117 @@ fn cut_at_side(
         gap,
         next: beyond.map(|(ns, e)| (ns.tube, range(&ns, 0.0, e))),
     })
+}
+
+/// The side a chain is cut at: coordinate `b` of the four parameters at the value `bound`,
+/// outside where `out_sign·(x_b − bound) > 0`.
+struct Side<'a> {
+    cert: &'a CertifiedBranch,
+    b: usize,
+    bound: f64,
+    out_sign: f64,
+}
+
+impl Side<'_> {
+    /// Signed side distance of the true curve over `u` on the piece `s` (its polynomial `y`):
+    /// `out_sign·(y_b(u) − bound)` ± the tube's radius (none in the along coordinate, which
+    /// the tube holds exactly). The polynomial is enclosed by its Taylor form at the centre of
+    /// `u` (excess quadratic in the width, so that ranges next to the crossing can be proven).
+    fn distance(&self, s: &Seg, y: &Poly<4>, u: Interval) -> Interval {
+        let t = &self.cert.tubes[s.tube];
+        let along = t.along.map(|a| a.index).unwrap_or(0);
+        let rp = if self.b == along { 0.0 } else { t.radius_param };
+        let m = u.mid();
+        let centred = eval(&taylor_shift(y, point(m)), u - point(m), self.b);
+        point(self.out_sign) * (centred - point(self.bound))
+            + inari::interval!(-rp, rp).unwrap_or(Interval::ENTIRE)
+    }
+
+    /// Whether the true curve over `u ∈ [u0, u1]` of the piece `s` is proven strictly inside
+    /// (`outside` false) or strictly outside the side. The crossing is near `u1` when inside,
+    /// near `u0` when outside: the sub-ranges start at the width `first` there and double away
+    /// from it, up to a [`CHECKS`]-th of the range.
+    fn strictly(
+        &self,
+        s: &Seg,
+        y: &Poly<4>,
+        [u0, u1]: [f64; 2],
+        outside: bool,
+        first: f64,
+    ) -> bool {
+        if u1 <= u0 {
+            return true;
+        }
+        let cap = (u1 - u0) / CHECKS as f64;
+        let mut width = first.min(cap);
+        let mut done = 0.0;
+        while done < u1 - u0 {
+            let next = (done + width).min(u1 - u0);
+            let (a, z) = if outside {
+                (u0 + done, if next >= u1 - u0 { u1 } else { u0 + next })
+            } else {
+                (if next >= u1 - u0 { u0 } else { u1 - next }, u1 - done)
+            };
+            let u = inari::interval!(a.min(z), z.max(a)).unwrap_or(Interval::ENTIRE);
+            let v = self.distance(s, y, u);
+            if !(if outside {
+                v.inf() > 0.0
+            } else {
+                v.sup() < 0.0
+            }) {
+                return false;
+            }
+            done = next;
+            width = (2.0 * width).min(cap);
+        }
+        true
+    }
+
+    /// Where the reported curve `y` (midpoints, guidance only) crosses the side after `u_in`
+    /// (a sample inside), by bisection; `None` when its end is not outside.
+    fn reported_crossing(&self, y: &Poly<4>, u_in: f64) -> Option<f64> {
+        let f = |u: f64| self.out_sign * (eval_mid(y, u)[self.b] - self.bound);
+        if f(1.0) <= 0.0 {
+            return None;
+        }
+        let (mut a0, mut a1) = (u_in, 1.0);
+        for _ in 0..80 {
+            let m = 0.5 * (a0 + a1);
+            if f(m) > 0.0 {
+                a1 = m;
+            } else {
+                a0 = m;
+            }
+        }
+        Some(0.5 * (a0 + a1))
+    }
+}
+
+/// The result of `attempt` at the smallest half-width found: on a ladder of factors of 4 from
+/// 1e-12 to 1/4, then narrowed by bisection (geometric) between the last failure and the first
+/// success.
+fn smallest<T>(attempt: &mut impl FnMut(f64) -> Option<T>) -> Option<T> {
+    let (mut w, mut bad) = (1e-12, 0.0);
+    let mut proven = None;
+    while w <= 0.25 {
+        if let Some(r) = attempt(w) {
+            proven = Some(r);
+            break;
+        }
+        bad = w;
+        w *= 4.0;
+    }
+    if proven.is_some() && bad > 0.0 {
+        for _ in 0..6 {
+            let m = (bad * w).sqrt();
+            match attempt(m) {
+                Some(r) => {
+                    proven = Some(r);
+                    w = m;
+                }
+                None => bad = m,
+            }
+        }
+    }
+    proven
 }

@@ -141,7 +141,7 @@ impl ShellIntersection {
 /// (see the module documentation), and join the branches into curves.
 ///
 /// [`Options::time_limit`] applies to the whole shell pair, counted from this call: each piece
-/// pair runs with what is left of it when it starts ([`pair_options`]), so a pair that starts
+/// pair runs with what is left of it when it starts, so a pair that starts
 /// after it has expired certifies its first links only and ends its halves unproven.
 ///
 /// Errors: the first error of [`intersect`] in pair order (bad options).
