@@ -8,7 +8,10 @@
 //! joined across the pieces' shared edges.
 //!
 //! Before the criterion groups run, one line prints the pairs intersected, the branches and
-//! curves, and the 1-thread over 2-thread ratio of the median of a few runs.
+//! curves, the median wall time of five runs on each pool with the CPU time per run (so the
+//! cores kept busy), and the 1-thread over 2-thread ratio. On a machine shared with other work
+//! the 2-thread pool cannot get two cores and the ratio says little; the cores busy still show
+//! whether the pairs ran in parallel.
 //!
 //! `cargo bench --bench shell`.
 
@@ -66,7 +69,24 @@ fn run(pool: &rayon::ThreadPool, a: &[Face], b: &[Face], opts: &Options) -> Shel
     pool.install(|| intersect_shells(a, b, opts).expect("runs"))
 }
 
-fn median_seconds(pool: &rayon::ThreadPool, a: &[Face], b: &[Face], opts: &Options) -> f64 {
+/// This process's CPU seconds so far (user + system, from `/proc/self/stat`; `None` elsewhere).
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The fields after the command name (which is in parentheses): utime, stime are 14, 15.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks: f64 = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// The median wall seconds of five runs, and the CPU seconds per run (mean).
+fn median_seconds(
+    pool: &rayon::ThreadPool,
+    a: &[Face],
+    b: &[Face],
+    opts: &Options,
+) -> (f64, Option<f64>) {
+    let cpu0 = cpu_seconds();
     let mut t: Vec<f64> = (0..5)
         .map(|_| {
             let s = Instant::now();
@@ -74,8 +94,9 @@ fn median_seconds(pool: &rayon::ThreadPool, a: &[Face], b: &[Face], opts: &Optio
             s.elapsed().as_secs_f64()
         })
         .collect();
+    let cpu = cpu_seconds().zip(cpu0).map(|(c1, c0)| (c1 - c0) / 5.0);
     t.sort_by(f64::total_cmp);
-    t[2]
+    (t[2], cpu)
 }
 
 fn bench(c: &mut Criterion) {
@@ -91,13 +112,18 @@ fn bench(c: &mut Criterion) {
         })
         .collect();
     let r = run(&pools[0].1, &a, &b, &opts);
-    let t: Vec<f64> = pools
+    let t: Vec<(f64, Option<f64>)> = pools
         .iter()
         .map(|(_, p)| median_seconds(p, &a, &b, &opts))
         .collect();
+    let cpu = |k: usize| {
+        t[k].1
+            .map(|c| format!(" ({:.0} ms CPU, {:.2} cores busy)", 1e3 * c, c / t[k].0))
+            .unwrap_or_default()
+    };
     println!(
         "shell: {} x {} faces, {} face pairs, {} intersected after the box filter, {} branches, \
-         {} joined curves ({} closed); 1 thread {:.1} ms, 2 threads {:.1} ms, ratio {:.2}",
+         {} joined curves ({} closed); 1 thread {:.1} ms{}, 2 threads {:.1} ms{}, ratio {:.2}",
         a.len(),
         b.len(),
         r.piece_pairs,
@@ -105,9 +131,11 @@ fn bench(c: &mut Criterion) {
         r.branch_count(),
         r.curves.len(),
         r.curves.iter().filter(|c| c.closed).count(),
-        1e3 * t[0],
-        1e3 * t[1],
-        t[0] / t[1]
+        1e3 * t[0].0,
+        cpu(0),
+        1e3 * t[1].0,
+        cpu(1),
+        t[0].0 / t[1].0
     );
     let mut g = c.benchmark_group("shell_sphere_planes");
     g.sample_size(10);
