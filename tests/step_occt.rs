@@ -305,9 +305,8 @@ fn sphere_against_cube_is_eight_closed_curves_across_faces() {
     let mut met = [false; 8];
     for (label, c) in &read {
         let tol: f64 = label.rsplit(' ').next().unwrap().parse().unwrap();
-        // The chains are certified to 1e-9; the edge adds its fit and the cuts at the cube's
-        // edges (the crossing of a link whose parameter radius is ~5e-11 at a shallow angle).
-        assert!(tol <= 1e-8, "{label}: tolerance {tol:e}");
+        // The chains are certified to 1e-9 (9.3e-10); the edge adds its fit (about 1e-10).
+        assert!(tol <= 1.1e-9, "{label}: tolerance {tol:e}");
         let pts = dense(c);
         let corner = Corner::of(&pts);
         assert!(!met[corner.index()], "{label}: corner {:?} twice", corner.0);

@@ -189,19 +189,48 @@ pub(crate) fn bounds(
     }
 }
 
-/// An enclosure of `P(y(τ))` for `τ ∈ tau`, the tube's coefficients in `τ`.
+/// An enclosure of `P(y(τ))` for `τ ∈ tau`, the tube's coefficients in `τ`: the naive
+/// interval evaluation intersected with the mean-value form `P(y(m)) + DP(y(tau))·y'(tau)·(tau
+/// − m)` about the centre `m` (first order in the width of `tau`, where the naive form
+/// over-estimates a rational patch by a factor).
 pub(crate) fn model_box(
     p: &RationalBezierPatch,
     coeffs: &[[f64; 4]],
     tau: Interval,
 ) -> [Interval; 3] {
-    let y: [Interval; 2] = std::array::from_fn(|d| {
+    let horner = |t: Interval, d: usize| {
         coeffs
             .iter()
             .rev()
-            .fold(point(0.0), |acc, c| acc * tau + point(c[d]))
-    });
-    p.eval(y[0], y[1])
+            .fold(point(0.0), |acc, c| acc * t + point(c[d]))
+    };
+    let slope = |d: usize| {
+        coeffs
+            .iter()
+            .enumerate()
+            .skip(1)
+            .rev()
+            .fold(point(0.0), |acc, (k, c)| {
+                acc * tau + point(k as f64) * point(c[d])
+            })
+    };
+    let y: [Interval; 2] = std::array::from_fn(|d| horner(tau, d));
+    let naive = p.eval(y[0], y[1]);
+    let m = point(tau.mid());
+    let ym: [Interval; 2] = std::array::from_fn(|d| horner(m, d));
+    let at = p.eval(ym[0], ym[1]);
+    let [_, da, db] = p.first_derivs(y[0], y[1]);
+    let (s0, s1) = (slope(0), slope(1));
+    let off = tau - m;
+    std::array::from_fn(|k| {
+        let mv = at[k] + (da[k] * s0 + db[k] * s1) * off;
+        let both = naive[k].intersection(mv);
+        if both.is_empty() {
+            naive[k]
+        } else {
+            both
+        }
+    })
 }
 
 /// The diameter (upper bound) of a box: the largest difference of two of its points.
@@ -244,5 +273,47 @@ mod tests {
         });
         let d = model_deviation(&p, &y, &h);
         assert!(d < 1e-12);
+    }
+
+    #[test]
+    fn the_model_box_encloses_the_image_and_is_first_order_tight() {
+        // A quarter of the unit cylinder (rational, degree 2 × 1) and a curve on it.
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let net = [
+            [1.0, 0.0, 0.0],
+            [1.0, 0.0, 1.0],
+            [1.0, 1.0, 0.0],
+            [1.0, 1.0, 1.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 1.0, 1.0],
+        ];
+        let w = [1.0, 1.0, h, h, 1.0, 1.0];
+        let p = RationalBezierPatch::from_f64_points([2, 1], &net, Some(&w), Domain::UNIT).unwrap();
+        let coeffs = [
+            [0.2, 0.1, 0.0, 0.0],
+            [0.9, 0.4, 0.0, 0.0],
+            [-0.3, 0.2, 0.0, 0.0],
+        ];
+        let tau = inari::interval!(0.3, 0.3001).unwrap();
+        let b = model_box(&p, &coeffs, tau);
+        for k in 0..=20 {
+            let t = 0.3 + 0.0001 * k as f64 / 20.0;
+            let y: [f64; 2] =
+                std::array::from_fn(|d| coeffs.iter().rev().fold(0.0, |acc, c| acc * t + c[d]));
+            let x = p.point_f64(y[0], y[1]);
+            for c in 0..3 {
+                assert!(b[c].inf() - 1e-14 <= x[c] && x[c] <= b[c].sup() + 1e-14);
+            }
+        }
+        // The naive enclosure is wider; the box is within a few times the true image's size.
+        let y: [Interval; 2] = std::array::from_fn(|d| {
+            coeffs
+                .iter()
+                .rev()
+                .fold(point(0.0), |acc, c| acc * tau + point(c[d]))
+        });
+        let naive = p.eval(y[0], y[1]);
+        assert!(box_diameter(&b) <= box_diameter(&naive));
+        assert!(box_diameter(&b) < 3.0 * 1e-4, "{}", box_diameter(&b));
     }
 }
