@@ -262,9 +262,10 @@ fn nurbs_cylinders_of_different_radii_meet_in_two_closed_curves() {
 /// Not yet: the same cylinders with both circles unturned. Each loop then crosses the first
 /// cylinder's seam (y = 0) exactly where it crosses a knot line of the second (z = ±1/2): a
 /// branch ends in a corner of its piece pair, and the next branch is in the diagonally
-/// neighbouring pair (both pieces change). The joins across such a corner are found on the
-/// marched points but not proven ("an end is not certified on the shared edge"): the proof
-/// of a join needs the two branches to share the other surface's piece.
+/// neighbouring pair (both pieces change). The two pairs beside the corner each report a
+/// branch of one point (the corner), which is not certified, and the joins through it are found
+/// on the marched points but not proven ("an end is not certified on the shared edge"); the
+/// proof of a join needs the two branches to share the other surface's piece.
 #[test]
 #[ignore = "joins across a corner of the piece pair are not proven yet (issue 11)"]
 fn unturned_nurbs_cylinders_cross_seam_and_knot_line_at_once() {
