@@ -187,6 +187,7 @@ fn cases() -> Vec<Case> {
         ),
         case("two_loops_s31_s32", "scenes/two_loops_s31_s32.json", false),
         case("wu_andrade_fig7_loop", "scenes/wu_andrade_fig7.json", true),
+        case("small_loop", "scenes/small_loop.json", false),
     ]
 }
 
