@@ -85,6 +85,13 @@ const MAX_SPLITS: usize = 20_000;
 /// then says the tolerance is not met. Near a singular box the half stops instead, within the
 /// tolerance.
 const FLOOR_LINK: f64 = 1e-4;
+/// Splits in a row whose tube stayed wider than [`STALL_RATIO`] of the split link's before a half
+/// near a singular box stops there (halving on would not narrow it: on the cylinders each end
+/// at the tangency took 10–15 more links down to [`MIN_LINK`], all as wide).
+const STALLED_SPLITS: usize = 3;
+/// A split narrowed the tube when the shorter link's width is at most this part of the
+/// longer's.
+const STALL_RATIO: f64 = 0.9;
 /// Shortest link tried, in scaled parameters (below it a half gives up there).
 const MIN_LINK: f64 = 1e-10;
 

@@ -383,6 +383,8 @@ impl<'a> Walker<'a> {
         // Targets, with the radius of a too wide link that was split to reach them.
         let mut stack: Vec<(Node, Option<f64>)> = vec![(b, None)];
         let mut splits = 0;
+        // Consecutive splits that did not narrow the tube (see `STALLED_SPLITS`).
+        let mut stalled = 0;
         while let Some(&(tgt, wider)) = stack.last() {
             if let Some(reason) = self.out_of_budget() {
                 return Stop::Failed(CertifiedEnd::Unproven {
@@ -409,6 +411,8 @@ impl<'a> Walker<'a> {
                     Some(link)
                 }
                 Attempt::TooWide(link) => {
+                    let narrowed = wider.is_none_or(|w| link.radius_xyz <= STALL_RATIO * w);
+                    stalled = if narrowed { 0 } else { stalled + 1 };
                     if let Some(top) = stack.last_mut() {
                         top.1 = Some(link.radius_xyz);
                     }
@@ -417,6 +421,7 @@ impl<'a> Walker<'a> {
                 Attempt::Failed => None,
             };
             if let Some(link) = too_wide {
+                stalled = 0;
                 if self.push(link) {
                     return Stop::Done;
                 }
@@ -429,6 +434,14 @@ impl<'a> Walker<'a> {
                 continue;
             }
             splits += 1;
+            // Near a singular box a tube that several halvings in a row did not narrow is held
+            // up by the conditioning there, not by the link's length: the half stops now with
+            // that box, as it would after halving on down to `MIN_LINK`.
+            if stalled >= STALLED_SPLITS && len < FLOOR_LINK {
+                if let Some(near) = self.singular_box(&cur.x, &tgt.x, 1e-4) {
+                    return Stop::Failed(CertifiedEnd::Singular { near });
+                }
+            }
             let long = scaled_dist(&cur.x, &tgt.x, &self.scales) > MIN_LINK;
             let frac = self.l_pred.map_or(0.5, |l| (l / len).clamp(0.1, 0.5));
             let mid = (splits <= MAX_SPLITS && long)
