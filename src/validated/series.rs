@@ -13,6 +13,7 @@
 //! `O(k²)` each; the engine instead uses the tape-based recurrences of [`crate::validated::ad`]
 //! (`O(k²)` in total), and the `validated` benchmark measures the difference.
 
+use crate::numeric::imul;
 use crate::numeric::scalar::point;
 use crate::validated::system::OdeSystem;
 use crate::Scalar;
@@ -103,15 +104,28 @@ impl<const N: usize> Mul for SeriesN<N> {
     type Output = Self;
     fn mul(self, rhs: Self) -> Self {
         let n = Self::len2(&self, &rhs);
+        let (la, lb) = (self.len as usize, rhs.len as usize);
         let mut r = Self::constant(ZERO);
-        for i in 0..n {
-            let mut acc = ZERO;
-            for m in 0..=i {
-                if m < self.len as usize && i - m < rhs.len as usize {
-                    acc += self.c[m] * rhs.c[i - m];
-                }
+        if la == 1 || lb == 1 {
+            // A constant times a series: one product per coefficient, no sums.
+            let (k, s) = if la == 1 {
+                (self.c[0], &rhs)
+            } else {
+                (rhs.c[0], &self)
+            };
+            for i in 0..n {
+                r.c[i] = imul::mul(k, s.c[i]);
             }
-            r.c[i] = acc;
+        } else {
+            for i in 0..n {
+                // Terms m with m < la and i − m < lb.
+                let (from, to) = ((i + 1).saturating_sub(lb), i.min(la - 1));
+                let mut acc = ZERO;
+                for m in from..=to {
+                    acc += imul::mul(self.c[m], rhs.c[i - m]);
+                }
+                r.c[i] = acc;
+            }
         }
         r.len = n as u8;
         r
@@ -129,7 +143,7 @@ impl<const N: usize> Div for SeriesN<N> {
         for i in 0..n {
             let mut acc = self.coeff(i);
             for m in 1..=i.min(rhs.len as usize - 1) {
-                acc -= rhs.c[m] * r.c[i - m];
+                acc -= imul::mul(rhs.c[m], r.c[i - m]);
             }
             r.c[i] = acc / b0;
         }
@@ -151,7 +165,7 @@ impl<const N: usize> Scalar for SeriesN<N> {
         for i in 0..n {
             let mut acc = ZERO;
             for m in 0..i.div_ceil(2) {
-                acc += self.c[m] * self.c[i - m];
+                acc += imul::mul(self.c[m], self.c[i - m]);
             }
             acc = acc + acc;
             if i % 2 == 0 {
@@ -173,7 +187,7 @@ impl<const N: usize> Scalar for SeriesN<N> {
         for i in 1..n {
             let mut acc = ZERO;
             for m in 1..i.div_ceil(2) {
-                acc += r.c[m] * r.c[i - m];
+                acc += imul::mul(r.c[m], r.c[i - m]);
             }
             acc = acc + acc;
             if i % 2 == 0 {
