@@ -595,10 +595,16 @@ impl<'a> Walker<'a> {
     ) -> std::result::Result<(), CertifiedEnd> {
         let n = nodes.len();
         let mut i = 0;
+        // After a stride to a marched point fails (not merely too wide), the points up to it are linked one interval
+        // at a time: a stride that fails there has usually met a point where the links must
+        // shorten, as the marched points do (towards a singular point they halve their
+        // distance to it, every stride reaching the last one fails, and each success would
+        // otherwise lengthen the next stride back to it).
+        let mut single_until = 0;
         while i + 1 < n {
             // As many marched points ahead as the predicted length reaches (at least one).
             let mut k = 1;
-            if let Some(l) = self.l_pred {
+            if let (true, Some(l)) = (i >= single_until, self.l_pred) {
                 while i + k + 1 < n
                     && scaled_dist(&nodes[i].x, &nodes[i + k + 1].x, &self.scales) <= l
                 {
@@ -624,9 +630,14 @@ impl<'a> Walker<'a> {
                         return Err(end);
                     }
                     i += k;
-                } else if self.l_pred.is_some_and(|l| l >= len) {
-                    // Not learnt anything that shortens the stride: take one interval.
-                    self.l_pred = Some(0.5 * len);
+                } else {
+                    if matches!(attempt, Attempt::Failed) {
+                        single_until = i + k;
+                    }
+                    if self.l_pred.is_some_and(|l| l >= len) {
+                        // Not learnt anything that shortens the stride: take one interval.
+                        self.l_pred = Some(0.5 * len);
+                    }
                 }
                 continue;
             }
