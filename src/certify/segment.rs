@@ -29,6 +29,7 @@
 //! wrapping; one Taylor form of `F` along a known polynomial and one interval Jacobian.
 
 use crate::geometry::RationalBezierPatch;
+use crate::numeric::imul::mul as imul;
 use crate::numeric::scalar::point;
 use crate::validated::SeriesN;
 use inari::Interval;
@@ -168,7 +169,7 @@ impl Predictor {
             self.c
                 .iter()
                 .rev()
-                .fold(point(0.0), |acc, c| acc * xi + point(c[r]))
+                .fold(point(0.0), |acc, c| imul(acc, xi) + point(c[r]))
         })
     }
 
@@ -177,7 +178,7 @@ impl Predictor {
     fn shifted(&self, centre: Interval) -> [[Interval; 3]; PREDICTOR_DEGREE + 1] {
         let mut pow = [point(1.0); PREDICTOR_DEGREE + 1];
         for m in 1..=PREDICTOR_DEGREE {
-            pow[m] = pow[m - 1] * centre;
+            pow[m] = imul(pow[m - 1], centre);
         }
         let binom = |n: usize, k: usize| -> f64 {
             (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
@@ -185,7 +186,7 @@ impl Predictor {
         std::array::from_fn(|k| {
             std::array::from_fn(|r| {
                 (k..=PREDICTOR_DEGREE).fold(point(0.0), |acc, i| {
-                    acc + point(binom(i, k)) * point(self.c[i][r]) * pow[i - k]
+                    acc + imul(imul(point(binom(i, k)), point(self.c[i][r])), pow[i - k])
                 })
             })
         })
@@ -249,7 +250,9 @@ fn imat(m: &Matrix3<f64>) -> IMat {
 /// `a·b`.
 fn mul(a: &IMat, b: &IMat) -> IMat {
     std::array::from_fn(|r| {
-        std::array::from_fn(|c| a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c])
+        std::array::from_fn(|c| {
+            imul(a[r][0], b[0][c]) + imul(a[r][1], b[1][c]) + imul(a[r][2], b[2][c])
+        })
     })
 }
 
@@ -295,7 +298,9 @@ fn hessian_over(
 /// `Σ_c' h[col][c'] · y_c'` (`h` over a box holding those points), as a matrix `[row][col]`.
 fn jacobian_change(h: &Hessian, y: &[Interval; 3]) -> IMat {
     std::array::from_fn(|r| {
-        std::array::from_fn(|col| (0..3).fold(point(0.0), |acc, c2| acc + h[col][c2][r] * y[c2]))
+        std::array::from_fn(|col| {
+            (0..3).fold(point(0.0), |acc, c2| acc + imul(h[col][c2][r], y[c2]))
+        })
     })
 }
 
@@ -323,17 +328,19 @@ fn contraction_along(
     ));
     // Taylor coefficients of C at η = centre + τ, τ ∈ tau.
     let c_eta0: IMat = std::array::from_fn(|r| {
-        std::array::from_fn(|c| cs[0][r][c] + tau * (cs[1][r][c] + tau * cs[2][r][c]))
+        std::array::from_fn(|c| cs[0][r][c] + imul(tau, cs[1][r][c] + imul(tau, cs[2][r][c])))
     });
     let c_eta1: IMat = std::array::from_fn(|r| {
-        std::array::from_fn(|c| cs[1][r][c] + point(2.0) * cs[2][r][c] * tau)
+        std::array::from_fn(|c| cs[1][r][c] + imul(imul(point(2.0), cs[2][r][c]), tau))
     });
     let a3 = neg(&add(
         &add(&mul(&c_eta0, &jo[3]), &mul(&c_eta1, &jo[2])),
         &mul(&cs[2], &jo[1]),
     ));
     std::array::from_fn(|r| {
-        std::array::from_fn(|c| a0[r][c] + tau * (a1[r][c] + tau * (a2[r][c] + tau * a3[r][c])))
+        std::array::from_fn(|c| {
+            a0[r][c] + imul(tau, a1[r][c] + imul(tau, a2[r][c] + imul(tau, a3[r][c])))
+        })
     })
 }
 
@@ -343,7 +350,11 @@ fn jacobian_along(j_c: &[[Short; 3]; 3], j_o: &[[Short; 3]; 3], tau: Interval) -
     let j3 = coeff_mat(j_o, 3);
     std::array::from_fn(|r| {
         std::array::from_fn(|c| {
-            jc[0][r][c] + tau * (jc[1][r][c] + tau * (jc[2][r][c] + tau * j3[r][c]))
+            jc[0][r][c]
+                + imul(
+                    tau,
+                    jc[1][r][c] + imul(tau, jc[2][r][c] + imul(tau, j3[r][c])),
+                )
         })
     })
 }
@@ -363,12 +374,12 @@ fn preconditioned_residual(
     let rem = |i: usize| g_o[i].coeff(ORDER + 1);
     std::array::from_fn(|r| {
         let dot = |m: &IMat, v: &dyn Fn(usize) -> Interval| {
-            m[r][0] * v(0) + m[r][1] * v(1) + m[r][2] * v(2)
+            imul(m[r][0], v(0)) + imul(m[r][1], v(1)) + imul(m[r][2], v(2))
         };
         let mut acc = dot(&cs[0], &rem)
-            + dot(&cs[1], &|i| gk(ORDER, i) + rem(i) * tau)
+            + dot(&cs[1], &|i| gk(ORDER, i) + imul(rem(i), tau))
             + dot(&cs[2], &|i| {
-                gk(ORDER - 1, i) + tau * (gk(ORDER, i) + rem(i) * tau)
+                gk(ORDER - 1, i) + imul(tau, gk(ORDER, i) + imul(rem(i), tau))
             });
         for k in (0..=ORDER).rev() {
             let mut h = point(0.0);
@@ -377,7 +388,7 @@ fn preconditioned_residual(
                     h += dot(m, &|i| gk(k - a, i));
                 }
             }
-            acc = acc * tau + h;
+            acc = imul(acc, tau) + h;
         }
         acc
     })
@@ -395,8 +406,9 @@ fn krawczyk_image(
     // The Jacobian over the segments from the predictor (offset 0) to every offset in x.
     let dj = jacobian_change(h, &with_zero(x));
     let m = combine(a_over, &mul(c_over, &dj), |a, b| a - b);
-    let k: [Interval; 3] =
-        std::array::from_fn(|r| -cg[r] + m[r][0] * x[0] + m[r][1] * x[1] + m[r][2] * x[2]);
+    let k: [Interval; 3] = std::array::from_fn(|r| {
+        -cg[r] + imul(m[r][0], x[0]) + imul(m[r][1], x[1]) + imul(m[r][2], x[2])
+    });
     k.iter()
         .all(|v| !v.is_empty() && v.inf().is_finite() && v.sup().is_finite())
         .then_some(k)
@@ -514,7 +526,7 @@ pub(crate) fn prove_segment(
     let c2 = c0 * j1 * c0 * j1 * c0 - c0 * j2 * c0;
     let cs = [imat(&c0), imat(&c1), imat(&c2)];
     let c_over: IMat = std::array::from_fn(|r| {
-        std::array::from_fn(|c| cs[0][r][c] + tau * (cs[1][r][c] + tau * cs[2][r][c]))
+        std::array::from_fn(|c| cs[0][r][c] + imul(tau, cs[1][r][c] + imul(tau, cs[2][r][c])))
     });
     let a_over = contraction_along(&j_c, &j_o, &cs, tau);
     let cg = preconditioned_residual(&g_c, &g_o, &cs, tau);
