@@ -41,7 +41,7 @@ impl IntervalDot for InariDot {
     }
     #[inline]
     fn add(&mut self, x: Interval, y: Interval) {
-        self.0 += x * y;
+        self.0 += crate::numeric::imul::mul(x, y);
     }
     #[inline]
     fn total(self) -> Interval {

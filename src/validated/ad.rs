@@ -22,6 +22,7 @@
 //! or empty interval (an empty interval would pass every containment test).
 
 use crate::numeric::dot::{DotAcc, InariDot, IntervalDot};
+use crate::numeric::imul::mul as imul;
 use crate::numeric::scalar::point;
 use crate::validated::tape::{Op, Tape};
 use inari::{const_interval, Interval};
@@ -277,9 +278,9 @@ fn coef_step<D: IntervalDot>(
         Op::Mul(a, b) => {
             let (x, y) = (ser(a), ser(b));
             c[i] = if is_const(ops, a) {
-                x[0] * y[i]
+                imul(x[0], y[i])
             } else if is_const(ops, b) {
-                x[i] * y[0]
+                imul(x[i], y[0])
             } else {
                 let mut acc = D::start();
                 for m in 0..=i {
@@ -348,9 +349,9 @@ fn deriv_step<D: IntervalDot>(
             Op::Neg(a) => dc[i] = -d(a)[i],
             Op::Mul(a, b) => {
                 dc[i] = if is_const(ops, a) {
-                    ser(a)[0] * d(b)[i]
+                    imul(ser(a)[0], d(b)[i])
                 } else if is_const(ops, b) {
-                    d(a)[i] * ser(b)[0]
+                    imul(d(a)[i], ser(b)[0])
                 } else {
                     let (x, y, dx, dy) = (ser(a), ser(b), d(a), d(b));
                     let mut acc = D::start();
