@@ -8,7 +8,7 @@
 //! the results are the same intervals `inari` gives (tested on random data below).
 //!
 //! With AVX-512, inari 2 rounds in the instruction instead; for bounded operands [`average`] and
-//! [`dot_point`] then take inari's sums and [`imul`](super::imul)'s branch-free product (the same
+//! [`dot_point`] then take inari's sums and [`imul`]'s branch-free product (the same
 //! intervals, faster), and the error-free transforms serve the other cases.
 //!
 //! The a-posteriori accumulator for long sums of interval products is [`DotAcc`](super::dot::DotAcc).
