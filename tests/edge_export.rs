@@ -7,9 +7,8 @@
 mod common;
 
 use common::scenes::{scene, scene_path};
-use ssitrace::edge::{
-    edge_from_branch, edge_from_certified, edges_of_shells, BSpline, Edge, EdgeError,
-};
+use common::spline::{dist3, dist_to_spline, samples};
+use ssitrace::edge::{edge_from_branch, edge_from_certified, edges_of_shells, Edge, EdgeError};
 use ssitrace::io::edge_json::{edges_document, EDGE_FORMAT};
 use ssitrace::io::scene::{Scene, ShellScene};
 use ssitrace::pipeline::RunOptions;
@@ -26,47 +25,6 @@ fn run(s: &Scene, method: Method) -> SurfaceIntersection {
         ..RunOptions::from_scene(s).options()
     };
     intersect(p, q, &opts).expect("runs")
-}
-
-fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-/// Dense parameters over a spline's range: `per_span` in every knot span.
-fn samples<const D: usize>(b: &BSpline<D>, per_span: usize) -> Vec<f64> {
-    let mut ks: Vec<f64> = b.knots.clone();
-    ks.dedup();
-    let mut out = Vec::new();
-    for w in ks.windows(2) {
-        for m in 0..per_span {
-            out.push(w[0] + (w[1] - w[0]) * m as f64 / per_span as f64);
-        }
-    }
-    out.push(*ks.last().unwrap());
-    out
-}
-
-/// The distance from `x` to the spline: the nearest dense sample, refined by golden-section
-/// search on the neighbouring parameters.
-fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
-    let (k, _) = pts
-        .iter()
-        .enumerate()
-        .map(|(k, p)| (k, dist3(p, x)))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .unwrap();
-    let (mut lo, mut hi) = (ss[k.saturating_sub(1)], ss[(k + 1).min(ss.len() - 1)]);
-    let f = |s: f64| dist3(&b.eval(s), x);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..100 {
-        let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if f(a) < f(c) {
-            hi = c;
-        } else {
-            lo = a;
-        }
-    }
-    f(0.5 * (lo + hi)).min(dist3(&pts[k], x))
 }
 
 /// Distance from `x` to the circle `x = 1.375`, `y² + z² = 141/256`.

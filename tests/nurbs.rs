@@ -4,6 +4,8 @@
 
 mod common;
 
+use common::surfaces::UNIT_CIRCLE_NET;
+
 use inari::Interval;
 use ssitrace::error::{Error, InputProblem};
 use ssitrace::geometry::nurbs::NurbsSurface;
@@ -181,17 +183,7 @@ fn sphere() -> NurbsSurface {
     let s = Interval::try_from((r.next_down(), r.next_up())).unwrap();
     let half = pt(0.5);
     assert!((s * s).inf() <= 0.5 && 0.5 <= (s * s).sup() && half.inf() == 0.5);
-    let circle = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ];
+    let circle = UNIT_CIRCLE_NET;
     let meridian = [(0.0, -1.0), (1.0, -1.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
     let wc = |i: usize| if i % 2 == 1 { s } else { pt(1.0) };
     let mut points = Vec::new();

@@ -13,8 +13,12 @@
 //! upper bounds (the distance to one particular point of the other curve), so the checks are
 //! conservative. Control-point counts are printed.
 
+mod common;
+
+use common::spline::{dist3, dist_to_spline, samples};
+use common::surfaces::UNIT_CIRCLE_NET;
 use serde_json::{json, Value};
-use ssitrace::edge::{edges_of_shells, BSpline, Edge};
+use ssitrace::edge::{edges_of_shells, Edge};
 use ssitrace::io::scene::ShellScene;
 use ssitrace::march::branch::EndReason;
 use ssitrace::pipeline::{run_shells, RunOptions, ShellRunReport};
@@ -42,17 +46,7 @@ fn half_sqrt2() -> Value {
 /// move off the coordinate axes; the turned coordinates are intervals of width 2e-15 round
 /// the `f64` products, which enclose the exact ones.
 fn cylinder(axis: usize, r: f64, len: f64, turn: Option<[f64; 2]>) -> Value {
-    let circle = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ];
+    let circle = UNIT_CIRCLE_NET;
     let coord = |v: f64| match turn {
         None => json!(r * v),
         Some(_) => iv(r * v - 1e-15, r * v + 1e-15),
@@ -92,45 +86,6 @@ fn run(scene: Value) -> (ShellScene, ShellRunReport) {
     let opts = RunOptions::from_scene_options(&scene.options);
     let report = run_shells(&scene, &opts).expect("runs");
     (scene, report)
-}
-
-/// Dense parameters over a spline's range: `per_span` in every knot span.
-fn samples<const D: usize>(b: &BSpline<D>, per_span: usize) -> Vec<f64> {
-    let mut ks: Vec<f64> = b.knots.clone();
-    ks.dedup();
-    let mut out = Vec::new();
-    for w in ks.windows(2) {
-        out.extend((0..per_span).map(|m| w[0] + (w[1] - w[0]) * m as f64 / per_span as f64));
-    }
-    out.push(*ks.last().unwrap());
-    out
-}
-
-fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-/// The distance from `x` to the spline: the nearest dense sample, refined by golden-section
-/// search between its neighbours.
-fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
-    let (k, best) = pts
-        .iter()
-        .map(|p| dist3(p, x))
-        .enumerate()
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .unwrap();
-    let (mut lo, mut hi) = (ss[k.saturating_sub(1)], ss[(k + 1).min(ss.len() - 1)]);
-    let f = |s: f64| dist3(&b.eval(s), x);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..100 {
-        let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if f(a) < f(c) {
-            hi = c;
-        } else {
-            lo = a;
-        }
-    }
-    f(0.5 * (lo + hi)).min(best)
 }
 
 /// Checks the edge `e` both ways against a closed-form curve: `off(x)` bounds the distance
@@ -417,17 +372,7 @@ fn four_quarter_cylinders_against_an_oblique_plane_are_one_closed_ellipse() {
     // Four faces, each a quarter of x² + y² = 1, z ∈ [−1, 1] (one rational Bézier span), sharing
     // their edges; the plane z = 0.3·x + 0.2·y + 0.1 cuts the ellipse
     // (cos θ, sin θ, 0.3·cos θ + 0.2·sin θ + 0.1): one closed curve of four parts, not four.
-    let c = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ];
+    let c = UNIT_CIRCLE_NET;
     let quarter = |k: usize| {
         let mut points = Vec::new();
         let mut weights = Vec::new();

@@ -13,4 +13,5 @@ pub(crate) mod odes;
 pub(crate) mod oracle;
 pub(crate) mod rng;
 pub(crate) mod scenes;
+pub(crate) mod spline;
 pub(crate) mod surfaces;

@@ -57,3 +57,18 @@ pub(crate) fn fig8() -> (Analytic, Analytic) {
         }),
     )
 }
+
+/// The standard nine-point control polygon of the unit circle as four rational quadratic
+/// quarters (the square's corners carry the weight √2/2, the rest 1), starting and ending at
+/// `(1, 0)`.
+pub(crate) const UNIT_CIRCLE_NET: [(f64, f64); 9] = [
+    (1.0, 0.0),
+    (1.0, 1.0),
+    (0.0, 1.0),
+    (-1.0, 1.0),
+    (-1.0, 0.0),
+    (-1.0, -1.0),
+    (0.0, -1.0),
+    (1.0, -1.0),
+    (1.0, 0.0),
+];

@@ -1,0 +1,44 @@
+//! Sampling a certified B-spline edge and measuring distances to it, for the tests that check
+//! an edge against a closed-form curve both ways.
+
+use ssitrace::edge::BSpline;
+
+/// The Euclidean distance between two points.
+pub(crate) fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Dense parameters over a spline's range: `per_span` in every knot span.
+pub(crate) fn samples<const D: usize>(b: &BSpline<D>, per_span: usize) -> Vec<f64> {
+    let mut ks: Vec<f64> = b.knots.clone();
+    ks.dedup();
+    let mut out = Vec::new();
+    for w in ks.windows(2) {
+        out.extend((0..per_span).map(|m| w[0] + (w[1] - w[0]) * m as f64 / per_span as f64));
+    }
+    out.push(*ks.last().unwrap());
+    out
+}
+
+/// The distance from `x` to the spline: the nearest of the dense samples `pts` (at the
+/// parameters `ss`), refined by golden-section search between its neighbours.
+pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
+    let (k, best) = pts
+        .iter()
+        .map(|p| dist3(p, x))
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap();
+    let (mut lo, mut hi) = (ss[k.saturating_sub(1)], ss[(k + 1).min(ss.len() - 1)]);
+    let f = |s: f64| dist3(&b.eval(s), x);
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..100 {
+        let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        if f(a) < f(c) {
+            hi = c;
+        } else {
+            lo = a;
+        }
+    }
+    f(0.5 * (lo + hi)).min(best)
+}
