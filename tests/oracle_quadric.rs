@@ -431,3 +431,16 @@ fn near_crossings_on_a_torus_are_traced_once_each() {
     assert_eq!(fig.unproven_ends, 0, "{:?}", fig.notes);
     assert_eq!(fig.branches, 4, "two curves per pair");
 }
+
+/// Tiny loops of a torus's outer side against a plane 1e-8 from tangent (radius about 1e-3,
+/// normals 1e-4 to 7e-4 apart): the march used to crawl at 1e-7 a step (the cap of the
+/// approach to a singular point, a length, was taken for the step angle and shrunk again by the
+/// loop's radius) and stopped at the point limit in five pieces a third of the way round. Each
+/// is now one closed loop, certified closed.
+#[test]
+fn tiny_near_tangent_loops_on_a_torus_close_once() {
+    let fig = run([2_000_111, 2_000_591].into_iter());
+    assert_clean(&fig);
+    assert_eq!(fig.unproven_ends, 0, "{:?}", fig.notes);
+    assert_eq!(fig.branches, 2, "one loop per pair");
+}

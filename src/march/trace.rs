@@ -192,27 +192,68 @@ fn predict(
     }
 }
 
-/// The step length `L` for the next prediction, and whether the march is heading into a
-/// singular point. Near one (sine small and decreasing) the step aims at most half way to where
-/// the sine would vanish at its current rate of decrease: a geometric approach.
-fn step_limit(prev: Option<&Node>, cur: &Node, opts: &MarchOptions) -> (f64, bool) {
-    let mut step = opts.step;
-    let mut approaching = false;
+/// The step for the next prediction: `L` (an angle on tight curves, see [`predict`]), a cap
+/// on the predicted arc length, and whether the march is heading into a singular point.
+#[derive(Clone, Copy)]
+struct StepLimit {
+    step: f64,
+    cap: f64,
+    approaching: bool,
+}
+
+impl StepLimit {
+    fn halved(self) -> Self {
+        StepLimit {
+            step: 0.5 * self.step,
+            cap: 0.5 * self.cap,
+            ..self
+        }
+    }
+}
+
+/// The step for the next prediction. Near a singular point (sine small and decreasing) the arc
+/// is capped at half the distance to where the sine would vanish at its current rate of
+/// decrease: a geometric approach. The cap is a length, applied to the predicted arc: on a tight
+/// curve `L` is an angle (the arc is `L·R`), and taking the cap for `L` itself would shrink the
+/// step twice over (on a tiny loop of nearly tangent surfaces, radius 1e-3 and a sine of 1e-4,
+/// the march crawled at 1e-7 a step and stopped at the point limit a third of the way round).
+fn step_limit(prev: Option<&Node>, cur: &Node, opts: &MarchOptions) -> StepLimit {
+    let mut limit = StepLimit {
+        step: opts.step,
+        cap: f64::INFINITY,
+        approaching: false,
+    };
     if let Some(pv) = prev {
         let chord = (cur.frame.xyz - pv.frame.xyz).norm();
         let rate = (pv.frame.sine - cur.frame.sine) / chord;
         if cur.frame.sine < opts.watch_sine && rate > 0.0 {
-            step = step.min(0.5 * cur.frame.sine / rate);
+            limit.cap = 0.5 * cur.frame.sine / rate;
             // At this rate the sine vanishes within a hundred chords: heading into a
             // singular point (on a tiny loop the sine is small but constant, its rate
             // rounding noise, and the predicted zero far away).
-            approaching = cur.frame.sine < 100.0 * rate * chord;
+            limit.approaching = cur.frame.sine < 100.0 * rate * chord;
         }
     }
-    (step, approaching)
+    limit
 }
 
-/// Corrects the prediction `first` (made with the step `step`) onto the curve by Newton in the
+/// [`predict`] with the step's arc capped at `limit.cap` (the arc is proportional to `L`).
+fn predict_capped(
+    prev: Option<&Node>,
+    cur: &Node,
+    opts: &MarchOptions,
+    limit: StepLimit,
+) -> StepPrediction {
+    let pred = predict(prev, cur, opts, limit.step, limit.approaching);
+    if pred.arc > limit.cap && pred.arc.is_finite() {
+        let step = limit.step * limit.cap / pred.arc;
+        predict(prev, cur, opts, step, limit.approaching)
+    } else {
+        pred
+    }
+}
+
+/// Corrects the prediction `first` (made within `limit`) onto the curve by Newton in the
 /// plane through the predicted point, halving the step up to three times if Newton fails or
 /// jumps too far. Returns the refined point, if any, and the number of retries.
 fn correct<S1, S2>(
@@ -222,7 +263,7 @@ fn correct<S1, S2>(
     prev: Option<&Node>,
     cur: &Node,
     first: StepPrediction,
-    (mut step, approaching): (f64, bool),
+    mut limit: StepLimit,
 ) -> (Option<Refined>, usize)
 where
     S1: ParametricSurface + ?Sized,
@@ -232,8 +273,8 @@ where
     let mut retried = 0;
     for tries in 0..4 {
         if tries > 0 {
-            step *= 0.5;
-            attempt = predict(prev, cur, opts, step, approaching);
+            limit = limit.halved();
+            attempt = predict_capped(prev, cur, opts, limit);
             retried += 1;
         }
         let guess = predict_parameters(p, q, &cur.x, &attempt.point);
@@ -304,7 +345,7 @@ where
             return half;
         }
         let limit = step_limit(prev.as_ref(), &cur, opts);
-        let pred = predict(prev.as_ref(), &cur, opts, limit.0, limit.1);
+        let pred = predict_capped(prev.as_ref(), &cur, opts, limit);
 
         if let Some((target, prior)) = closure.filter(|_| half.nodes.len() >= 2) {
             let closed = closing_turning(
