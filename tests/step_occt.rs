@@ -14,6 +14,9 @@
 //! file is also read by OCCT and its edges checked the same way; otherwise that part is skipped
 //! with a note.
 
+mod common;
+
+use common::spline::{dist_to_spline, samples};
 use ssitrace::edge::{edges_of_shells, BSpline};
 use ssitrace::io::step::write::read_step_curves;
 use ssitrace::pipeline::{
@@ -316,7 +319,7 @@ fn sphere_against_cube_is_eight_closed_curves_across_faces() {
             worst <= tol + 1e-12,
             "{label}: a point {worst:e} off the corner's curve"
         );
-        let ss = spline_samples(c, 400);
+        let ss = samples(c, 400);
         let sp: Vec<[f64; 3]> = ss.iter().map(|&s| c.eval(s)).collect();
         let back = corner
             .points(3000)
@@ -407,43 +410,6 @@ impl Corner {
             .map(|(i, phi)| self.arc_point(i, phi))
             .collect()
     }
-}
-
-/// `per_span` parameters in every knot span of `c`, and its last knot.
-fn spline_samples(c: &BSpline<3>, per_span: usize) -> Vec<f64> {
-    let mut ks = c.knots.clone();
-    ks.dedup();
-    let mut out = Vec::new();
-    for w in ks.windows(2) {
-        out.extend((0..per_span).map(|m| w[0] + (w[1] - w[0]) * m as f64 / per_span as f64));
-    }
-    out.push(*ks.last().unwrap());
-    out
-}
-
-/// The distance from `x` to the spline: the nearest of the samples `pts` (at `ss`), refined by
-/// golden-section search between its neighbours.
-fn dist_to_spline(c: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
-    let d = |p: &[f64; 3]| {
-        ((p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) + (p[2] - x[2]).powi(2)).sqrt()
-    };
-    let (k, best) = pts
-        .iter()
-        .map(d)
-        .enumerate()
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .unwrap();
-    let (mut lo, mut hi) = (ss[k.saturating_sub(1)], ss[(k + 1).min(ss.len() - 1)]);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..100 {
-        let (a, b) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if d(&c.eval(a)) < d(&c.eval(b)) {
-            hi = b;
-        } else {
-            lo = a;
-        }
-    }
-    d(&c.eval(0.5 * (lo + hi))).min(best)
 }
 
 /// The exact NURBS forms of the elementary surfaces lie on their closed forms: points of every

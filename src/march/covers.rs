@@ -96,6 +96,22 @@ mod tests {
     use crate::geometry::Domain;
     use crate::march::branch::{BranchStatus, CurvePoint, EndReason};
 
+    /// An open branch through the given points of the plane z = 0 (parameters = x, y).
+    fn branch_through(points: impl Iterator<Item = [f64; 2]>) -> Branch {
+        Branch {
+            id: 0,
+            status: BranchStatus::Open,
+            ends: [EndReason::PointLimit, EndReason::PointLimit],
+            points: points
+                .map(|[x, y]| CurvePoint {
+                    p: [x, y],
+                    q: [x, y],
+                    xyz: [x, y, 0.0],
+                })
+                .collect(),
+        }
+    }
+
     #[test]
     fn covers_holds_the_curve_but_not_a_circle_0_002_away() {
         // The plane z = 0 as P (parameters = x, y); a traced circle of radius 0.3 with points
@@ -103,22 +119,7 @@ mod tests {
         let d = Domain::new(-1.0, 1.0, -1.0, 1.0);
         let plane = AnalyticSurface::new(d, |u: Jet2, v: Jet2| [u, v, Jet2::constant(0.0)]);
         let at = |r: f64, a: f64| [r * a.cos(), r * a.sin()];
-        let points: Vec<CurvePoint> = (0..=100)
-            .map(|k| {
-                let [x, y] = at(0.3, 0.05 * k as f64);
-                CurvePoint {
-                    p: [x, y],
-                    q: [x, y],
-                    xyz: [x, y, 0.0],
-                }
-            })
-            .collect();
-        let branch = Branch {
-            id: 0,
-            status: BranchStatus::Open,
-            ends: [EndReason::PointLimit, EndReason::PointLimit],
-            points,
-        };
+        let branch = branch_through((0..=100).map(|k| at(0.3, 0.05 * k as f64)));
         let scales = [2.0; 4];
         // Points of the circle itself between the traced points (worst: chord midpoints).
         for k in 0..100 {
@@ -145,20 +146,11 @@ mod tests {
         // bends 0.025, 0.010, 0.0005 and then a longer, turning last step.)
         let d = Domain::new(-2.0, 2.0, -2.0, 2.0);
         let plane = AnalyticSurface::new(d, |u: Jet2, v: Jet2| [u, v, Jet2::constant(0.0)]);
-        let points: Vec<CurvePoint> = [-1.5f64, -1.0, -0.5, 0.0, 0.5]
-            .iter()
-            .map(|&x| CurvePoint {
-                p: [x, x * x * x],
-                q: [x, x * x * x],
-                xyz: [x, x * x * x, 0.0],
-            })
-            .collect();
-        let branch = Branch {
-            id: 0,
-            status: BranchStatus::Open,
-            ends: [EndReason::PointLimit, EndReason::PointLimit],
-            points,
-        };
+        let branch = branch_through(
+            [-1.5f64, -1.0, -0.5, 0.0, 0.5]
+                .iter()
+                .map(|&x| [x, x * x * x]),
+        );
         let scales = [4.0; 4];
         for k in 1..50 {
             let x = 0.5 * k as f64 / 50.0;
