@@ -228,10 +228,14 @@ fn random_pairs_fixed_seeds_3() {
 /// branches for two curves; its chain ends `close_branches` at the jump; 1 000 630: the chain
 /// follows the true curve away from the marched points and ends unproven; 1 001 128: the near
 /// crossing looks singular). The jumping branch is now dropped as a duplicate (its marched
-/// points all lie in the other branches' certified tubes), and every arc is traced once.
+/// points all lie in the other branches' certified tubes), and every arc is traced once. Seeds
+/// 1 105 729 and 1 156 093 (this stop's soak): the jumping branch's chain lost its marched path,
+/// or two jumping branches left the arm between their chains' ends traced by nobody; the stretch
+/// is traced again with a finer step, from the uncovered marched points and from where the
+/// chains stopped (`solve/repair.rs`), and the copies drop.
 #[test]
 fn arcs_traced_twice_at_near_crossings_are_reported_once() {
-    let fig = run([1_000_188, 1_000_630, 1_001_128].into_iter());
+    let fig = run([1_000_188, 1_000_630, 1_001_128, 1_105_729, 1_156_093].into_iter());
     assert_clean(&fig);
 }
 

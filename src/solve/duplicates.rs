@@ -3,12 +3,13 @@
 //! another branch already traced. The cover chain of such a branch stops at the jump, or follows
 //! the true curve away from the marched points, and what it certified lies on other branches.
 //!
-//! A branch is dropped as a **duplicate** when its certificate stops short at an end (it is not a
-//! proven boundary end or a closed loop: `close_branches` at the jump, `singular` where the close
-//! curves look like a singular point, `unproven` where the chain left the marched points) and
-//! every one of its marched points lies in a tube piece of another kept branch's cover chain
-//! (the piece's reported curve ± its proven parameter radius, plus the marcher's Newton
-//! tolerance): then its whole marched path, and with it everything its certificate covers, is
+//! A branch is dropped as a **duplicate** when every one of its marched points lies in a tube
+//! piece of another kept branch's cover chain (the piece's reported curve ± its proven parameter
+//! radius, plus the marcher's Newton tolerance). Usually its certificate stops short at an end
+//! (`close_branches` at the jump, `singular` where the close curves look like a singular point,
+//! `unproven` where the chain left the marched points); after a stretch is traced again
+//! ([`super::repair`]) it may also be a whole copy of a branch traced with the finer step. Then
+//! its whole marched path, and with it everything its certificate covers, is
 //! certified by other branches, so no component loses its only trace. Dropping claims nothing;
 //! the test is in `f64` because it only decides what is reported twice. (Two distinct curves
 //! within the certified tolerance of each other along a whole branch would be taken for one:
@@ -19,8 +20,8 @@ use crate::geometry::surface::pair_widths;
 use crate::geometry::RationalBezierPatch;
 use crate::march::branch::Branch;
 
-/// Which branches are duplicates (see the module documentation), in order: a branch is tested
-/// against the branches not dropped before it and all after it.
+/// Which branches are duplicates (see the module documentation): a branch is tested against the
+/// branches not dropped before it and all after it, those whose certificate stops short first.
 pub(crate) fn duplicate_branches(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -30,17 +31,18 @@ pub(crate) fn duplicate_branches(
 ) -> Vec<bool> {
     let scales = pair_widths(&p.domain(), &q.domain());
     let mut dropped = vec![false; marched.len()];
-    for i in 0..marched.len() {
-        // Only a chain that stopped short at some end (a jump, or where it left the marched
-        // points) can have marched past what it certified onto another branch.
-        let jumped = certified[i].is_some_and(|c| {
+    // Branches whose certificate stops short are tested first (then the complete ones, each
+    // against what is left), so a whole certified copy is kept in preference to a partial one.
+    let complete = |i: usize| {
+        certified[i].is_some_and(|c| {
             c.ends
                 .iter()
-                .any(|e| !matches!(e, CertifiedEnd::Boundary { .. } | CertifiedEnd::ClosedLoop))
-        });
-        if !jumped {
-            continue;
-        }
+                .all(|e| matches!(e, CertifiedEnd::Boundary { .. } | CertifiedEnd::ClosedLoop))
+        })
+    };
+    let mut order: Vec<usize> = (0..marched.len()).collect();
+    order.sort_by_key(|&i| complete(i));
+    for i in order {
         let others: Vec<&TubePiece> = (0..marched.len())
             .filter(|&j| j != i && !dropped[j])
             .filter_map(|j| certified[j])

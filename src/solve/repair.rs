@@ -10,20 +10,24 @@
 //! nearly tangent plane, in the quadric oracle).
 //!
 //! **The rule.** A branch is *suspect* when the marcher ended it cleanly (on boundaries, or closed)
-//! but its certificate stops short at some end as if at a singular point or at branches too close
-//! to resolve (a budget, a time limit or another unproven end is not a jump). A run of at least two of its marched points that
+//! but its certificate stops short at some end as if at a singular point, at branches too close
+//! to resolve, or where the chain lost its marched path (a budget, a time limit or another
+//! unproven end is not a jump). A run of at least two of its marched points that
 //! lie in no tube piece of any certified branch (the same test as for duplicates) is *uncovered*;
 //! the middle point of each uncovered run is a start for a new trace with the step divided by 8
-//! (then by 64 in a second round, if uncovered runs remain). The new branches are certified like
+//! (then by 64 in a second round, if uncovered runs remain), and so is the centre of the box where
+//! its chain stopped: the chain was still on its own curve there, and the arm the marcher skipped
+//! goes on from it with no marched point on it. The new branches are certified like
 //! the others; the duplicate rule ([`super::duplicates`]) then drops the suspects whose marched
 //! points are all certified by other branches. Nothing here claims anything: it only decides
 //! what to trace again, so it is in `f64`.
 
 use super::duplicates::in_piece;
-use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
+use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece, LEFT_THE_MARCH};
 use crate::geometry::surface::pair_widths;
 use crate::geometry::RationalBezierPatch;
 use crate::march::branch::{Branch, BranchStatus, EndReason};
+use inari::Interval;
 
 /// Uncovered runs shorter than this many marched points are not traced again (the last point of
 /// an arc ending at a node lies at the node, beyond the chain's proven approach to it).
@@ -46,9 +50,26 @@ pub(crate) fn uncovered_starts(
         .filter(|t| t.along.is_some())
         .collect();
     let mut starts = Vec::new();
-    for (b, c) in marched.iter().zip(certified) {
+    for (i, (b, c)) in marched.iter().zip(certified).enumerate() {
         if !suspect(b, *c) {
             continue;
+        }
+        // Where the chain stopped, it was still on its own curve: the arm the marcher skipped
+        // goes on from there, and no marched point lies on it (unless another branch's tube
+        // already holds that point: traced again in an earlier round).
+        let others: Vec<&TubePiece> = certified
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| *j != i)
+            .filter_map(|(_, c)| *c)
+            .flat_map(|c| &c.tubes)
+            .filter(|t| t.along.is_some())
+            .collect();
+        for near in c.iter().flat_map(|c| &c.ends).filter_map(jump_box) {
+            let x: [f64; 4] = std::array::from_fn(|k| near[k].mid());
+            if !others.iter().any(|t| in_piece(t, &x, &scales, slack)) {
+                starts.push(x);
+            }
         }
         let covered: Vec<bool> = b
             .points
@@ -84,15 +105,16 @@ fn suspect(b: &Branch, c: Option<&CertifiedBranch>) -> bool {
         || b.ends
             .iter()
             .all(|e| matches!(e, EndReason::Boundary { .. } | EndReason::ClosedLoop));
-    // A jump looks like a singular point or like two branches too close to resolve; an
-    // `unproven` end is a budget or a time limit, or a failure that a finer step does not mend.
-    let short = c.is_some_and(|c| {
-        c.ends.iter().any(|e| {
-            matches!(
-                e,
-                CertifiedEnd::Singular { .. } | CertifiedEnd::CloseBranches { .. }
-            )
-        })
-    });
-    clean && short
+    clean && c.is_some_and(|c| c.ends.iter().any(|e| jump_box(e).is_some()))
+}
+
+/// The box where a chain stopped as at a marcher jump: a singular box, two branches too close
+/// to resolve, or a chain that lost its marched path. Another `unproven` end is a budget or a
+/// time limit, or a failure that a finer step does not mend.
+fn jump_box(e: &CertifiedEnd) -> Option<&[Interval; 4]> {
+    match e {
+        CertifiedEnd::Singular { near } | CertifiedEnd::CloseBranches { near, .. } => Some(near),
+        CertifiedEnd::Unproven { reason, near } if reason == LEFT_THE_MARCH => Some(near),
+        _ => None,
+    }
 }

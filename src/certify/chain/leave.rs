@@ -25,6 +25,11 @@ use crate::certify::curve::CertifiedEnd;
 use crate::geometry::surface::pair_bounds;
 use inari::Interval;
 
+/// The reason of an unproven end where a half lost its marched path (the marcher jumped to
+/// another curve there) and the curve it follows leaves the domain.
+pub(crate) const LEFT_THE_MARCH: &str =
+    "the chain left the marched points and its curve leaves the domain";
+
 /// Slices of a link tested by [`Walker::dips_out`].
 const DIP_SLICES: usize = 32;
 
@@ -69,7 +74,7 @@ impl Walker<'_> {
             lo <= target.x[k] && target.x[k] <= hi
         });
         inside.then(|| CertifiedEnd::Unproven {
-            reason: "the chain left the marched points and its curve leaves the domain".into(),
+            reason: LEFT_THE_MARCH.into(),
             near: *e,
         })
     }

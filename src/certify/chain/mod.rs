@@ -46,6 +46,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 mod leave;
+pub(crate) use leave::LEFT_THE_MARCH;
 mod output;
 mod walker;
 
