@@ -109,6 +109,26 @@ impl TubePiece {
         }
         y
     }
+
+    /// Whether the parameters `x` lie in a cover-chain piece (one with an along parameter): the
+    /// along coordinate in the piece's range and the others within the proven radius (plus
+    /// `slack` scaled by the domain widths `scales`) of the reported curve there. An `f64` test:
+    /// it decides what is reported or traced again, it proves nothing.
+    pub(crate) fn holds(&self, x: &[f64; 4], scales: &[f64; 4], slack: f64) -> bool {
+        let Some(along) = self.along else {
+            return false;
+        };
+        let j = along.index;
+        let start = self.eval(0.0)[j];
+        let tau = (x[j] - start) * self.coeffs.get(1).map_or(1.0, |c| c[j].signum());
+        if !(0.0..=self.h).contains(&tau) {
+            return false;
+        }
+        let y = self.eval(tau);
+        (0..4)
+            .filter(|&k| k != j)
+            .all(|k| (x[k] - y[k]).abs() <= self.radius_param + slack * scales[k])
+    }
 }
 
 /// Why one end of a certified branch ends. Every variant is itself proven, except
@@ -157,6 +177,17 @@ impl CertifiedEnd {
             CertifiedEnd::CloseBranches { .. } => "close_branches",
             CertifiedEnd::Unproven { .. } => "unproven",
         }
+    }
+}
+
+impl CertifiedEnd {
+    /// Whether the certificate reaches the curve's true end here: a proven boundary end or a
+    /// closed loop (a singular box, close branches or an unproven end stop short of it).
+    pub fn reaches_true_end(&self) -> bool {
+        matches!(
+            self,
+            CertifiedEnd::Boundary { .. } | CertifiedEnd::ClosedLoop
+        )
     }
 }
 
@@ -215,5 +246,44 @@ impl CertifiedBranch {
     /// along coordinate of each tube piece, see [`TubePiece::along`]).
     pub fn arc_length_proven(&self) -> bool {
         self.tubes.iter().all(|t| t.along.is_none())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn piece() -> TubePiece {
+        // σ = 0.2 + τ, t = 0.5 + 0.1τ, u = σ, v = t over τ ∈ [0, 0.3].
+        TubePiece {
+            s0: 0.0,
+            direction: 1.0,
+            h: 0.3,
+            coeffs: vec![[0.2, 0.5, 0.2, 0.5], [1.0, 0.1, 1.0, 0.1]],
+            radius_param: 1e-9,
+            radius_xyz: 1e-9,
+            s0_error: 0.0,
+            along: Some(AlongParameter {
+                index: 0,
+                arc_length: 0.3,
+            }),
+        }
+    }
+
+    #[test]
+    fn points_in_and_out_of_a_piece() {
+        let (t, s) = (piece(), [1.0; 4]);
+        assert!(t.holds(&[0.3, 0.51, 0.3, 0.51], &s, 0.0));
+        assert!(t.holds(&[0.3, 0.51 + 5e-10, 0.3, 0.51], &s, 0.0));
+        assert!(!t.holds(&[0.3, 0.51 + 5e-9, 0.3, 0.51], &s, 0.0));
+        assert!(t.holds(&[0.3, 0.51 + 5e-9, 0.3, 0.51], &s, 1e-8));
+        // Outside the piece's range of σ.
+        assert!(!t.holds(&[0.6, 0.54, 0.6, 0.54], &s, 0.0));
+        assert!(!t.holds(&[0.1, 0.49, 0.1, 0.49], &s, 0.0));
+        // A piece walked the other way (σ decreasing).
+        let mut back = piece();
+        back.coeffs = vec![[0.5, 0.53, 0.5, 0.53], [-1.0, -0.1, -1.0, -0.1]];
+        assert!(back.holds(&[0.3, 0.51, 0.3, 0.51], &s, 0.0));
+        assert!(!back.holds(&[0.6, 0.54, 0.6, 0.54], &s, 0.0));
     }
 }

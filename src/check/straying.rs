@@ -270,8 +270,8 @@ impl Located<'_> {
                 };
                 let chord = dist3(&pts[i].xyz, &pts[inner].xyz);
                 let reach = chord + chain.max_h + slacks[i];
-                let end0 = !covers(&own.ends[0]) && (s - s_min).abs() <= reach;
-                let end1 = !covers(&own.ends[1]) && (s_max - s).abs() <= reach;
+                let end0 = !own.ends[0].reaches_true_end() && (s - s_min).abs() <= reach;
+                let end1 = !own.ends[1].reaches_true_end() && (s_max - s).abs() <= reach;
                 end0 || end1
             };
             let first = run.indices[0];
@@ -461,11 +461,6 @@ fn nearest_end(s: f64, s_min: f64, s_max: f64) -> [f64; 2] {
     } else {
         [s.min(s_max), s_max]
     }
-}
-
-/// Whether a certified end covers the branch up to its true end.
-fn covers(e: &CertifiedEnd) -> bool {
-    matches!(e, CertifiedEnd::Boundary { .. } | CertifiedEnd::ClosedLoop)
 }
 
 /// Where a marched point is relative to a certified chain.

@@ -8,7 +8,7 @@
 //! radius, plus the marcher's Newton tolerance). Usually its certificate stops short at an end
 //! (`close_branches` at the jump, `singular` where the close curves look like a singular point,
 //! `unproven` where the chain left the marched points); after a stretch is traced again
-//! ([`super::repair`]) it may also be a whole copy of a branch traced with the finer step. Then
+//! (`solve/repair.rs`) it may also be a whole copy of a branch traced with the finer step. Then
 //! its whole marched path, and with it everything its certificate covers, is
 //! certified by other branches, so no component loses its only trace. Dropping claims nothing;
 //! the test is in `f64` because it only decides what is reported twice. (Two distinct curves
@@ -33,13 +33,8 @@ pub(crate) fn duplicate_branches(
     let mut dropped = vec![false; marched.len()];
     // Branches whose certificate stops short are tested first (then the complete ones, each
     // against what is left), so a whole certified copy is kept in preference to a partial one.
-    let complete = |i: usize| {
-        certified[i].is_some_and(|c| {
-            c.ends
-                .iter()
-                .all(|e| matches!(e, CertifiedEnd::Boundary { .. } | CertifiedEnd::ClosedLoop))
-        })
-    };
+    let complete =
+        |i: usize| certified[i].is_some_and(|c| c.ends.iter().all(CertifiedEnd::reaches_true_end));
     let mut order: Vec<usize> = (0..marched.len()).collect();
     order.sort_by_key(|&i| complete(i));
     for i in order {
@@ -54,67 +49,8 @@ pub(crate) fn duplicate_branches(
                 let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
                 others
                     .iter()
-                    .any(|t| in_piece(t, &x, &scales, newton_tolerance))
+                    .any(|t| t.holds(&x, &scales, newton_tolerance))
             });
     }
     dropped
-}
-
-/// Whether the parameters `x` lie in the tube piece: its along coordinate in the piece's range
-/// and the others within the proven radius (plus `slack` scaled by the domain widths) of the
-/// reported curve there.
-pub(super) fn in_piece(t: &TubePiece, x: &[f64; 4], scales: &[f64; 4], slack: f64) -> bool {
-    let Some(along) = t.along else {
-        return false;
-    };
-    let j = along.index;
-    let start = t.eval(0.0)[j];
-    let tau = (x[j] - start) * t.coeffs.get(1).map_or(1.0, |c| c[j].signum());
-    if !(0.0..=t.h).contains(&tau) {
-        return false;
-    }
-    let y = t.eval(tau);
-    (0..4)
-        .filter(|&k| k != j)
-        .all(|k| (x[k] - y[k]).abs() <= t.radius_param + slack * scales[k])
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::certify::AlongParameter;
-
-    fn piece() -> TubePiece {
-        // σ = 0.2 + τ, t = 0.5 + 0.1τ, u = σ, v = t over τ ∈ [0, 0.3].
-        TubePiece {
-            s0: 0.0,
-            direction: 1.0,
-            h: 0.3,
-            coeffs: vec![[0.2, 0.5, 0.2, 0.5], [1.0, 0.1, 1.0, 0.1]],
-            radius_param: 1e-9,
-            radius_xyz: 1e-9,
-            s0_error: 0.0,
-            along: Some(AlongParameter {
-                index: 0,
-                arc_length: 0.3,
-            }),
-        }
-    }
-
-    #[test]
-    fn points_in_and_out_of_a_piece() {
-        let (t, s) = (piece(), [1.0; 4]);
-        assert!(in_piece(&t, &[0.3, 0.51, 0.3, 0.51], &s, 0.0));
-        assert!(in_piece(&t, &[0.3, 0.51 + 5e-10, 0.3, 0.51], &s, 0.0));
-        assert!(!in_piece(&t, &[0.3, 0.51 + 5e-9, 0.3, 0.51], &s, 0.0));
-        assert!(in_piece(&t, &[0.3, 0.51 + 5e-9, 0.3, 0.51], &s, 1e-8));
-        // Outside the piece's range of σ.
-        assert!(!in_piece(&t, &[0.6, 0.54, 0.6, 0.54], &s, 0.0));
-        assert!(!in_piece(&t, &[0.1, 0.49, 0.1, 0.49], &s, 0.0));
-        // A piece walked the other way (σ decreasing).
-        let mut back = piece();
-        back.coeffs = vec![[0.5, 0.53, 0.5, 0.53], [-1.0, -0.1, -1.0, -0.1]];
-        assert!(in_piece(&back, &[0.3, 0.51, 0.3, 0.51], &s, 0.0));
-        assert!(!in_piece(&back, &[0.6, 0.54, 0.6, 0.54], &s, 0.0));
-    }
 }

@@ -22,7 +22,6 @@
 //! points are all certified by other branches. Nothing here claims anything: it only decides
 //! what to trace again, so it is in `f64`.
 
-use super::duplicates::in_piece;
 use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece, LEFT_THE_MARCH};
 use crate::geometry::surface::pair_widths;
 use crate::geometry::RationalBezierPatch;
@@ -67,7 +66,7 @@ pub(crate) fn uncovered_starts(
             .collect();
         for near in c.iter().flat_map(|c| &c.ends).filter_map(jump_box) {
             let x: [f64; 4] = std::array::from_fn(|k| near[k].mid());
-            if !others.iter().any(|t| in_piece(t, &x, &scales, slack)) {
+            if !others.iter().any(|t| t.holds(&x, &scales, slack)) {
                 starts.push(x);
             }
         }
@@ -76,7 +75,7 @@ pub(crate) fn uncovered_starts(
             .iter()
             .map(|pt| {
                 let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
-                tubes.iter().any(|t| in_piece(t, &x, &scales, slack))
+                tubes.iter().any(|t| t.holds(&x, &scales, slack))
             })
             .collect();
         let mut k = 0;
