@@ -42,7 +42,6 @@ pub(crate) fn duplicate_branches(
             .filter(|&j| j != i && !dropped[j])
             .filter_map(|j| certified[j])
             .flat_map(|c| &c.tubes)
-            .filter(|t| t.along.is_some())
             .collect();
         dropped[i] = !others.is_empty()
             && marched[i].points.iter().all(|pt| {

@@ -42,12 +42,7 @@ pub(crate) fn uncovered_starts(
     slack: f64,
 ) -> Vec<[f64; 4]> {
     let scales = pair_widths(&p.domain(), &q.domain());
-    let tubes: Vec<&TubePiece> = certified
-        .iter()
-        .flatten()
-        .flat_map(|c| &c.tubes)
-        .filter(|t| t.along.is_some())
-        .collect();
+    let tubes: Vec<&TubePiece> = certified.iter().flatten().flat_map(|c| &c.tubes).collect();
     let mut starts = Vec::new();
     for (i, (b, c)) in marched.iter().zip(certified).enumerate() {
         if !suspect(b, *c) {
@@ -62,7 +57,6 @@ pub(crate) fn uncovered_starts(
             .filter(|(j, _)| *j != i)
             .filter_map(|(_, c)| *c)
             .flat_map(|c| &c.tubes)
-            .filter(|t| t.along.is_some())
             .collect();
         for near in c.iter().flat_map(|c| &c.ends).filter_map(jump_box) {
             let x: [f64; 4] = std::array::from_fn(|k| near[k].mid());

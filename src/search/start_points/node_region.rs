@@ -266,11 +266,10 @@ fn locate_critical_point(
     let frame = frame_at(p, &x0)?;
     let mut x = x0;
     for _ in 0..12 {
-        let (f, jac) = phi_parts(
-            &frame,
-            &p.second_order(x[0], x[1]),
-            &q.second_order(x[2], x[3]),
-        );
+        let (pd, qd) = (p.second_order(x[0], x[1]), q.second_order(x[2], x[3]));
+        let first = |d: &[[f64; 3]; 6]| [d[0], d[1], d[2]];
+        let f = phi_values(&frame, &first(&pd), &first(&qd));
+        let jac = phi_jacobian(&frame, &pd, &qd);
         let step = Matrix4::from_fn(|r, k| jac[r][k])
             .lu()
             .solve(&Vector4::from(f))?;
@@ -551,21 +550,29 @@ fn ray_from_extremum(
     Some(strip.face(1, false))
 }
 
-/// `Φ` and its Jacobian from second-order data `[S, S_u, S_v, S_uu, S_uv, S_vv]` of P and Q (at
-/// a point, or enclosed over a box), in the frame `e`.
-fn phi_parts<T: Scalar>(e: &Frame, pd: &[[T; 3]; 6], qd: &[[T; 3]; 6]) -> ([T; 4], [[T; 4]; 4]) {
+/// `Φ` in the frame `e` from first-order data `[S, S_u, S_v]` of P and Q (at a point, or
+/// enclosed over a box).
+fn phi_values<T: Scalar>(e: &Frame, pd: &[[T; 3]; 3], qd: &[[T; 3]; 3]) -> [T; 4] {
     let along = |r: usize, v: &[T; 3]| dot(&e[r].map(T::from_f64), v);
-    let [pp, ps, pt, pss, pst, ptt] = pd;
-    let [qq, qu, qv, quu, quv, qvv] = qd;
+    let [pp, ps, pt] = pd;
+    let [qq, qu, qv] = qd;
     let gap: [T; 3] = std::array::from_fn(|k| pp[k] - qq[k]);
-    let (np, nq) = (cross(ps, pt), cross(qu, qv));
-    let normals = cross(&np, &nq);
-    let f = [
+    let normals = cross(&cross(ps, pt), &cross(qu, qv));
+    [
         along(0, &gap),
         along(1, &gap),
         along(0, &normals),
         along(1, &normals),
-    ];
+    ]
+}
+
+/// The Jacobian of `Φ` in the frame `e` from second-order data `[S, S_u, S_v, S_uu, S_uv,
+/// S_vv]` of P and Q (at a point, or enclosed over a box).
+fn phi_jacobian<T: Scalar>(e: &Frame, pd: &[[T; 3]; 6], qd: &[[T; 3]; 6]) -> [[T; 4]; 4] {
+    let along = |r: usize, v: &[T; 3]| dot(&e[r].map(T::from_f64), v);
+    let [_, ps, pt, pss, pst, ptt] = pd;
+    let [_, qu, qv, quu, quv, qvv] = qd;
+    let (np, nq) = (cross(ps, pt), cross(qu, qv));
     let add = |a: [T; 3], b: [T; 3]| -> [T; 3] { std::array::from_fn(|k| a[k] + b[k]) };
     let np_s = add(cross(pss, pt), cross(ps, pst));
     let np_t = add(cross(pst, pt), cross(ps, ptt));
@@ -577,7 +584,7 @@ fn phi_parts<T: Scalar>(e: &Frame, pd: &[[T; 3]; 6], qd: &[[T; 3]; 6]) -> ([T; 4
         (qu.map(|c| -c), cross(&np, &nq_u)),
         (qv.map(|c| -c), cross(&np, &nq_v)),
     ];
-    let jac = std::array::from_fn(|r| {
+    std::array::from_fn(|r| {
         std::array::from_fn(|k| {
             let (g, c) = &cols[k];
             if r < 2 {
@@ -586,8 +593,7 @@ fn phi_parts<T: Scalar>(e: &Frame, pd: &[[T; 3]; 6], qd: &[[T; 3]; 6]) -> ([T; 4
                 along(r - 2, c)
             }
         })
-    });
-    (f, jac)
+    })
 }
 
 /// The Krawczyk image of `Φ` over the box `x` (see [`critical_points`]): `Φ` at the box's
@@ -599,12 +605,12 @@ fn phi_image(
     x: &[Interval; 4],
 ) -> Option<[Interval; 4]> {
     let xm = x.map(|i| point(i.mid()));
-    let (f, _) = phi_parts(
+    let f = phi_values(
         e,
-        &p.second_order(xm[0], xm[1]),
-        &q.second_order(xm[2], xm[3]),
+        &p.first_order(xm[0], xm[1]),
+        &q.first_order(xm[2], xm[3]),
     );
-    let (_, jac) = phi_parts(
+    let jac = phi_jacobian(
         e,
         &p.second_order_centred(x[0], x[1], xm[0], xm[1]),
         &q.second_order_centred(x[2], x[3], xm[2], xm[3]),
