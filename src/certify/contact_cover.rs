@@ -379,6 +379,7 @@ impl Bisection<'_> {
 mod tests {
     use super::*;
     use crate::geometry::{Domain, PowerSurface};
+    use crate::pair::fixtures::TANGENTIAL_CUBIC;
 
     /// The normal test as it was (on the patches' own functions).
     fn old_normal_separates(
@@ -496,19 +497,9 @@ mod tests {
         let q = PowerSurface::graph(d, vec![(0, 2, 1.0), (2, 0, 0.5), (1, 1, 0.3)])
             .to_bezier()
             .unwrap();
-        let p = PowerSurface::graph(
-            d,
-            vec![
-                (0, 2, 2.0),
-                (2, 0, 0.75),
-                (1, 1, -0.7),
-                (1, 2, 0.3),
-                (2, 1, -0.3),
-                (3, 0, 0.075),
-            ],
-        )
-        .to_bezier()
-        .unwrap();
+        let p = PowerSurface::graph(d, TANGENTIAL_CUBIC.to_vec())
+            .to_bezier()
+            .unwrap();
         // Boxes along the contact curve (x, x/2, x, x/2), overlapping, one partly outside.
         let region: Vec<[Interval; 4]> = (0..9)
             .map(|k| {

@@ -248,22 +248,13 @@ mod tests {
     use super::*;
     use crate::geometry::{Domain, PowerSurface};
     use crate::numeric::scalar::interval;
+    use crate::pair::fixtures::TANGENTIAL_CUBIC;
 
     fn cubic() -> RationalBezierPatch {
         let d = Domain::new(-1.0, 1.0, -0.5, 2.0);
-        PowerSurface::graph(
-            d,
-            vec![
-                (0, 2, 2.0),
-                (2, 0, 0.75),
-                (1, 1, -0.7),
-                (1, 2, 0.3),
-                (2, 1, -0.3),
-                (3, 0, 0.075),
-            ],
-        )
-        .to_bezier()
-        .unwrap()
+        PowerSurface::graph(d, TANGENTIAL_CUBIC.to_vec())
+            .to_bezier()
+            .unwrap()
     }
 
     #[test]

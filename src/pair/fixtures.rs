@@ -59,3 +59,15 @@ pub(crate) fn wavy_patch(weights: bool) -> crate::geometry::RationalBezierPatch 
     let domain = crate::geometry::Domain::new(-1.0, 2.0, 0.5, 1.5);
     crate::geometry::RationalBezierPatch::from_f64_points([m, n], &pts, w, domain).unwrap()
 }
+
+/// The cubic height field `z = 2v² + 0.75u² − 0.7uv + 0.3uv² − 0.3u²v + 0.075u³` of the
+/// contact-cover unit tests (`PowerSurface::graph` terms), shared by the cover and the lean
+/// contact patches.
+pub(crate) const TANGENTIAL_CUBIC: [crate::geometry::power::PowerTerm; 6] = [
+    (0, 2, 2.0),
+    (2, 0, 0.75),
+    (1, 1, -0.7),
+    (1, 2, 0.3),
+    (2, 1, -0.3),
+    (3, 0, 0.075),
+];
