@@ -75,10 +75,10 @@ impl HeightField {
         lerp(&mut col, x)
     }
 
-    /// The patch, its control points moved by `motion` (none: as they are).
-    fn patch(&self, motion: Option<&Motion>) -> RationalBezierPatch {
+    /// The control points, moved by `motion` (none: as they are).
+    fn control_points(&self, motion: Option<&Motion>) -> Vec<[f64; 3]> {
         let m = self.m;
-        let points = (0..=m)
+        (0..=m)
             .flat_map(|i| (0..=m).map(move |j| (i, j)))
             .map(|(i, j)| {
                 let c = [
@@ -86,11 +86,29 @@ impl HeightField {
                     j as f64 / m as f64,
                     self.z[i * (m + 1) + j],
                 ];
-                let c = motion.map_or(c, |mo| mo.apply(c));
-                c.map(point)
+                motion.map_or(c, |mo| mo.apply(c))
             })
+            .collect()
+    }
+
+    /// The patch, its control points moved by `motion` (none: as they are).
+    fn patch(&self, motion: Option<&Motion>) -> RationalBezierPatch {
+        let points = self
+            .control_points(motion)
+            .into_iter()
+            .map(|c| c.map(point))
             .collect();
+        let m = self.m;
         RationalBezierPatch::new([m, m], points, None, Domain::new(0.0, 1.0, 0.0, 1.0)).unwrap()
+    }
+
+    /// This field as a scene-file surface.
+    fn scene_surface(&self, motion: Option<&Motion>) -> String {
+        format!(
+            "{{\"kind\": \"bezier\", \"degree\": [{m}, {m}], \"points\": {points:?}}}",
+            m = self.m,
+            points = self.control_points(motion)
+        )
     }
 }
 
@@ -173,6 +191,14 @@ fn check_pair(seed: u64, fig: &mut Figures) {
     let motion = (seed % 2 == 1).then(|| Motion::random(&mut rng));
     let widen = if motion.is_some() { 1e-12 } else { 0.0 };
     let (p, q) = (f.patch(motion.as_ref()), g.patch(motion.as_ref()));
+    if let Ok(dir) = std::env::var("SSITRACE_ORACLE_SCENE_DIR") {
+        let scene = format!(
+            "{{\"surfaces\": [{}, {}], \"options\": {{\"name\": \"oracle-random-{seed}\", \"method\": \"validated\"}}}}\n",
+            f.scene_surface(motion.as_ref()),
+            g.scene_surface(motion.as_ref())
+        );
+        std::fs::write(format!("{dir}/oracle_random_{seed}.json"), scene).expect("scene written");
+    }
     let opts = Options {
         method: Method::Validated,
         engine: engine(),
@@ -232,10 +258,18 @@ fn random_pairs_fixed_seeds_3() {
 /// 1 105 729 and 1 156 093 (this stop's soak): the jumping branch's chain lost its marched path,
 /// or two jumping branches left the arm between their chains' ends traced by nobody; the stretch
 /// is traced again with a finer step, from the uncovered marched points and from where the
-/// chains stopped (`solve/repair.rs`), and the copies drop.
+/// chains stopped (`solve/repair.rs`), and the copies drop. Seed 1 119 802: one curve passes
+/// close to itself (a near saddle of `f − g`); two marched branches, one from each boundary end,
+/// each passed the neck once and jumped at the second pass, back to their own start: their
+/// chains overlapped over the whole loop between the passes, each stopping where the other's
+/// tube went on, so nothing was uncovered. A stop inside a partial certificate is now traced
+/// again too.
 #[test]
 fn arcs_traced_twice_at_near_crossings_are_reported_once() {
-    let fig = run([1_000_188, 1_000_630, 1_001_128, 1_105_729, 1_156_093].into_iter());
+    let fig = run([
+        1_000_188, 1_000_630, 1_001_128, 1_105_729, 1_156_093, 1_119_802,
+    ]
+    .into_iter());
     assert_clean(&fig);
 }
 

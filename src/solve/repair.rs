@@ -49,13 +49,18 @@ pub(crate) fn uncovered_starts(
             continue;
         }
         // Where the chain stopped, it was still on its own curve: the arm the marcher skipped
-        // goes on from there, and no marched point lies on it (unless another branch's tube
-        // already holds that point: traced again in an earlier round).
+        // goes on from there, and no marched point lies on it. Unless a complete certificate
+        // of another branch already holds that point (traced again in an earlier round): a
+        // partial one that holds it is a second jumping branch over the same curve (two
+        // branches that each passed a near self-crossing once and jumped at the second pass:
+        // together they cover the curve, each stretch between the passes twice), so the point
+        // is traced again all the same.
         let others: Vec<&TubePiece> = certified
             .iter()
             .enumerate()
             .filter(|(j, _)| *j != i)
             .filter_map(|(_, c)| *c)
+            .filter(|c| c.ends.iter().all(CertifiedEnd::reaches_true_end))
             .flat_map(|c| &c.tubes)
             .collect();
         for near in c.iter().flat_map(|c| &c.ends).filter_map(jump_box) {
