@@ -294,3 +294,21 @@ fn soak() {
     let fig = run_with_progress(first..first + n, every, check_pair);
     assert_sound(&fig);
 }
+
+/// Pairs the soak found with an end left unproven or called singular where the marcher jumped
+/// (seeds 1 106 435, 1 114 548, 1 117 536, 1 166 194, 1 174 541, 1 179 265: the chain followed
+/// its own curve away from the jumped marched points and proved that curve leaving the domain,
+/// but reported `unproven`; it now reports that boundary end, and the marched points past the
+/// jump are traced again unless another certificate holds them. Seed 1 178 445: two branches
+/// jumped at a near-saddle and their chains stopped `singular`; the retrace started at the stop
+/// box's centre, between the two curves, where Newton found neither: it now starts at the end of
+/// the chain nearest that box, and one branch replaces the two). Every end is proven on them.
+#[test]
+fn ends_at_marcher_jumps_are_proven() {
+    let fig = run([
+        1_106_435, 1_114_548, 1_117_536, 1_166_194, 1_174_541, 1_179_265, 1_178_445,
+    ]
+    .into_iter());
+    assert_clean(&fig);
+    assert_eq!(fig.unproven_ends, 0, "{:?}", fig.notes);
+}

@@ -25,7 +25,6 @@ mod term_target;
 pub mod trace;
 
 pub use budget::StepBudget;
-pub(crate) use chain::LEFT_THE_MARCH;
 pub use chain::{certify_chain, ChainOptions};
 pub use contact::{certify_contact, certify_contact_events, CertifiedContact, ContactOptions};
 pub use curve::{AlongParameter, CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};

@@ -9,23 +9,25 @@
 //! no branch, and the arm it skipped may be traced by nobody (a torus's saddle side against a
 //! nearly tangent plane, in the quadric oracle).
 //!
-//! **The rule.** A branch is *suspect* when the marcher ended it cleanly (on boundaries, or closed)
-//! but its certificate stops short at some end as if at a singular point, at branches too close
-//! to resolve, or where the chain lost its marched path (a budget, a time limit or another
-//! unproven end is not a jump). A run of at least two of its marched points that
-//! lie in no tube piece of any certified branch (the same test as for duplicates) is *uncovered*;
-//! the middle point of each uncovered run is a start for a new trace with the step divided by 8
-//! (then by 64 in a second round, if uncovered runs remain), and so is the centre of the box where
-//! its chain stopped: the chain was still on its own curve there, and the arm the marcher skipped
-//! goes on from it with no marched point on it. The new branches are certified like
-//! the others; the duplicate rule ([`super::duplicates`]) then drops the suspects whose marched
-//! points are all certified by other branches. Nothing here claims anything: it only decides
+//! **The rule.** A branch is *suspect* when the marcher ended it cleanly (on boundaries, or
+//! closed) but its certificate stops short at some end as if at a singular point or at
+//! branches too close to resolve (a budget, a time limit or an unproven end is not a jump), or
+//! when the marched points at one of its ends lie in no tube of its own certificate (the chain left the
+//! marched points and proved where its own curve leaves the domain). A run of at least two of
+//! its marched points that lie in no tube piece of any certified branch (the same test as for
+//! duplicates) is *uncovered*; the middle point of each uncovered run is a start for a new trace
+//! with the step divided by 8 (then by 64 in a second round, if uncovered runs remain), and so
+//! is the point where its chain stopped (the end of its tube nearest the stop box): the chain
+//! was still on its own curve there, and the arm the marcher skipped goes on from it with no
+//! marched point on it. The new branches are certified like the others; the duplicate rule
+//! ([`super::duplicates`]) then drops the suspects whose marched points are all certified by
+//! other branches. Nothing here claims anything: it only decides
 //! what to trace again, so it is in `f64`.
 
-use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece, LEFT_THE_MARCH};
+use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
 use crate::geometry::surface::pair_widths;
 use crate::geometry::RationalBezierPatch;
-use crate::march::branch::{Branch, BranchStatus, EndReason};
+use crate::march::branch::{Branch, BranchStatus, CurvePoint, EndReason};
 use inari::Interval;
 
 /// Uncovered runs shorter than this many marched points are not traced again (the last point of
@@ -45,7 +47,7 @@ pub(crate) fn uncovered_starts(
     let tubes: Vec<&TubePiece> = certified.iter().flatten().flat_map(|c| &c.tubes).collect();
     let mut starts = Vec::new();
     for (i, (b, c)) in marched.iter().zip(certified).enumerate() {
-        if !suspect(b, *c) {
+        if !suspect(b, *c, &scales, slack) {
             continue;
         }
         // Where the chain stopped, it was still on its own curve: the arm the marcher skipped
@@ -63,8 +65,11 @@ pub(crate) fn uncovered_starts(
             .filter(|c| c.ends.iter().all(CertifiedEnd::reaches_true_end))
             .flat_map(|c| &c.tubes)
             .collect();
-        for near in c.iter().flat_map(|c| &c.ends).filter_map(jump_box) {
-            let x: [f64; 4] = std::array::from_fn(|k| near[k].mid());
+        for (c, near) in c
+            .iter()
+            .flat_map(|c| c.ends.iter().filter_map(jump_box).map(move |n| (*c, n)))
+        {
+            let x = stop_point(c, near, &scales);
             if !others.iter().any(|t| t.holds(&x, &scales, slack)) {
                 starts.push(x);
             }
@@ -97,22 +102,59 @@ pub(crate) fn uncovered_starts(
     starts
 }
 
-/// Whether the marcher ended the branch cleanly but its certificate stops short as at a jump.
-fn suspect(b: &Branch, c: Option<&CertifiedBranch>) -> bool {
+/// The point of `c`'s chain where it stopped at the box `near`: the end of a tube piece nearest
+/// the box's centre (on the chain's curve, to within its proven radius; the centre itself can
+/// lie between two close curves, where Newton finds neither).
+fn stop_point(c: &CertifiedBranch, near: &[Interval; 4], scales: &[f64; 4]) -> [f64; 4] {
+    let centre: [f64; 4] = std::array::from_fn(|k| near[k].mid());
+    let dist = |x: &[f64; 4]| {
+        (0..4)
+            .map(|k| (x[k] - centre[k]).abs() / scales[k])
+            .fold(0.0, f64::max)
+    };
+    c.tubes
+        .iter()
+        .flat_map(|t| [t.eval(0.0), t.eval(t.h)])
+        .min_by(|a, b| dist(a).total_cmp(&dist(b)))
+        .unwrap_or(centre)
+}
+
+/// Whether the marcher ended the branch cleanly but its certificate stops short as at a jump,
+/// or follows another curve than the march to one of its ends (the last [`MIN_UNCOVERED_RUN`]
+/// marched points at an end held by no tube of its own certificate: the chain left the marched
+/// points and proved where its own curve leaves the domain, `certify/chain/leave.rs`; a single
+/// end point can lie just beyond a certificate that stops on the boundary). Only cover chains
+/// follow the marched points; the Taylor engine's steps and tubes need not reach them. (A
+/// chain that stops short of an end for a budget says so in its end instead.)
+fn suspect(b: &Branch, c: Option<&CertifiedBranch>, scales: &[f64; 4], slack: f64) -> bool {
     let clean = b.status == BranchStatus::Closed
         || b.ends
             .iter()
             .all(|e| matches!(e, EndReason::Boundary { .. } | EndReason::ClosedLoop));
-    clean && c.is_some_and(|c| c.ends.iter().any(|e| jump_box(e).is_some()))
+    let Some(c) = c.filter(|_| clean) else {
+        return false;
+    };
+    let held = |pt: &CurvePoint| {
+        let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+        c.tubes.iter().any(|t| t.holds(&x, scales, slack))
+    };
+    let n = b.points.len();
+    let k = MIN_UNCOVERED_RUN.min(n);
+    c.ends.iter().any(|e| jump_box(e).is_some())
+        || (!c.arc_length_proven()
+            && c.ends.iter().all(CertifiedEnd::reaches_true_end)
+            && n > k
+            && [&b.points[..k], &b.points[n - k..]]
+                .iter()
+                .any(|end| end.iter().all(|pt| !held(pt))))
 }
 
-/// The box where a chain stopped as at a marcher jump: a singular box, two branches too close
-/// to resolve, or a chain that lost its marched path. Another `unproven` end is a budget or a
-/// time limit, or a failure that a finer step does not mend.
+/// The box where a chain stopped as at a marcher jump: a singular box, or two branches too
+/// close to resolve. An `unproven` end is a budget or a time limit, or a failure that a finer
+/// step does not mend.
 fn jump_box(e: &CertifiedEnd) -> Option<&[Interval; 4]> {
     match e {
         CertifiedEnd::Singular { near } | CertifiedEnd::CloseBranches { near, .. } => Some(near),
-        CertifiedEnd::Unproven { reason, near } if reason == LEFT_THE_MARCH => Some(near),
         _ => None,
     }
 }

@@ -5,12 +5,17 @@
 //! the curve they are on, away from the marched points, and can walk it far outside both domains
 //! before they stop (thousands of links, boxes far from the patches, and an end that says
 //! nothing of what happened). A link towards a split point whose end slice lies wholly outside
-//! one of the domains, while the marched node it is heading for lies inside both, shows that:
-//! the curve of the chain leaves the domain there, the marched branch does not. The half stops
-//! at that link with an unproven end that says so (not a boundary end: the certificate would
-//! then claim the whole curve of a marched branch it does not follow). When the node it heads
-//! for is the marched end on that same bound (the curve grazes the boundary and dips out just
-//! before the marched end), the link proves the boundary end the marched branch has there.
+//! one of the domains shows that the curve of the chain leaves the domain inside the chain's
+//! boxes: the half stops at that link with a proven boundary end of the curve it follows (the
+//! link starts where the chain's boxes are still joined to the domain, and its end slice lies
+//! wholly beyond the bound, so the curve crosses it in between).
+//!
+//! That curve is not the marched branch's all the way when the node the link heads for lies
+//! inside both domains (the marched branch went on along another curve after a jump, or over a
+//! dip of this one out of the domain): its marched points past the jump are then held by no
+//! tube of this certificate. `solve/repair.rs` finds them (a marched end held by no tube of its
+//! own certificate) and has them traced again unless another branch's certificate holds them.
+//! An unproven end there would say less than is proven: the curve does leave the domain there.
 //!
 //! The walk past a marched boundary end heads for a curve point found beyond the boundary; where
 //! the curve only dips out of the domain (it grazes the boundary), that point can lie back
@@ -24,11 +29,6 @@ use super::walker::{Node, Walker};
 use crate::certify::curve::CertifiedEnd;
 use crate::geometry::surface::pair_bounds;
 use inari::Interval;
-
-/// The reason of an unproven end where a half lost its marched path (the marcher jumped to
-/// another curve there) and the curve it follows leaves the domain.
-pub(crate) const LEFT_THE_MARCH: &str =
-    "the chain left the marched points and its curve leaves the domain";
 
 /// Slices of a link tested by [`Walker::dips_out`].
 const DIP_SLICES: usize = 32;
@@ -47,11 +47,11 @@ impl Walker<'_> {
             .map(|i| i / 2)
     }
 
-    /// The end of a half whose last link, towards a split point on the way to `target`, left
-    /// a domain (its end slice lies wholly outside it): a proven boundary end if `target` (a
-    /// marched node) lies on that same bound, so the marched branch ends there too; an
-    /// unproven end if `target` lies inside both domains (the half has left the marched
-    /// points); none otherwise (the walk past a marched end heads outside on purpose).
+    /// The end of a half whose last link, towards a split point on the way to `target` (a
+    /// marched node), left a domain (its end slice lies wholly outside it): a proven boundary
+    /// end, whether `target` lies on that bound (the marched branch ends there too) or inside
+    /// both domains (the half has left the marched points; see the module documentation);
+    /// none if `target` lies outside (the walk past a marched end heads outside on purpose).
     pub(super) fn left_marched_path(&self, target: &Node) -> Option<CertifiedEnd> {
         let e = &self.links.last()?.end_slice;
         let (dp, dq) = (self.p.domain(), self.q.domain());
@@ -66,17 +66,12 @@ impl Walker<'_> {
             }
         });
         let (i, bound) = out?;
-        if (target.x[i] - bound).abs() <= 1e-9 * self.scales[i] {
-            return Some(CertifiedEnd::Boundary { surface: i / 2 });
-        }
+        let on_bound = (target.x[i] - bound).abs() <= 1e-9 * self.scales[i];
         let inside = (0..4).all(|k| {
             let [lo, hi] = pair_bounds(&dp, &dq, k);
             lo <= target.x[k] && target.x[k] <= hi
         });
-        inside.then(|| CertifiedEnd::Unproven {
-            reason: LEFT_THE_MARCH.into(),
-            near: *e,
-        })
+        (on_bound || inside).then_some(CertifiedEnd::Boundary { surface: i / 2 })
     }
 
     /// For a link that heads for a marched node on a bound of a domain (the marched end there):

@@ -46,7 +46,6 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 mod leave;
-pub(crate) use leave::LEFT_THE_MARCH;
 mod output;
 mod walker;
 
