@@ -365,14 +365,16 @@ fn the_command_line_defaults_to_both() {
 
 #[test]
 fn the_command_line_warns_when_the_march_loops() {
-    // S31/S32 marched with L = 1: today's marcher goes round one loop almost twice (found by
-    // trying large steps); the fine march (the scene's L = 0.02) goes round each loop once.
+    // S31/S32 marched with L = 1.5, less than two steps per lap of the shorter loop: the
+    // marcher goes round it almost twice before its closing test accepts the start (found by
+    // trying large steps; at L = 1 it used to go round ten times, and now stops when it comes
+    // back onto its own path); the fine march (the scene's L = 0.02) goes round each loop once.
     let path = scene_path("two_loops_s31_s32.json").display().to_string();
     let dir = std::env::temp_dir().join(format!("ssitrace-loops-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("r.json");
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_ssitrace"))
-        .args(["trace", &path, "--method", "both", "--step", "1.0", "--out"])
+        .args(["trace", &path, "--method", "both", "--step", "1.5", "--out"])
         .arg(&out)
         .output()
         .unwrap();
@@ -387,7 +389,7 @@ fn the_command_line_warns_when_the_march_loops() {
         .map(|b| polyline_length(&b.points))
         .collect();
     assert_eq!(fine.len(), 2);
-    let mut looping = 0;
+    let (mut looping, mut twice) = (0, 0);
     for b in doc["branches"].as_array().unwrap() {
         let st = &b["certified"]["straying"];
         let (marched, certified) = (
@@ -402,13 +404,18 @@ fn the_command_line_warns_when_the_march_loops() {
         assert_eq!(st["straying_points"].as_array().map(Vec::len), Some(0));
         if st["looping"] == true {
             looping += 1;
-            // Chords never exceed the arcs: more than one loop's length is a second round.
-            assert!(marched > 1.5 * certified, "{marched} vs {certified}");
+            // Chords never exceed the arcs: more than one loop's length is a second round (a
+            // march of a few long chords per lap can go round twice in less).
+            if marched > 1.5 * certified {
+                twice += 1;
+            }
+        } else {
+            assert!(marched <= 1.5 * certified, "{marched} vs {certified}");
         }
     }
     assert!(
-        looping >= 1,
-        "no looping march at L = 1: pick another fault"
+        twice >= 1,
+        "no march round a loop twice at L = 1.5: pick another fault"
     );
     assert_eq!(doc["stats"]["looping_branches"], looping);
     assert!(stdout.contains("warning: the march goes round the loop more than once"));

@@ -303,6 +303,17 @@ fn soak() {
 /// jumped at a near-saddle and their chains stopped `singular`; the retrace started at the stop
 /// box's centre, between the two curves, where Newton found neither: it now starts at the end of
 /// the chain nearest that box, and one branch replaces the two). Every end is proven on them.
+/// Seed 1 157 551: a marched branch from a boundary jumped onto a closed loop of another curve
+/// and went round it until its 20 000-point limit (25 s, mostly in the straying check). It now
+/// stops when it comes back onto its own path (`own path`), the loop is traced again from where
+/// its chain stopped and closes once, and the jumping branch drops as a duplicate.
+#[test]
+fn a_march_that_jumped_onto_a_loop_goes_round_it_once() {
+    let fig = run([1_157_551].into_iter());
+    assert_clean(&fig);
+    assert_eq!(fig.unproven_ends, 0, "{:?}", fig.notes);
+}
+
 #[test]
 fn ends_at_marcher_jumps_are_proven() {
     let fig = run([

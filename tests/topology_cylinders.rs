@@ -95,6 +95,7 @@ fn describe_end(e: &EndReason) -> &'static str {
         EndReason::ClosedLoop => "loop",
         EndReason::NewtonFailed => "newton-failed",
         EndReason::PointLimit => "point-limit",
+        EndReason::OwnPath => "own-path",
     }
 }
 

@@ -500,6 +500,7 @@ fn end_to_json(e: EndReason) -> Value {
         EndReason::Singular => json!({"kind": "singular"}),
         EndReason::NewtonFailed => json!({"kind": "newton_failed"}),
         EndReason::PointLimit => json!({"kind": "point_limit"}),
+        EndReason::OwnPath => json!({"kind": "own_path"}),
     }
 }
 
@@ -569,6 +570,7 @@ fn end_from_json(v: &Value, ctx: &str) -> Result<EndReason> {
         "singular" => EndReason::Singular,
         "newton_failed" => EndReason::NewtonFailed,
         "point_limit" => EndReason::PointLimit,
+        "own_path" => EndReason::OwnPath,
         other => return Err(bad(&format!("{ctx}: unknown end kind `{other}`"))),
     })
 }

@@ -397,9 +397,11 @@ fn draw_end_marker(
         EndReason::ClosedLoop => {
             chart.draw_series(std::iter::once(Circle::new(at, 6, colour.stroke_width(2))))
         }
-        EndReason::NewtonFailed | EndReason::PointLimit => chart.draw_series(std::iter::once(
-            EmptyElement::at(at) + Rectangle::new([(-5, -5), (5, 5)], colour.stroke_width(2)),
-        )),
+        EndReason::NewtonFailed | EndReason::PointLimit | EndReason::OwnPath => {
+            chart.draw_series(std::iter::once(
+                EmptyElement::at(at) + Rectangle::new([(-5, -5), (5, 5)], colour.stroke_width(2)),
+            ))
+        }
     };
     res.map(|_| ()).map_err(render_err)
 }

@@ -29,11 +29,15 @@ pub enum EndReason {
     NewtonFailed,
     /// Hit the point budget without another end condition.
     PointLimit,
+    /// Came back onto its own earlier path (not at its start) with the same direction: it went
+    /// on along another curve after a jump, reached a closed loop of that curve and would go
+    /// round it again.
+    OwnPath,
 }
 
 impl std::fmt::Display for EndReason {
     /// `boundary of P`, `boundary of Q`, `closed loop`, `singular point`, `Newton failed`,
-    /// `point limit`.
+    /// `point limit`, `own path`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             EndReason::Boundary { surface } => {
@@ -43,6 +47,7 @@ impl std::fmt::Display for EndReason {
             EndReason::Singular => f.write_str("singular point"),
             EndReason::NewtonFailed => f.write_str("Newton failed"),
             EndReason::PointLimit => f.write_str("point limit"),
+            EndReason::OwnPath => f.write_str("own path"),
         }
     }
 }

@@ -1,4 +1,5 @@
-//! The turning of the tangent along a march and the test that closes a loop at its start.
+//! The turning of the tangent along a march, the test that closes a loop at its start, and the
+//! test that stops a march that came back onto its own path elsewhere.
 //!
 //! The march accumulates the signed turning of the parameter tangents in P's and in Q's domain;
 //! [`closing_turning`] accepts the start as the next point only when it is near, ahead, with an
@@ -80,4 +81,54 @@ pub(crate) fn closing_turning(
         && (is_full_turn(total[0], opts.rotation_tolerance, crossed)
             || is_full_turn(total[1], opts.rotation_tolerance, crossed)))
     .then_some(total)
+}
+
+/// Earlier points closer than this many points behind the last one are never taken for a
+/// return onto the march's own path; a return onto one of the first this many points of a
+/// half that should close at its start closes it there.
+pub(crate) const OWN_PATH_GAP: usize = 4;
+
+/// Whether the last of `nodes` lies on the march's own earlier path, not at its start: within
+/// half the predicted step `arc` of an earlier point (in model space, and in the parameters within
+/// twice the local parameter speed times that distance), with a tangent within about 25° of that
+/// point's, after at least four times `arc` of marched length and [`OWN_PATH_GAP`] points since
+/// it. A curve that is not closed never comes back to its own point, and a closed loop traced
+/// from its start closes at the start first ([`closing_turning`] accepts it from 1.5 steps away);
+/// so this is a loop of another curve reached after a jump, or a loop whose closing test failed,
+/// and the march would go round it again. Points near a singular point (sine of the normals'
+/// angle below `watch_sine`) are never taken: a curve through a tacnode passes it twice with
+/// the same tangent. Returns the earliest such point's index.
+pub(crate) fn on_own_path(nodes: &[Node], arc: f64, watch_sine: f64) -> Option<usize> {
+    let n = nodes.len();
+    if n < OWN_PATH_GAP + 2 || !(arc > 0.0) {
+        return None;
+    }
+    let (cur, prev) = (&nodes[n - 1], &nodes[n - 2]);
+    if cur.frame.sine < watch_sine {
+        return None;
+    }
+    let step = (prev.frame.xyz - cur.frame.xyz).norm();
+    if step == 0.0 {
+        return None;
+    }
+    let param_speed = param_distance(&prev.x, &cur.x) / step;
+    // Marched length from node k to the last node, accumulated backwards.
+    let mut behind = 0.0;
+    let mut earliest = None;
+    for k in (0..n - 1).rev() {
+        behind += (nodes[k + 1].frame.xyz - nodes[k].frame.xyz).norm();
+        if k + OWN_PATH_GAP >= n || behind < 4.0 * arc {
+            continue;
+        }
+        let e = &nodes[k];
+        let d = (e.frame.xyz - cur.frame.xyz).norm();
+        if d <= 0.5 * arc
+            && e.frame.sine >= watch_sine
+            && param_distance(&e.x, &cur.x) <= 2.0 * param_speed * d + 1e-9
+            && e.frame.tangent.dot(&cur.frame.tangent) > 0.9
+        {
+            earliest = Some(k);
+        }
+    }
+    earliest
 }

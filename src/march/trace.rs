@@ -28,6 +28,9 @@
 //!   point itself, located by Gauss–Newton. With `cross_singular` the march continues straight
 //!   through the node's unused exit (each arc once), and the closing test then accepts rotation
 //!   index 0.
+//! - **Own path**: a point back on the half's own earlier path, away from its start, with the
+//!   same direction ([`on_own_path`]: a loop of another curve reached after a jump, or a loop
+//!   whose closing test failed) ends the half before it goes round again.
 //! - **Point limit** and **Newton failure** end the half with that reason, except that Newton
 //!   failing within a step of a singular point ahead (normals nearly parallel; beside a branch
 //!   point the curve's sheets are closer than the Newton tolerance resolves) stops on that point.
@@ -38,7 +41,7 @@ use crate::geometry::{ParametricSurface, Vec3};
 use crate::march::boundary::{boundary_surface_of, enters, land_on_boundary, touching};
 use crate::march::branch::{Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind};
 use crate::march::circle_step::circular_step;
-use crate::march::closing::{add_turn, closing_turning, turn};
+use crate::march::closing::{add_turn, closing_turning, on_own_path, turn, OWN_PATH_GAP};
 use crate::march::crossing::{cross_node, singular_ahead, singular_between};
 use crate::march::dqoc_step::dqoc_step;
 use crate::march::node::{inside, node_at, Node};
@@ -430,6 +433,22 @@ where
                     return half;
                 }
             }
+        }
+        if let Some(k) = on_own_path(&half.nodes, pred.arc, opts.watch_sine) {
+            // Back on its first few points after going round: its own loop, whose closing test
+            // missed the start (steps long against the loop). It closes at the start now, one
+            // lap and those few points marched (the straying check flags the extra length).
+            match closure.filter(|_| k < OWN_PATH_GAP) {
+                Some((target, _)) => {
+                    add_turn(&mut half.turning, turn(&node.frame, &target.frame));
+                    let mut closing = *target;
+                    closing.iterations = 0;
+                    half.nodes.push(closing);
+                    half.end = EndReason::ClosedLoop;
+                }
+                None => half.end = EndReason::OwnPath,
+            }
+            return half;
         }
         prev = Some(cur);
         cur = node;

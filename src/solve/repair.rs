@@ -9,8 +9,8 @@
 //! no branch, and the arm it skipped may be traced by nobody (a torus's saddle side against a
 //! nearly tangent plane, in the quadric oracle).
 //!
-//! **The rule.** A branch is *suspect* when the marcher ended it cleanly (on boundaries, or
-//! closed) but its certificate stops short at some end as if at a singular point or at
+//! **The rule.** A branch is *suspect* when the marcher ended it cleanly (on boundaries, closed,
+//! or back on its own path: a loop of another curve reached after a jump) but its certificate stops short at some end as if at a singular point or at
 //! branches too close to resolve (a budget, a time limit or an unproven end is not a jump), or
 //! when the marched points at one of its ends lie in no tube of its own certificate (the chain left the
 //! marched points and proved where its own curve leaves the domain). A run of at least two of
@@ -128,9 +128,12 @@ fn stop_point(c: &CertifiedBranch, near: &[Interval; 4], scales: &[f64; 4]) -> [
 /// chain that stops short of an end for a budget says so in its end instead.)
 fn suspect(b: &Branch, c: Option<&CertifiedBranch>, scales: &[f64; 4], slack: f64) -> bool {
     let clean = b.status == BranchStatus::Closed
-        || b.ends
-            .iter()
-            .all(|e| matches!(e, EndReason::Boundary { .. } | EndReason::ClosedLoop));
+        || b.ends.iter().all(|e| {
+            matches!(
+                e,
+                EndReason::Boundary { .. } | EndReason::ClosedLoop | EndReason::OwnPath
+            )
+        });
     let Some(c) = c.filter(|_| clean) else {
         return false;
     };
