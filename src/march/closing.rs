@@ -100,7 +100,7 @@ pub(crate) const OWN_PATH_GAP: usize = 4;
 /// the same tangent. Returns the earliest such point's index.
 pub(crate) fn on_own_path(nodes: &[Node], arc: f64, watch_sine: f64) -> Option<usize> {
     let n = nodes.len();
-    if n < OWN_PATH_GAP + 2 || !(arc > 0.0) {
+    if n < OWN_PATH_GAP + 2 || arc.is_nan() || arc <= 0.0 {
         return None;
     }
     let (cur, prev) = (&nodes[n - 1], &nodes[n - 2]);
