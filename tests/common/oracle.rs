@@ -214,7 +214,13 @@ pub(crate) fn compare(c: &Comparison<'_>, fig: &mut Figures) {
     let seed = c.seed;
     fig.pairs += 1;
     fig.branches += c.result.branches.len();
-    fig.incomplete_searches += usize::from(!c.result.stats.search.search_complete);
+    if !c.result.stats.search.search_complete {
+        fig.incomplete_searches += 1;
+        fig.notes.push(format!(
+            "seed {seed}: search not complete, {} undecided region(s)",
+            c.result.stats.search.undecided_regions.len()
+        ));
+    }
     for b in &c.result.branches {
         match b.certified() {
             Some(cb) => {
