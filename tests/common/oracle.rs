@@ -11,11 +11,13 @@
 //! - **completeness**: every reference point is near a marched branch, or inside an undecided
 //!   region of the search;
 //! - **each arc once**: no reference point lies in the boxes of two certified branches;
+//! - **ends consistent with the geometry**: a certified boundary end's end box reaches a side of
+//!   that surface's domain;
 //! - **useful certificates**: a certificate above the requested tolerance, or with an end that
 //!   is not proven, is counted with its reason.
 
 use inari::{interval, Interval};
-use ssitrace::certify::{CertifiedBranch, TubePiece};
+use ssitrace::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
 use ssitrace::march::branch::Branch;
 use ssitrace::{Engine, SurfaceIntersection};
 
@@ -128,6 +130,8 @@ pub(crate) struct Figures {
     pub(crate) missed_points: usize,
     pub(crate) in_undecided: usize,
     pub(crate) not_certified: usize,
+    /// Certified boundary ends whose end box does not reach a side of that surface's domain.
+    pub(crate) inconsistent_ends: usize,
     pub(crate) twice: usize,
     pub(crate) above_tolerance: usize,
     pub(crate) unproven_ends: usize,
@@ -248,10 +252,38 @@ pub(crate) fn compare(c: &Comparison<'_>, fig: &mut Figures) {
             }
             None => fig.not_certified += 1,
         }
+        if let Some(cb) = b.certified() {
+            check_boundary_ends(seed, b.id(), cb, fig);
+        }
     }
     fig.reference_points += c.refs.len();
     for r in c.refs {
         check_reference_point(c, r, fig);
+    }
+}
+
+/// Ends consistent with the geometry: a certified end on the boundary of surface `k` has its
+/// end box (the first box for the first end, the last for the last: boxes are ordered along the
+/// curve) reaching a side of `k`'s domain, `[0, 1]²` in both oracles. The boxes are proven to
+/// hold the curve, so the curve really leaves by that surface's boundary there.
+fn check_boundary_ends(seed: u64, id: usize, cb: &CertifiedBranch, fig: &mut Figures) {
+    let ends = [
+        (&cb.ends[0], cb.boxes.first()),
+        (&cb.ends[1], cb.boxes.last()),
+    ];
+    for (end, bx) in ends {
+        let (CertifiedEnd::Boundary { surface }, Some(bx)) = (end, bx) else {
+            continue;
+        };
+        let x = bx.params();
+        let reaches =
+            (2 * surface..2 * surface + 2).any(|k| x[k].inf() <= 0.0 || x[k].sup() >= 1.0);
+        if !reaches {
+            fig.inconsistent_ends += 1;
+            fig.notes.push(format!(
+                "seed {seed} branch {id}: end {end} but its end box {x:?} is inside that domain"
+            ));
+        }
     }
 }
 
@@ -374,9 +406,9 @@ pub(crate) fn print_figures(fig: &Figures) {
     let worst = times.last().copied().unwrap_or(0.0);
     let total: f64 = times.iter().sum();
     println!(
-        "pairs {} branches {} reference points {} | soundness violations {} | missed {} | in undecided regions {} | arcs twice {} | above tolerance {} | unproven or singular ends {} | not certified {} | time median {:.3} s worst {:.3} s",
+        "pairs {} branches {} reference points {} | soundness violations {} | missed {} | in undecided regions {} | arcs twice {} | above tolerance {} | unproven or singular ends {} | boundary ends off the boundary {} | not certified {} | time median {:.3} s worst {:.3} s",
         fig.pairs, fig.branches, fig.reference_points, fig.soundness_violations, fig.missed_points,
-        fig.in_undecided, fig.twice, fig.above_tolerance, fig.unproven_ends, fig.not_certified, median, worst
+        fig.in_undecided, fig.twice, fig.above_tolerance, fig.unproven_ends, fig.inconsistent_ends, fig.not_certified, median, worst
     );
     let w = &fig.pairs_with;
     println!(
@@ -432,6 +464,7 @@ pub(crate) fn fresh_base() -> u64 {
 pub(crate) fn assert_sound(fig: &Figures) {
     assert_eq!(fig.soundness_violations, 0, "{:?}", fig.notes);
     assert_eq!(fig.above_tolerance, 0, "{:?}", fig.notes);
+    assert_eq!(fig.inconsistent_ends, 0, "{:?}", fig.notes);
     assert!(
         fig.reference_points > fig.pairs,
         "too few reference points to mean anything"
@@ -444,6 +477,7 @@ pub(crate) fn assert_clean(fig: &Figures) {
     assert_eq!(fig.missed_points, 0, "{:?}", fig.notes);
     assert_eq!(fig.twice, 0, "{:?}", fig.notes);
     assert_eq!(fig.above_tolerance, 0, "{:?}", fig.notes);
+    assert_eq!(fig.inconsistent_ends, 0, "{:?}", fig.notes);
     assert!(
         fig.reference_points > fig.pairs,
         "too few reference points to mean anything"
