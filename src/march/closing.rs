@@ -132,3 +132,58 @@ pub(crate) fn on_own_path(nodes: &[Node], arc: f64, watch_sine: f64) -> Option<u
     }
     earliest
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Vec3;
+
+    /// A node on the unit circle of the plane `z = 0` at angle `a` (parameters: the point's
+    /// own coordinates on both surfaces), moving anticlockwise, with normals at sine `sine`.
+    fn on_circle(a: f64, sine: f64) -> Node {
+        let (c, s) = (a.cos(), a.sin());
+        Node {
+            x: [c, s, c, s],
+            frame: CurveFrame {
+                xyz: Vec3::new(c, s, 0.0),
+                tangent: Vec3::new(-s, c, 0.0),
+                tangent_p: [-s, c],
+                tangent_q: [-s, c],
+                sine,
+            },
+            iterations: 0,
+            curvature: 1.0,
+            flipped: false,
+        }
+    }
+
+    fn march(angles: impl Iterator<Item = f64>, sine: f64) -> Vec<Node> {
+        angles.map(|a| on_circle(a, sine)).collect()
+    }
+
+    #[test]
+    fn a_second_lap_is_the_own_path_and_the_first_is_not() {
+        let step = 2.0 * PI / 20.0;
+        // Nineteen steps: not yet back.
+        let lap = march((0..20).map(|k| 0.3 + k as f64 * step), 1.0);
+        assert_eq!(on_own_path(&lap, step, 0.05), None);
+        // Twenty-one steps: a point (almost) on the second point's place, the same direction.
+        let more = march((0..22).map(|k| 0.3 + k as f64 * step + 1e-3), 1.0);
+        assert_eq!(on_own_path(&more, step, 0.05), Some(1));
+    }
+
+    #[test]
+    fn passing_back_the_other_way_or_near_a_singular_point_is_not_the_own_path() {
+        let step = 2.0 * PI / 20.0;
+        // Back along the same circle in the opposite direction: tangents disagree.
+        let mut there_and_back = march((0..10).map(|k| k as f64 * step), 1.0);
+        there_and_back.extend(march((0..10).rev().map(|k| k as f64 * step + 1e-3), 1.0));
+        for n in &mut there_and_back[10..] {
+            n.frame.tangent = -n.frame.tangent;
+        }
+        assert_eq!(on_own_path(&there_and_back, step, 0.05), None);
+        // A second lap through points whose normals are nearly parallel (a tacnode).
+        let tacnode = march((0..22).map(|k| 0.3 + k as f64 * step), 0.01);
+        assert_eq!(on_own_path(&tacnode, step, 0.05), None);
+    }
+}
