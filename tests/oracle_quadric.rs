@@ -375,6 +375,7 @@ fn check_pair(seed: u64, fig: &mut Figures) {
     let before = fig.notes.len();
     let cmp = Comparison {
         seed,
+        domains: [[0.0, 1.0, 0.0, 1.0]; 2],
         result: &result,
         refs: &refs,
         widen: 0.0,

@@ -3,7 +3,9 @@
 //! Each pair is two height fields over `[0,1]²`, P a random bicubic and Q a random bicubic or
 //! biquadratic (control points `(i/m, j/m, z_ij)`, so `P(σ,t) = (σ, t, f(σ,t))` exactly), either
 //! as they are or both moved by the same rotation and translation. Their intersection in the
-//! parameter plane is the zero set of `f − g`, with `(σ, t) = (u, v)`. The reference is computed
+//! parameter plane is the zero set of `f − g`, with `(σ, t) = (u, v)`. For a third of the seeds
+//! Q is the same surface over another parameter domain ([`other_domain`]: sides from 1e-2 to
+//! 1e2), so its parameters are an affine image of P's, scaled unlike them. The reference is computed
 //! without the code under test: on grid lines `t = const` and `σ = const` the sign changes of
 //! `f − g` (sampled in f64) are refined by bisection whose signs are proven in interval
 //! arithmetic (de Casteljau in `inari`), so every reference bracket provably holds a true curve
@@ -91,21 +93,27 @@ impl HeightField {
             .collect()
     }
 
-    /// The patch, its control points moved by `motion` (none: as they are).
-    fn patch(&self, motion: Option<&Motion>) -> RationalBezierPatch {
+    /// The patch over `domain` (`[u0, u1, v0, v1]`), its control points moved by `motion`
+    /// (none: as they are).
+    fn patch(&self, motion: Option<&Motion>, domain: [f64; 4]) -> RationalBezierPatch {
         let points = self
             .control_points(motion)
             .into_iter()
             .map(|c| c.map(point))
             .collect();
         let m = self.m;
-        RationalBezierPatch::new([m, m], points, None, Domain::new(0.0, 1.0, 0.0, 1.0)).unwrap()
+        let [u0, u1, v0, v1] = domain;
+        RationalBezierPatch::new([m, m], points, None, Domain::new(u0, u1, v0, v1)).unwrap()
     }
 
-    /// This field as a scene-file surface.
-    fn scene_surface(&self, motion: Option<&Motion>) -> String {
+    /// This field as a scene-file surface over `domain`.
+    fn scene_surface(&self, motion: Option<&Motion>, domain: [f64; 4]) -> String {
         format!(
-            "{{\"kind\": \"bezier\", \"degree\": [{m}, {m}], \"points\": {points:?}}}",
+            "{{\"kind\": \"bezier\", \"degree\": [{m}, {m}], \"points\": {points:?}, \"domain\": [[{}, {}], [{}, {}]]}}",
+            domain[0],
+            domain[1],
+            domain[2],
+            domain[3],
             m = self.m,
             points = self.control_points(motion)
         )
@@ -183,6 +191,26 @@ fn reference(f: &HeightField, g: &HeightField, lines: usize, margin: f64) -> Vec
     out
 }
 
+/// The unit square, `[u0, u1, v0, v1]`.
+const UNIT: [f64; 4] = [0.0, 1.0, 0.0, 1.0];
+
+/// Q's parameter domain: the unit square for two seeds in three; for the third, a random box
+/// (corner in `[−5, 5]²`, sides from 1e-2 to 1e2, drawn from its own generator so the fields stay
+/// those of the seed). The same surface over another domain: the curve and the reference in P's
+/// parameters are unchanged, and Q's parameters are scaled unlike P's.
+fn other_domain(seed: u64) -> [f64; 4] {
+    if seed % 3 != 2 {
+        return UNIT;
+    }
+    let mut rng = Rng::new(seed ^ 0x5eed_d0_u64);
+    let (u0, v0) = (rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0));
+    let (w, h) = (
+        10f64.powf(rng.uniform(-2.0, 2.0)),
+        10f64.powf(rng.uniform(-2.0, 2.0)),
+    );
+    [u0, u0 + w, v0, v0 + h]
+}
+
 fn check_pair(seed: u64, fig: &mut Figures) {
     let mut rng = Rng::new(seed);
     let f = HeightField::random(&mut rng, 3, 0.3);
@@ -190,12 +218,16 @@ fn check_pair(seed: u64, fig: &mut Figures) {
     let g = HeightField::random(&mut rng, degree, 0.3);
     let motion = (seed % 2 == 1).then(|| Motion::random(&mut rng));
     let widen = if motion.is_some() { 1e-12 } else { 0.0 };
-    let (p, q) = (f.patch(motion.as_ref()), g.patch(motion.as_ref()));
+    let q_domain = other_domain(seed);
+    let (p, q) = (
+        f.patch(motion.as_ref(), UNIT),
+        g.patch(motion.as_ref(), q_domain),
+    );
     if let Ok(dir) = std::env::var("SSITRACE_ORACLE_SCENE_DIR") {
         let scene = format!(
             "{{\"surfaces\": [{}, {}], \"options\": {{\"name\": \"oracle-random-{seed}\", \"method\": \"validated\"}}}}\n",
-            f.scene_surface(motion.as_ref()),
-            g.scene_surface(motion.as_ref())
+            f.scene_surface(motion.as_ref(), UNIT),
+            g.scene_surface(motion.as_ref(), q_domain)
         );
         std::fs::write(format!("{dir}/oracle_random_{seed}.json"), scene).expect("scene written");
     }
@@ -210,6 +242,7 @@ fn check_pair(seed: u64, fig: &mut Figures) {
     let refs = reference(&f, &g, 16, 1e-3);
     let cmp = Comparison {
         seed,
+        domains: [UNIT, q_domain],
         result: &result,
         refs: &refs,
         widen,

@@ -198,6 +198,8 @@ pub(crate) fn engine() -> Engine {
 pub(crate) struct Comparison<'a> {
     /// The pair's seed (for the notes).
     pub(crate) seed: u64,
+    /// P's and Q's parameter domains, `[u0, u1, v0, v1]` each.
+    pub(crate) domains: [[f64; 4]; 2],
     /// What `intersect` returned.
     pub(crate) result: &'a SurfaceIntersection,
     /// The reference points.
@@ -253,7 +255,7 @@ pub(crate) fn compare(c: &Comparison<'_>, fig: &mut Figures) {
             None => fig.not_certified += 1,
         }
         if let Some(cb) = b.certified() {
-            check_boundary_ends(seed, b.id(), cb, fig);
+            check_boundary_ends(c, b.id(), cb, fig);
         }
     }
     fig.reference_points += c.refs.len();
@@ -264,9 +266,9 @@ pub(crate) fn compare(c: &Comparison<'_>, fig: &mut Figures) {
 
 /// Ends consistent with the geometry: a certified end on the boundary of surface `k` has its
 /// end box (the first box for the first end, the last for the last: boxes are ordered along the
-/// curve) reaching a side of `k`'s domain, `[0, 1]²` in both oracles. The boxes are proven to
-/// hold the curve, so the curve really leaves by that surface's boundary there.
-fn check_boundary_ends(seed: u64, id: usize, cb: &CertifiedBranch, fig: &mut Figures) {
+/// curve) reaching a side of `k`'s domain. The boxes are proven to hold the curve, so the curve
+/// really leaves by that surface's boundary there.
+fn check_boundary_ends(c: &Comparison<'_>, id: usize, cb: &CertifiedBranch, fig: &mut Figures) {
     let ends = [
         (&cb.ends[0], cb.boxes.first()),
         (&cb.ends[1], cb.boxes.last()),
@@ -276,12 +278,16 @@ fn check_boundary_ends(seed: u64, id: usize, cb: &CertifiedBranch, fig: &mut Fig
             continue;
         };
         let x = bx.params();
-        let reaches =
-            (2 * surface..2 * surface + 2).any(|k| x[k].inf() <= 0.0 || x[k].sup() >= 1.0);
+        let d = c.domains[*surface];
+        let reaches = (0..2).any(|k| {
+            let v = x[2 * surface + k];
+            v.inf() <= d[2 * k] || v.sup() >= d[2 * k + 1]
+        });
         if !reaches {
             fig.inconsistent_ends += 1;
             fig.notes.push(format!(
-                "seed {seed} branch {id}: end {end} but its end box {x:?} is inside that domain"
+                "seed {}: branch {id}: end {end} but its end box {x:?} is inside that domain",
+                c.seed
             ));
         }
     }
