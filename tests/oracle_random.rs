@@ -202,7 +202,7 @@ fn other_domain(seed: u64) -> [f64; 4] {
     if seed % 3 != 2 {
         return UNIT;
     }
-    let mut rng = Rng::new(seed ^ 0x5eed_d0_u64);
+    let mut rng = Rng::new(seed ^ 0x005e_edd0_u64);
     let (u0, v0) = (rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0));
     let (w, h) = (
         10f64.powf(rng.uniform(-2.0, 2.0)),

@@ -29,7 +29,7 @@
 //!   through the node's unused exit (each arc once), and the closing test then accepts rotation
 //!   index 0.
 //! - **Own path**: a point back on the half's own earlier path, away from its start, with the
-//!   same direction ([`on_own_path`]: a loop of another curve reached after a jump, or a loop
+//!   same direction (`closing::on_own_path`: a loop of another curve reached after a jump, or a loop
 //!   whose closing test failed) ends the half before it goes round again.
 //! - **Point limit** and **Newton failure** end the half with that reason, except that Newton
 //!   failing within a step of a singular point ahead (normals nearly parallel; beside a branch
