@@ -4,8 +4,10 @@
 use crate::certify::contact::ContactOptions;
 use crate::certify::contact_cover::CoverOptions;
 use crate::error::{Error, Result};
+use crate::geometry::RationalBezierPatch;
 use crate::pair::boundary_direction::BoundaryOptions;
 use crate::search::start_points::SearchOptions;
+use inari::Interval;
 use std::time::Duration;
 
 /// How the branches are traced.
@@ -82,7 +84,10 @@ pub struct Options {
     /// The certification engine of transversal branches (default [`Engine::Chain`]).
     pub engine: Engine,
     /// The marching step `L` (> 0, finite; default 0.05), see
-    /// [`MarchOptions::step`](crate::march::MarchOptions::step).
+    /// [`MarchOptions::step`](crate::march::MarchOptions::step): in model units for patches up
+    /// to 50 units across; for larger ones (the smaller patch's bounding box wider than that) it
+    /// is multiplied by that width over 50, so a part 1 000 units across (millimetres) is marched
+    /// with as many points as the same part 50 units across ([`Options::marching_step`]).
     pub step: f64,
     /// The model-space tolerance a certified branch should meet (> 0, finite; default 1e-9).
     /// Reported per branch ([`BranchCertificate::meets`](super::BranchCertificate::meets)), not
@@ -129,7 +134,22 @@ impl Default for Options {
     }
 }
 
+/// Patches up to this wide (the larger side of the smaller patch's bounding box) are marched with
+/// [`Options::step`] as it is; larger ones with the step scaled by their width over this.
+const STEP_SCALE_SIZE: f64 = 50.0;
+
 impl Options {
+    /// The marching step in model units for the patches `p` and `q` (see [`Options::step`]).
+    pub fn marching_step(&self, p: &RationalBezierPatch, q: &RationalBezierPatch) -> f64 {
+        let width = |b: [Interval; 3]| b.iter().map(|x| x.wid()).fold(0.0, f64::max);
+        let size = width(p.bounding_box()).min(width(q.bounding_box()));
+        if size.is_finite() && size > STEP_SCALE_SIZE {
+            self.step * (size / STEP_SCALE_SIZE)
+        } else {
+            self.step
+        }
+    }
+
     /// Checks the numbers a run depends on.
     ///
     /// Errors ([`Error::Scene`], as for a scene's options): a step or tolerance that is not a

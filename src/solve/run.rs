@@ -52,7 +52,7 @@ pub fn intersect(
 ) -> Result<SurfaceIntersection> {
     opts.check()?;
     let march = MarchOptions {
-        step: opts.step,
+        step: opts.marching_step(p, q),
         ..MarchOptions::default()
     };
     let started = Instant::now();
@@ -257,7 +257,7 @@ fn certify_within(
     let max_length = if length > 0.0 {
         opts.length_budget * length
     } else {
-        opts.step
+        opts.marching_step(p, q)
     };
     let certify = CertifyOptions {
         steps: StepBudget {
