@@ -86,7 +86,8 @@ enum Command {
         /// Certification engine of transversal branches (default `chain`).
         #[arg(long, value_enum)]
         engine: Option<EngineArg>,
-        /// Marching step L (default: the scene's, else 0.05).
+        /// Marching step L (default: the scene's, else 0.05), in model units for parts up to 50 units
+        /// across and scaled with larger ones.
         #[arg(long)]
         step: Option<f64>,
         /// Model-space tolerance a certified branch should meet (default: the scene's, else 1e-9).
