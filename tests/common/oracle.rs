@@ -424,23 +424,30 @@ pub(crate) fn print_figures(fig: &Figures) {
 }
 
 /// Runs `check` on the seeds; with `every > 0`, prints the figures so far after every `every`
-/// pairs (a long soak can then be cut short and still report).
+/// pairs, with the notes that came since (a long soak can then be cut short and still report).
+/// At most `SSITRACE_ORACLE_NOTES` notes are printed in all (default 20).
 pub(crate) fn run_with_progress(
     seeds: impl Iterator<Item = u64>,
     every: usize,
     check: impl Fn(u64, &mut Figures),
 ) -> Figures {
     let mut fig = Figures::default();
+    let shown = env_parse("SSITRACE_ORACLE_NOTES").unwrap_or(20usize);
+    // Notes already printed with the progress figures.
+    let mut printed = 0;
     for seed in seeds {
         check_counted(seed, &mut fig, &check);
         if every > 0 && fig.pairs % every == 0 {
             print!("[after seed {seed}] ");
             print_figures(&fig);
+            for n in fig.notes.iter().take(shown).skip(printed) {
+                println!("  {n}");
+            }
+            printed = fig.notes.len().min(shown);
         }
     }
     print_figures(&fig);
-    let shown = env_parse("SSITRACE_ORACLE_NOTES").unwrap_or(20usize);
-    for n in fig.notes.iter().take(shown) {
+    for n in fig.notes.iter().take(shown).skip(printed) {
         println!("  {n}");
     }
     fig
