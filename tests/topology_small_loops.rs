@@ -342,8 +342,9 @@ fn concentric_loops_0_002_apart_are_each_traced_once_with_the_default_step() {
     let q = plane(0.0);
     let out = intersect(&p, &q, &MarchOptions::default(), &SearchOptions::default());
     println!(
-        "concentric loops: search complete {}, starts {}, skipped {}, branches {}",
+        "concentric loops: search complete {} ({} undecided regions), starts {}, skipped {}, branches {}",
         out.stats.search_complete,
+        out.stats.undecided_regions.len(),
         out.stats.interior_candidates + out.stats.boundary_starts,
         out.stats.skipped_covered,
         out.intersection.branches.len()
