@@ -3,8 +3,9 @@
 //! another branch already traced. The cover chain of such a branch stops at the jump, or follows
 //! the true curve away from the marched points, and what it certified lies on other branches.
 //!
-//! A branch is dropped as a **duplicate** when every one of its marched points lies in a tube
-//! piece of another kept branch's cover chain (the piece's reported curve ± its proven parameter
+//! A branch is dropped as a **duplicate** when every one of its marched points (but an end point
+//! on a domain boundary, [`inner_points`]) lies in a tube piece of another kept branch's cover
+//! chain (the piece's reported curve ± its proven parameter
 //! radius, plus the marcher's Newton tolerance). Usually its certificate stops short at an end
 //! (`close_branches` at the jump, `singular` where the close curves look like a singular point,
 //! `unproven` where the chain left the marched points); after a stretch is traced again
@@ -18,7 +19,7 @@
 use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
 use crate::geometry::surface::pair_widths;
 use crate::geometry::RationalBezierPatch;
-use crate::march::branch::Branch;
+use crate::march::branch::{Branch, CurvePoint, EndReason};
 
 /// Which branches are duplicates (see the module documentation): a branch is tested against the
 /// branches not dropped before it and all after it, those whose certificate stops short first.
@@ -44,7 +45,7 @@ pub(crate) fn duplicate_branches(
             .flat_map(|c| &c.tubes)
             .collect();
         dropped[i] = !others.is_empty()
-            && marched[i].points.iter().all(|pt| {
+            && inner_points(&marched[i]).iter().all(|pt| {
                 let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
                 others
                     .iter()
@@ -52,4 +53,19 @@ pub(crate) fn duplicate_branches(
             });
     }
     dropped
+}
+
+/// The marched points a copy must hold: all but an end point on a domain boundary. That point is
+/// the exit itself; a chain that proves the same exit stops with its last link across the
+/// boundary, but the link's range in its along parameter can end just short of the point (in a
+/// parameter that moves slowly there).
+fn inner_points(b: &Branch) -> &[CurvePoint] {
+    let n = b.points.len();
+    if n <= 2 {
+        return &b.points;
+    }
+    let boundary = |e: &EndReason| matches!(e, EndReason::Boundary { .. });
+    let lo = usize::from(boundary(&b.ends[0]));
+    let hi = n - usize::from(boundary(&b.ends[1]));
+    &b.points[lo..hi]
 }
