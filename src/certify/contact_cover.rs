@@ -168,6 +168,11 @@ fn normal_separates_with(
 /// bisecting them one after another (last box first, one shared evaluation budget), box for
 /// box: a box whose bisection might have met the budget at its place in that order is bisected
 /// again in order with the budget (so the result never depends on the threads).
+///
+/// Neighbouring region boxes overlap (about half of each, along the tube): a sub-box that lies
+/// inside a region box bisected before (later in `region`) is dropped without a test, since
+/// every intersection point in it lies in that box's kept boxes (or, by the same rule, in those
+/// of a box bisected before that). The guarantee is unchanged; the overlaps are bisected once.
 pub fn contact_cover(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -183,10 +188,12 @@ pub fn contact_cover(
     let (cp, cq) = (CoverPatch::new(p), CoverPatch::new(q));
     let roots: Vec<Root> = clipped
         .par_iter()
-        .map(|y| Root {
+        .enumerate()
+        .map(|(i, y)| Root {
             y: *y,
             bp: cp.enclose(y[0], y[1]),
             bq: cq.enclose(y[2], y[3]),
+            before: bisected_before(&clipped, i),
         })
         .collect();
     let ctx = Bisection {
@@ -233,6 +240,24 @@ struct Root {
     y: [Interval; 4],
     bp: [Interval; 3],
     bq: [Interval; 3],
+    /// The region boxes bisected before this one (later in the region, see [`contact_cover`])
+    /// that overlap it: a sub-box inside one of them is not bisected again.
+    before: Vec<[Interval; 4]>,
+}
+
+/// The region boxes after `clipped[i]` (bisected before it) that overlap it.
+fn bisected_before(clipped: &[[Interval; 4]], i: usize) -> Vec<[Interval; 4]> {
+    let y = &clipped[i];
+    clipped[i + 1..]
+        .iter()
+        .filter(|r| (0..4).all(|k| !r[k].intersection(y[k]).is_empty()))
+        .copied()
+        .collect()
+}
+
+/// Whether the box `z` lies inside one of `boxes`.
+fn inside_any(z: &[Interval; 4], boxes: &[[Interval; 4]]) -> bool {
+    boxes.iter().any(|r| (0..4).all(|k| z[k].subset(r[k])))
 }
 
 /// A box waiting to be tested, with what its bisection can reuse.
@@ -348,6 +373,11 @@ impl Bisection<'_> {
             {
                 let mut z = y;
                 z[widest] = half;
+                // Every intersection point of a sub-box inside a region box bisected before
+                // lies in that box's kept boxes already.
+                if inside_any(&z, &root.before) {
+                    continue;
+                }
                 if !spend(&mut out, 1) {
                     return None;
                 }
@@ -411,13 +441,14 @@ mod tests {
         };
         // Each work item carries the enclosures of its P- and Q-halves, so bisecting σ or t only
         // re-encloses P, and u or v only Q.
-        let mut stack: Vec<([Interval; 4], [Interval; 3], [Interval; 3])> = Vec::new();
+        let mut stack: Vec<([Interval; 4], [Interval; 3], [Interval; 3], usize)> = Vec::new();
         for y in region.iter().filter_map(|y| clip_to_domains(p, q, y)) {
             cover.region.push(y);
             cover.evaluations += 2;
-            stack.push((y, p.enclose(y[0], y[1]), q.enclose(y[2], y[3])));
+            let root = cover.region.len() - 1;
+            stack.push((y, p.enclose(y[0], y[1]), q.enclose(y[2], y[3]), root));
         }
-        while let Some((y, bp, bq)) = stack.pop() {
+        while let Some((y, bp, bq, root)) = stack.pop() {
             if boxes_disjoint(&bp, &bq) {
                 continue;
             }
@@ -452,11 +483,14 @@ mod tests {
             {
                 let mut z = y;
                 z[widest] = half;
+                if inside_any(&z, &bisected_before(&cover.region, root)) {
+                    continue;
+                }
                 cover.evaluations += 1;
                 if widest < 2 {
-                    stack.push((z, p.enclose(z[0], z[1]), bq));
+                    stack.push((z, p.enclose(z[0], z[1]), bq, root));
                 } else {
-                    stack.push((z, bp, q.enclose(z[2], z[3])));
+                    stack.push((z, bp, q.enclose(z[2], z[3]), root));
                 }
             }
         }
