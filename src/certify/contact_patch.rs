@@ -30,12 +30,12 @@ use crate::Scalar;
 use inari::Interval;
 
 /// `C(n, k)` as an exact small float.
-fn binomial(n: usize, k: usize) -> f64 {
+pub(crate) fn binomial(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
 }
 
 /// Bernstein values `B_i^d(t)`, `i = 0..=d`.
-fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
+pub(crate) fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
     let mut a = vec![T::one(); d + 1];
     let mut b = vec![T::one(); d + 1];
     let one_minus = T::one() - t;
@@ -50,17 +50,17 @@ fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
 
 /// The forward differences of a polynomial patch's Cartesian net.
 #[derive(Debug, Clone)]
-struct PowerNet {
-    m: usize,
-    n: usize,
+pub(crate) struct PowerNet {
+    pub(crate) m: usize,
+    pub(crate) n: usize,
     /// Per `(k, l)` (index `k·(n+1) + l`) and coordinate: the differences `Δ^{k,l}p_ij` for
     /// `i ≤ m − k`, `j ≤ n − l` (index `i·(n−l+1) + j`), or `None` where all are exactly zero.
-    diffs: Vec<[Option<Vec<Interval>>; 3]>,
+    pub(crate) diffs: Vec<[Option<Vec<Interval>>; 3]>,
 }
 
 impl PowerNet {
     /// The differences of `patch` if all its weights are the same exact (thin) number.
-    fn of(patch: &RationalBezierPatch) -> Option<PowerNet> {
+    pub(crate) fn of(patch: &RationalBezierPatch) -> Option<PowerNet> {
         let net = patch.homogeneous();
         let w = net.first()?[3];
         let thin = w.inf() == w.sup();
