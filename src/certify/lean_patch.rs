@@ -17,6 +17,7 @@
 
 use crate::certify::contact_patch::{bernstein, binomial, PowerNet};
 use crate::geometry::RationalBezierPatch;
+use crate::numeric::imul::mul as imul;
 use crate::numeric::scalar::point;
 use crate::Scalar;
 use inari::Interval;
@@ -93,13 +94,17 @@ impl Taylor {
                     let Some(diffs) = net.diffs[k * (n + 1) + l][x].as_ref() else {
                         continue;
                     };
+                    // Σ_i bs_i·(Σ_j Δ_ij·br_j), with the branch-free product.
                     let mut acc = point(0.0);
                     for i in 0..=m - k {
-                        for j in 0..=n - l {
-                            acc += diffs[i * (n - l + 1) + j] * bs[k][i] * br[l][j];
+                        let row = &diffs[i * (n - l + 1)..(i + 1) * (n - l + 1)];
+                        let mut inner = point(0.0);
+                        for (d, b) in row.iter().zip(&br[l]) {
+                            inner += imul(*d, *b);
                         }
+                        acc += imul(inner, bs[k][i]);
                     }
-                    out[k * (n + 1) + l] = acc * point(binomial(m, k) * binomial(n, l));
+                    out[k * (n + 1) + l] = imul(acc, point(binomial(m, k) * binomial(n, l)));
                 }
             }
             out
