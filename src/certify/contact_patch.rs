@@ -136,6 +136,8 @@ impl ScalarSurface for ContactPatch<'_> {
     fn scaled_first_order<T: Scalar>(&self, u: T, v: T) -> ([T; 3], [T; 3], T) {
         self.patch.scaled_first_order(u, v)
     }
+    /// For a polynomial patch the partials themselves (`g = 1`: the weight is constant) from the
+    /// lean centred form; otherwise the patch's own.
     fn scaled_first_order_centred<T: Scalar>(
         &self,
         u: T,
@@ -143,7 +145,13 @@ impl ScalarSurface for ContactPatch<'_> {
         cu: T,
         cv: T,
     ) -> ([T; 3], [T; 3], T) {
-        self.patch.scaled_first_order_centred(u, v, cu, cv)
+        match &self.power {
+            Some(net) => {
+                let [a, b] = self.lean_centred(net, u, v, cu, cv, [(1, 0), (0, 1)]);
+                (a, b, T::one())
+            }
+            None => self.patch.scaled_first_order_centred(u, v, cu, cv),
+        }
     }
 }
 
@@ -152,9 +160,25 @@ const ORDERS: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0,
 
 impl CentredSecondOrder for ContactPatch<'_> {
     fn second_order_centred<T: Scalar>(&self, u: T, v: T, cu: T, cv: T) -> [[T; 3]; 6] {
-        let Some(net) = &self.power else {
-            return self.patch.second_order_centred(u, v, cu, cv);
-        };
+        match &self.power {
+            Some(net) => self.lean_centred(net, u, v, cu, cv, ORDERS),
+            None => self.patch.second_order_centred(u, v, cu, cv),
+        }
+    }
+}
+
+impl ContactPatch<'_> {
+    /// The partials `∂ᵃ_u ∂ᵇ_v S` for each `(a, b)` of `orders`, from the monomials written
+    /// around `(cu, cv)` (module documentation).
+    fn lean_centred<T: Scalar, const K: usize>(
+        &self,
+        net: &PowerNet,
+        u: T,
+        v: T,
+        cu: T,
+        cv: T,
+        orders: [(usize, usize); K],
+    ) -> [[T; 3]; K] {
         let (m, n) = (net.m, net.n);
         let d = self.patch.domain();
         let du = T::from_f64(d.u[1]) - T::from_f64(d.u[0]);
@@ -184,7 +208,7 @@ impl CentredSecondOrder for ContactPatch<'_> {
         let bs: Vec<Vec<T>> = (0..=m).map(|k| bernstein(m - k, cs)).collect();
         let br: Vec<Vec<T>> = (0..=n).map(|l| bernstein(n - l, cr)).collect();
         let zero = T::zero();
-        let mut out = [[zero; 3]; 6];
+        let mut out = [[zero; 3]; K];
         for x in 0..3 {
             // Taylor coefficients T_kl of this coordinate (None where identically zero).
             let coeff: Vec<Option<T>> = (0..=m)
@@ -206,7 +230,7 @@ impl CentredSecondOrder for ContactPatch<'_> {
                     acc.map(|a| a * scale)
                 })
                 .collect();
-            for (slot, &(a, b)) in out.iter_mut().zip(&ORDERS) {
+            for (slot, &(a, b)) in out.iter_mut().zip(&orders) {
                 let mut acc: Option<T> = None;
                 for k in a..=m {
                     for l in b..=n {
