@@ -37,6 +37,31 @@
 //! with the same certificates. On Viviani the search (loop exclusion, edge search) is a quarter
 //! of the run; on the tangential pair the Taylor recurrences of the contact trace are.
 //!
+//! **Certified / marched on the same branches** (this bench's first lines, 2026-12-02, a 2-core
+//! machine under load from other sessions (load average 5–10), so the ratios are rough). The
+//! chain (the default engine) against the marcher from the same start, medians of 5:
+//!
+//! | scene | links | chain | marched | ratio | Taylor engine ratio |
+//! |---|---|---|---|---|---|
+//! | sphere_patch_plane | 245 | 13.8 ms | 0.39 ms | 36 | 82 |
+//! | bicubic_transversal | 21 (tol 8e-15) | 1.8 ms | 0.15 ms | 12 | 33 |
+//! | two_loops_s31_s32 | 445 | 23.0 ms | 1.22 ms | 19 | 46 |
+//! | Fig. 7, smallest loop | 180 | 57.4 ms | 0.39 ms | 146 | 2001 |
+//! | small_loop | 54 | 3.2 ms | 0.38 ms | 8.5 | 7 |
+//! | Fig. 7, three loops | 542 | 181 ms | 1.21 ms | 150 | – |
+//! | cylinders | 151 | 8.6 ms | 0.24 ms | 35 | – |
+//! | cylinders_full | 265 | 50 ms | 0.38 ms | 133 | – |
+//! | viviani | 167 | 11.1 ms | 0.29 ms | 38 | – |
+//!
+//! (Before the lean polynomial form of the link proofs, `certify::lean_patch`, and of the
+//! Taylor engine's field, same bench and day: chain ratios 39 / 27 / 33 / 174 / 7.6 / 172 /
+//! 34 / 89 / 52; Taylor 56 / 65 / 50 / 4105 / 40, the bicubic branch in 32 links at 4.8e-10.)
+//! The goal of ≤ 10 holds only on the small loop. The marcher's branch costs 0.15–1.2 ms; a
+//! link costs 40–100 µs on low degrees and ~320 µs on Fig. 7's degree-6 patch, where a quarter
+//! of the scene's task-clock is the model-space box of each link (the sub-patch net of the
+//! 7×7 net, `geometry::enclosure::restrict_net`) and most of the rest the two series
+//! evaluations of the residual and the Jacobian along the predictor.
+//!
 //! The group `halves` times the open bicubic branch with its two halves one after the other and
 //! on two threads (`CertifyOptions::parallel_halves`).
 //!
