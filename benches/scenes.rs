@@ -50,7 +50,7 @@
 //! | small_loop | 54 | 3.2 ms | 0.38 ms | 8.5 | 7 |
 //! | Fig. 7, three loops | 542 | 181 ms | 1.21 ms | 150 | – |
 //! | cylinders | 151 | 8.6 ms | 0.24 ms | 35 | – |
-//! | cylinders_full | 265 | 50 ms | 0.38 ms | 133 | – |
+//! | cylinders_full | 265 | 50 ms | 0.38 ms | 133 (noise: 89 before, task-clock unchanged) | – |
 //! | viviani | 167 | 11.1 ms | 0.29 ms | 38 | – |
 //!
 //! (Before the lean polynomial form of the link proofs, `certify::lean_patch`, and of the
