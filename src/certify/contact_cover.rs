@@ -171,7 +171,7 @@ fn normal_separates_with(
 ///
 /// Neighbouring region boxes overlap (about half of each, along the tube). Each is bisected
 /// only where it lies outside the region boxes bisected before it (later in `region`): its part
-/// there is cut into at most eight boxes per overlapping box ([`bisected_pieces`]), which are
+/// there is cut into at most eight boxes per overlapping box (`bisected_pieces`), which are
 /// bisected in its place. Every intersection point of the rest lies in the kept boxes of a box
 /// bisected before, so the guarantee is unchanged and the overlaps are bisected once.
 pub fn contact_cover(
