@@ -37,6 +37,31 @@
 //! with the same certificates. On Viviani the search (loop exclusion, edge search) is a quarter
 //! of the run; on the tangential pair the Taylor recurrences of the contact trace are.
 //!
+//! **Certified / marched on the same branches** (this bench's first lines, 2026-12-02, a 2-core
+//! machine under load from other sessions (load average 5–10), so the ratios are rough). The
+//! chain (the default engine) against the marcher from the same start, medians of 5:
+//!
+//! | scene | links | chain | marched | ratio | Taylor engine ratio |
+//! |---|---|---|---|---|---|
+//! | sphere_patch_plane | 245 | 13.8 ms | 0.39 ms | 36 | 82 |
+//! | bicubic_transversal | 21 (tol 8e-15) | 1.8 ms | 0.15 ms | 12 | 33 |
+//! | two_loops_s31_s32 | 445 | 23.0 ms | 1.22 ms | 19 | 46 |
+//! | Fig. 7, smallest loop | 180 | 57.4 ms | 0.39 ms | 146 | 2001 |
+//! | small_loop | 54 | 3.2 ms | 0.38 ms | 8.5 | 7 |
+//! | Fig. 7, three loops | 542 | 181 ms | 1.21 ms | 150 | – |
+//! | cylinders | 151 | 8.6 ms | 0.24 ms | 35 | – |
+//! | cylinders_full | 265 | 50 ms | 0.38 ms | 133 (noise: 89 before, task-clock unchanged) | – |
+//! | viviani | 167 | 11.1 ms | 0.29 ms | 38 | – |
+//!
+//! (Before the lean polynomial form of the link proofs, `certify::lean_patch`, and of the
+//! Taylor engine's field, same bench and day: chain ratios 39 / 27 / 33 / 174 / 7.6 / 172 /
+//! 34 / 89 / 52; Taylor 56 / 65 / 50 / 4105 / 40, the bicubic branch in 32 links at 4.8e-10.)
+//! The goal of ≤ 10 holds only on the small loop. The marcher's branch costs 0.15–1.2 ms; a
+//! link costs 40–100 µs on low degrees and ~320 µs on Fig. 7's degree-6 patch, where a quarter
+//! of the scene's task-clock is the model-space box of each link (the sub-patch net of the
+//! 7×7 net, `geometry::enclosure::restrict_net`) and most of the rest the two series
+//! evaluations of the residual and the Jacobian along the predictor.
+//!
 //! The group `halves` times the open bicubic branch with its two halves one after the other and
 //! on two threads (`CertifyOptions::parallel_halves`).
 //!
@@ -48,19 +73,24 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use ssitrace::certify::budget::StepBudget;
-use ssitrace::certify::{certify_branch_profiled, CertifyOptions, TraceProfile};
+use ssitrace::certify::{
+    certify_branch_profiled, certify_chain, CertifyOptions, ChainOptions, TraceProfile,
+};
 use ssitrace::geometry::RationalBezierPatch;
 use ssitrace::io::scene::Scene;
+use ssitrace::march::branch::Branch;
 use ssitrace::march::{trace_branch, MarchOptions};
 use ssitrace::solve::{intersect, Method, Options, LENGTH_BUDGET_FACTOR};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
 
-/// One branch to certify: its start (the middle marched point) and its arc-length budget.
+/// One branch to certify: its start (the middle marched point), its arc-length budget and the
+/// marched branch (the chain engine's guide).
 struct Job {
     start: [f64; 4],
     max_length: f64,
+    branch: Branch,
 }
 
 struct Case {
@@ -88,6 +118,7 @@ fn case(name: &'static str, file: &str, smallest_only: bool) -> Case {
             Job {
                 start: [pt.p[0], pt.p[1], pt.q[0], pt.q[1]],
                 max_length: LENGTH_BUDGET_FACTOR * b.length(),
+                branch: b.clone(),
             }
         })
         .collect();
@@ -137,6 +168,53 @@ fn certify_with(
         }
     }
     (steps, tol, prof)
+}
+
+/// Every branch certified by the cover chain (the pipeline's default engine) from the same
+/// start; the links and the largest proven tolerance.
+fn chain_all(p: &RationalBezierPatch, q: &RationalBezierPatch, jobs: &[Job]) -> (usize, f64) {
+    let opts = ChainOptions::default();
+    let (mut links, mut tol) = (0, 0.0f64);
+    for j in jobs {
+        if let Ok(c) = certify_chain(p, q, &j.branch, black_box(j.start), &opts) {
+            links += c.tubes.len();
+            tol = tol.max(c.certified_tolerance);
+        }
+    }
+    (links, tol)
+}
+
+/// Seconds of the median of `n` runs of `f`.
+fn median(n: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..n)
+        .map(|_| {
+            let s = Instant::now();
+            f();
+            s.elapsed().as_secs_f64()
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[n / 2]
+}
+
+/// Prints the default engine's ratio on one scene: the cover chain over every branch against
+/// the marcher on the same branches (medians of 5 runs, back to back).
+fn report_chain(c: &Case) {
+    let [p, q] = &c.scene.surfaces;
+    let mut out = (0, 0.0);
+    let chain = median(5, || out = chain_all(p, q, &c.jobs));
+    let march = median(5, || {
+        black_box(march_all(p, q, &c.jobs, c.scene.options.step));
+    });
+    println!(
+        "{:<22} chain: {:>5} links, tol {:.1e}, certified {:.2} ms, marched {:.2} ms, ratio {:.1}",
+        c.name,
+        out.0,
+        out.1,
+        1e3 * chain,
+        1e3 * march,
+        chain / march.max(1e-12),
+    );
 }
 
 fn march_all(p: &RationalBezierPatch, q: &RationalBezierPatch, jobs: &[Job], step: f64) -> usize {
@@ -204,6 +282,16 @@ fn cases() -> Vec<Case> {
     ]
 }
 
+/// Scenes whose Taylor-engine runs take too long for this bench, measured with the chain only.
+fn chain_only_cases() -> Vec<Case> {
+    vec![
+        case("wu_andrade_fig7", "scenes/wu_andrade_fig7.json", false),
+        case("cylinders", "scenes/cylinders.json", false),
+        case("cylinders_full", "scenes/cylinders_full.json", false),
+        case("viviani", "scenes/viviani.json", false),
+    ]
+}
+
 fn bench_scenes(crit: &mut Criterion) {
     let cases = cases();
     let order = CertifyOptions::default().steps.order;
@@ -211,6 +299,9 @@ fn bench_scenes(crit: &mut Criterion) {
         .ok()
         .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
         .unwrap_or_default();
+    for c in cases.iter().chain(&chain_only_cases()) {
+        report_chain(c);
+    }
     for c in &cases {
         report(c, order);
         for &k in orders.iter().filter(|&&k| k != order) {
@@ -223,6 +314,9 @@ fn bench_scenes(crit: &mut Criterion) {
         let [p, q] = &c.scene.surfaces;
         group.bench_function(format!("{}/certified", c.name), |b| {
             b.iter(|| certify_all(p, q, &c.jobs, order))
+        });
+        group.bench_function(format!("{}/chain", c.name), |b| {
+            b.iter(|| chain_all(p, q, &c.jobs))
         });
         group.bench_function(format!("{}/marched", c.name), |b| {
             b.iter(|| march_all(p, q, &c.jobs, c.scene.options.step))

@@ -11,16 +11,19 @@ certification, straying check, output), OCCT's `time_ms` (the driver's own media
 runs, `Perform` alone), their ratio, and per certified branch its steps and proven tolerance.
 The peer driver is looked up at $SSITRACE_PEERS (default /tmp/ssitrace-peers, built by
 ../shared/peers/build.sh); when it or the scene converter is missing the OCCT columns say so and
-the ssitrace columns are still measured. Where OCCT misses a loop (OCCT_WRONG) the ratio is
+the ssitrace columns are still measured. The `cpu` column is the median CPU time (user + system,
+all threads) of the same runs: on a machine busy with other work it moves far less than the wall
+time. Where OCCT misses a loop (OCCT_WRONG) the ratio is
 taken against max(OCCT, 12 ms), and the median and largest ratio close the table. With
-`--baseline BIN` (e.g. a build of `main`) each scene also runs that binary, just before this
-one, and prints its row under the same OCCT time.
+`--baseline BIN` (e.g. a build of `main`) each scene also runs that binary, taking turns with
+this one run by run, and prints its row under the same OCCT time.
 """
 
 import argparse
 import json
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -60,17 +63,25 @@ CONVERTER_CANDIDATES = [
 CERT_RE = re.compile(r"certified: (\d+) steps, tolerance ([0-9.eE+-]+)")
 
 
+def children_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def run_ssitrace(binary, scene, tolerance):
+    """Wall and CPU seconds (user + system, all threads) of one process, its branches, error."""
     cmd = [binary, "trace", scene, "--method", "validated"]
     if tolerance is not None:
         cmd += ["--tolerance", str(tolerance)]
+    c0 = children_cpu()
     t0 = time.perf_counter()
     out = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.perf_counter() - t0
+    cpu = children_cpu() - c0
     if out.returncode != 0:
-        return wall, None, out.stderr.strip().splitlines()[-1:] or ["failed"]
+        return wall, cpu, None, out.stderr.strip().splitlines()[-1:] or ["failed"]
     branches = [(int(m.group(1)), float(m.group(2))) for m in CERT_RE.finditer(out.stdout)]
-    return wall, branches, None
+    return wall, cpu, branches, None
 
 
 def run_occt(scene, tol):
@@ -108,23 +119,31 @@ def main():
 
     rows = []
     ratios = {}
-    hdr = f"{'scene':34} {'validated':>10} {'OCCT':>9} {'lines':>5} {'ratio':>7}  branches (steps, tolerance)"
+    hdr = (
+        f"{'scene':34} {'validated':>10} {'cpu':>9} {'OCCT':>9} {'lines':>5} {'ratio':>7}  "
+        "branches (steps, tolerance)"
+    )
     print(hdr)
     print("-" * len(hdr))
     binaries = [("", args.binary)]
     if args.baseline:
         binaries.insert(0, ("base ", args.baseline))
     for scene in args.scenes:
-        measured = []
-        for tag, binary in binaries:
-            walls, branches, err = [], None, None
-            for _ in range(max(1, args.repeat)):
-                w, b, e = run_ssitrace(binary, scene, args.tolerance)
+        # The binaries take turns, run by run, so that a change of load hits both alike.
+        runs = {tag: ([], [], None, None) for tag, _ in binaries}
+        for _ in range(max(1, args.repeat)):
+            for tag, binary in binaries:
+                w, c, b, e = run_ssitrace(binary, scene, args.tolerance)
+                walls, cpus, _, _ = runs[tag]
                 walls.append(w)
-                branches, err = b, e
-            measured.append((tag, statistics.median(walls), branches, err))
+                cpus.append(c)
+                runs[tag] = (walls, cpus, b, e)
+        measured = [
+            (tag, statistics.median(runs[tag][0]), statistics.median(runs[tag][1]), runs[tag][2], runs[tag][3])
+            for tag, _ in binaries
+        ]
         occt, why = run_occt(scene, args.occt_tol)
-        for tag, wall, branches, err in measured:
+        for tag, wall, cpu, branches, err in measured:
             name = tag + os.path.basename(scene)
             if occt is None:
                 occt_s, lines_s, ratio_s = "-", "-", "-"
@@ -138,12 +157,16 @@ def main():
                 ratio_s = f"{1000 * wall / ref:.1f}x" if ref > 0 else "-"
                 ratios.setdefault(tag, []).append(1000 * wall / ref)
             br = "; ".join(f"{s}, {t:.2e}" for s, t in branches) if branches else (err or ["none"])[0]
-            print(f"{name:34} {1000 * wall:>8.0f}ms {occt_s:>9} {lines_s:>5} {ratio_s:>7}  {br}")
+            print(
+                f"{name:34} {1000 * wall:>8.0f}ms {1000 * cpu:>7.0f}ms {occt_s:>9} {lines_s:>5} "
+                f"{ratio_s:>7}  {br}"
+            )
             rows.append(
                 {
                     "scene": scene,
                     "binary": tag.strip() or "new",
                     "validated_ms": 1000 * wall,
+                    "cpu_ms": 1000 * cpu,
                     "occt_ms": occt[0] if occt else None,
                     "occt_lines": occt[1] if occt else None,
                     "branches": branches,

@@ -201,7 +201,12 @@ fn run(cli: Cli) -> ssitrace::Result<()> {
         }
     };
     let started = Instant::now();
-    let mut report = ssitrace::pipeline::run(&scene, &opts)?;
+    // The result document's metadata is built only when it is written.
+    let mut report = if outputs.out.is_some() {
+        ssitrace::pipeline::run(&scene, &opts)?
+    } else {
+        ssitrace::pipeline::run_without_meta(&scene, &opts)?
+    };
     let elapsed = started.elapsed().as_secs_f64();
     say(&summary(&scene, &report, &opts, elapsed));
     mark_pair(&mut report.meta, &report.result, [0, 0]);

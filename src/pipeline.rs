@@ -93,6 +93,19 @@ pub fn run(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     Ok(RunReport { result, meta })
 }
 
+/// [`run`] without the result document's metadata (an empty [`ResultMeta`] with the scene name
+/// and method): for a caller that writes no result file, since the metadata of a certified
+/// contact (every cover box) or of an unfinished search (every undecided region) takes a
+/// noticeable share of a short run to build.
+///
+/// Errors: as [`run`].
+pub fn run_without_meta(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
+    let [p, q] = &scene.surfaces;
+    let result = intersect(p, q, &opts.options())?;
+    let meta = ResultMeta::new(scene.options.name.clone(), opts.method.name());
+    Ok(RunReport { result, meta })
+}
+
 /// [`run`], as a pair.
 pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<(SurfaceIntersection, ResultMeta)> {
     let report = run(scene, opts)?;

@@ -330,19 +330,15 @@ pub fn certify_contact(
         grouped_region(&steps, &widths, margin)
     };
     let cover = contact_cover(p, q, &region, &opts.cover);
-    let samples = tube_samples(p, &tubes, start);
-    // (Boxes × samples distances: on two threads; the maximum does not depend on the order.)
+    // (Non-finite samples never lower a minimum: left out.)
+    let mut samples = tube_samples(p, &tubes, start);
+    samples.retain(|s| s.iter().all(|x| x.is_finite()));
+    samples.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    // (On two threads; the maximum does not depend on the order.)
     let cover_band = cover
         .boxes
         .par_iter()
-        .map(|b| {
-            let c = b.xyz.map(|x| x.mid());
-            samples
-                .iter()
-                .map(|s| (c[0] - s[0]).powi(2) + (c[1] - s[1]).powi(2) + (c[2] - s[2]).powi(2))
-                .fold(f64::INFINITY, f64::min)
-                .sqrt()
-        })
+        .map(|b| nearest_sqr(&b.xyz.map(|x| x.mid()), &samples).sqrt())
         .reduce(|| 0.0, f64::max);
     let tube_radius = tubes.iter().map(|t| t.radius_xyz).fold(0.0, f64::max);
     let proven_statement = statement(&steps, tube_radius, &cover, opts);
@@ -446,6 +442,32 @@ fn grouped_region(
     }
     out.extend(hull.map(|h| widen4(&h, margin)));
     out
+}
+
+/// The smallest squared distance from `c` to the finite points `sorted` (sorted by their first
+/// coordinate; `+∞` if there are none): outwards from `c`'s place in that order, each way until
+/// the first coordinate alone is as far as the nearest point found. The same value as the
+/// minimum over all of them (the same sums, compared), far fewer of them.
+fn nearest_sqr(c: &[f64; 3], sorted: &[[f64; 3]]) -> f64 {
+    let d = |s: &[f64; 3]| (c[0] - s[0]).powi(2) + (c[1] - s[1]).powi(2) + (c[2] - s[2]).powi(2);
+    if !c.iter().all(|x| x.is_finite()) {
+        return sorted.iter().map(d).fold(f64::INFINITY, f64::min);
+    }
+    let at = sorted.partition_point(|s| s[0] < c[0]);
+    let mut best = f64::INFINITY;
+    for s in &sorted[at..] {
+        if (s[0] - c[0]).powi(2) >= best {
+            break;
+        }
+        best = best.min(d(s));
+    }
+    for s in sorted[..at].iter().rev() {
+        if (c[0] - s[0]).powi(2) >= best {
+            break;
+        }
+        best = best.min(d(s));
+    }
+    best
 }
 
 /// Model-space points of the tube polynomials (f64), or the start point's image.
@@ -645,6 +667,34 @@ fn trace_half(
         if let Some(surface) = outside {
             half.end = ContactEnd::Boundary { surface };
             return Ok(half);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::nearest_sqr;
+
+    #[test]
+    fn nearest_point_is_the_brute_force_minimum() {
+        let mut h = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = || {
+            h ^= h << 13;
+            h ^= h >> 7;
+            h ^= h << 17;
+            (h >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for n in [0, 1, 2, 7, 300] {
+            let mut pts: Vec<[f64; 3]> = (0..n).map(|_| [next(), next(), 0.1 * next()]).collect();
+            pts.sort_by(|a, b| a[0].total_cmp(&b[0]));
+            for _ in 0..200 {
+                let c = [1.2 * next(), next(), next()];
+                let brute = pts
+                    .iter()
+                    .map(|s| (c[0] - s[0]).powi(2) + (c[1] - s[1]).powi(2) + (c[2] - s[2]).powi(2))
+                    .fold(f64::INFINITY, f64::min);
+                assert_eq!(nearest_sqr(&c, &pts).to_bits(), brute.to_bits());
+            }
         }
     }
 }

@@ -168,6 +168,12 @@ fn normal_separates_with(
 /// bisecting them one after another (last box first, one shared evaluation budget), box for
 /// box: a box whose bisection might have met the budget at its place in that order is bisected
 /// again in order with the budget (so the result never depends on the threads).
+///
+/// Neighbouring region boxes overlap (about half of each, along the tube). Each is bisected
+/// only where it lies outside the region boxes bisected before it (later in `region`): its part
+/// there is cut into at most eight boxes per overlapping box (`bisected_pieces`), which are
+/// bisected in its place. Every intersection point of the rest lies in the kept boxes of a box
+/// bisected before, so the guarantee is unchanged and the overlaps are bisected once.
 pub fn contact_cover(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -181,7 +187,7 @@ pub fn contact_cover(
         .filter_map(|y| clip_to_domains(p, q, y))
         .collect();
     let (cp, cq) = (CoverPatch::new(p), CoverPatch::new(q));
-    let roots: Vec<Root> = clipped
+    let roots: Vec<Root> = bisected_pieces(&clipped)
         .par_iter()
         .map(|y| Root {
             y: *y,
@@ -233,6 +239,52 @@ struct Root {
     y: [Interval; 4],
     bp: [Interval; 3],
     bq: [Interval; 3],
+}
+
+/// The boxes that [`contact_cover`] bisects for the region boxes `clipped`, in their order: each
+/// region box minus the region boxes after it (bisected before it), as closed boxes whose union
+/// is that difference's closure. Together they cover the union of `clipped`.
+fn bisected_pieces(clipped: &[[Interval; 4]]) -> Vec<[Interval; 4]> {
+    (0..clipped.len())
+        .flat_map(|i| pieces_of(clipped, i))
+        .collect()
+}
+
+/// The pieces of [`bisected_pieces`] for the box `clipped[i]`.
+fn pieces_of(clipped: &[[Interval; 4]], i: usize) -> Vec<[Interval; 4]> {
+    let mut parts = vec![clipped[i]];
+    for r in &clipped[i + 1..] {
+        parts = parts.iter().flat_map(|b| box_minus(b, r)).collect();
+    }
+    parts
+}
+
+/// The closed boxes (at most eight) whose union is the closure of `b` minus `r`: `b` itself when
+/// their interiors do not meet. Cut coordinate by coordinate: the slabs of `b` below and above
+/// `r`, then what is left between them.
+fn box_minus(b: &[Interval; 4], r: &[Interval; 4]) -> Vec<[Interval; 4]> {
+    let meet = (0..4).all(|k| b[k].inf() < r[k].sup() && r[k].inf() < b[k].sup());
+    if !meet {
+        return vec![*b];
+    }
+    let mut out = Vec::new();
+    let mut rest = *b;
+    for k in 0..4 {
+        let (lo, hi) = (rest[k].inf(), rest[k].sup());
+        if lo < r[k].inf() {
+            let mut slab = rest;
+            slab[k] = interval(lo, r[k].inf()).unwrap_or(rest[k]);
+            out.push(slab);
+        }
+        if r[k].sup() < hi {
+            let mut slab = rest;
+            slab[k] = interval(r[k].sup(), hi).unwrap_or(rest[k]);
+            out.push(slab);
+        }
+        rest[k] = interval(lo.max(r[k].inf()), hi.min(r[k].sup())).unwrap_or(rest[k]);
+    }
+    // `rest` lies inside `r`.
+    out
 }
 
 /// A box waiting to be tested, with what its bisection can reuse.
@@ -414,6 +466,9 @@ mod tests {
         let mut stack: Vec<([Interval; 4], [Interval; 3], [Interval; 3])> = Vec::new();
         for y in region.iter().filter_map(|y| clip_to_domains(p, q, y)) {
             cover.region.push(y);
+        }
+        // Each region box where no box after it (bisected before it) lies.
+        for y in bisected_pieces(&cover.region) {
             cover.evaluations += 2;
             stack.push((y, p.enclose(y[0], y[1]), q.enclose(y[2], y[3])));
         }
@@ -489,6 +544,48 @@ mod tests {
             let y = [0.5 * a.cos(), 0.5 * a.sin(), 0.5 * a.cos(), 0.5 * a.sin()];
             assert!(c.boxes.iter().any(|b| b.contains(&y)), "{y:?} not covered");
         }
+    }
+
+    #[test]
+    fn bisected_pieces_cover_the_region_and_miss_the_later_boxes() {
+        // Overlapping boxes along a diagonal, one inside another, one apart.
+        let r = |c: [f64; 4], h: f64| c.map(|x| interval(x - h, x + h).unwrap());
+        let region = vec![
+            r([0.0, 0.0, 0.0, 0.0], 0.3),
+            r([0.2, 0.1, 0.2, 0.1], 0.3),
+            r([0.25, 0.1, 0.2, 0.15], 0.05),
+            r([0.4, 0.2, 0.4, 0.2], 0.3),
+            r([3.0, 3.0, 3.0, 3.0], 0.1),
+        ];
+        let pieces = bisected_pieces(&region);
+        let inside = |b: &[Interval; 4], y: &[f64; 4]| (0..4).all(|k| b[k].contains(y[k]));
+        // A grid of points of the region: each lies in a piece.
+        let mut tried = 0;
+        for k in 0..20_000u64 {
+            let mut h = k.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+            let y: [f64; 4] = std::array::from_fn(|_| {
+                h = h.rotate_left(17).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+                -0.4 + 1.2 * (h >> 11) as f64 / (1u64 << 53) as f64
+            });
+            if region.iter().any(|b| inside(b, &y)) {
+                tried += 1;
+                assert!(pieces.iter().any(|b| inside(b, &y)), "{y:?}");
+            }
+        }
+        assert!(tried > 1000);
+        // The pieces of a box lie in it and meet no later box's interior; the last box is kept
+        // whole, and a box inside a later one leaves nothing.
+        let meets = |a: &[Interval; 4], b: &[Interval; 4]| {
+            (0..4).all(|k| a[k].inf() < b[k].sup() && b[k].inf() < a[k].sup())
+        };
+        for (i, y) in region.iter().enumerate() {
+            for b in pieces_of(&region, i) {
+                assert!((0..4).all(|k| b[k].subset(y[k])));
+                assert!(region[i + 1..].iter().all(|later| !meets(&b, later)));
+            }
+        }
+        assert_eq!(pieces_of(&region, 4), vec![region[4]]);
+        assert!(pieces_of(&region, 2).is_empty());
     }
 
     #[test]

@@ -30,12 +30,12 @@ use crate::Scalar;
 use inari::Interval;
 
 /// `C(n, k)` as an exact small float.
-fn binomial(n: usize, k: usize) -> f64 {
+pub(crate) fn binomial(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
 }
 
 /// Bernstein values `B_i^d(t)`, `i = 0..=d`.
-fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
+pub(crate) fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
     let mut a = vec![T::one(); d + 1];
     let mut b = vec![T::one(); d + 1];
     let one_minus = T::one() - t;
@@ -50,17 +50,17 @@ fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
 
 /// The forward differences of a polynomial patch's Cartesian net.
 #[derive(Debug, Clone)]
-struct PowerNet {
-    m: usize,
-    n: usize,
+pub(crate) struct PowerNet {
+    pub(crate) m: usize,
+    pub(crate) n: usize,
     /// Per `(k, l)` (index `k·(n+1) + l`) and coordinate: the differences `Δ^{k,l}p_ij` for
     /// `i ≤ m − k`, `j ≤ n − l` (index `i·(n−l+1) + j`), or `None` where all are exactly zero.
-    diffs: Vec<[Option<Vec<Interval>>; 3]>,
+    pub(crate) diffs: Vec<[Option<Vec<Interval>>; 3]>,
 }
 
 impl PowerNet {
     /// The differences of `patch` if all its weights are the same exact (thin) number.
-    fn of(patch: &RationalBezierPatch) -> Option<PowerNet> {
+    pub(crate) fn of(patch: &RationalBezierPatch) -> Option<PowerNet> {
         let net = patch.homogeneous();
         let w = net.first()?[3];
         let thin = w.inf() == w.sup();
@@ -136,6 +136,8 @@ impl ScalarSurface for ContactPatch<'_> {
     fn scaled_first_order<T: Scalar>(&self, u: T, v: T) -> ([T; 3], [T; 3], T) {
         self.patch.scaled_first_order(u, v)
     }
+    /// For a polynomial patch the partials themselves (`g = 1`: the weight is constant) from the
+    /// lean centred form; otherwise the patch's own.
     fn scaled_first_order_centred<T: Scalar>(
         &self,
         u: T,
@@ -143,7 +145,13 @@ impl ScalarSurface for ContactPatch<'_> {
         cu: T,
         cv: T,
     ) -> ([T; 3], [T; 3], T) {
-        self.patch.scaled_first_order_centred(u, v, cu, cv)
+        match &self.power {
+            Some(net) => {
+                let [a, b] = self.lean_centred(net, u, v, cu, cv, [(1, 0), (0, 1)]);
+                (a, b, T::one())
+            }
+            None => self.patch.scaled_first_order_centred(u, v, cu, cv),
+        }
     }
 }
 
@@ -152,9 +160,25 @@ const ORDERS: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0,
 
 impl CentredSecondOrder for ContactPatch<'_> {
     fn second_order_centred<T: Scalar>(&self, u: T, v: T, cu: T, cv: T) -> [[T; 3]; 6] {
-        let Some(net) = &self.power else {
-            return self.patch.second_order_centred(u, v, cu, cv);
-        };
+        match &self.power {
+            Some(net) => self.lean_centred(net, u, v, cu, cv, ORDERS),
+            None => self.patch.second_order_centred(u, v, cu, cv),
+        }
+    }
+}
+
+impl ContactPatch<'_> {
+    /// The partials `∂ᵃ_u ∂ᵇ_v S` for each `(a, b)` of `orders`, from the monomials written
+    /// around `(cu, cv)` (module documentation).
+    fn lean_centred<T: Scalar, const K: usize>(
+        &self,
+        net: &PowerNet,
+        u: T,
+        v: T,
+        cu: T,
+        cv: T,
+        orders: [(usize, usize); K],
+    ) -> [[T; 3]; K] {
         let (m, n) = (net.m, net.n);
         let d = self.patch.domain();
         let du = T::from_f64(d.u[1]) - T::from_f64(d.u[0]);
@@ -184,7 +208,7 @@ impl CentredSecondOrder for ContactPatch<'_> {
         let bs: Vec<Vec<T>> = (0..=m).map(|k| bernstein(m - k, cs)).collect();
         let br: Vec<Vec<T>> = (0..=n).map(|l| bernstein(n - l, cr)).collect();
         let zero = T::zero();
-        let mut out = [[zero; 3]; 6];
+        let mut out = [[zero; 3]; K];
         for x in 0..3 {
             // Taylor coefficients T_kl of this coordinate (None where identically zero).
             let coeff: Vec<Option<T>> = (0..=m)
@@ -206,7 +230,7 @@ impl CentredSecondOrder for ContactPatch<'_> {
                     acc.map(|a| a * scale)
                 })
                 .collect();
-            for (slot, &(a, b)) in out.iter_mut().zip(&ORDERS) {
+            for (slot, &(a, b)) in out.iter_mut().zip(&orders) {
                 let mut acc: Option<T> = None;
                 for k in a..=m {
                     for l in b..=n {

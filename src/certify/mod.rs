@@ -18,6 +18,7 @@ pub mod contact_cover;
 mod contact_net;
 pub mod contact_patch;
 pub mod curve;
+mod lean_patch;
 pub mod ode;
 mod segment;
 pub mod tangential_ode;

@@ -28,6 +28,7 @@
 //! solution series, no a-priori box over the diagonal in all four parameters, no Lohner
 //! wrapping; one Taylor form of `F` along a known polynomial and one interval Jacobian.
 
+use crate::certify::lean_patch::{Centred, LeanPatch};
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::imul::mul as imul;
 use crate::numeric::scalar::point;
@@ -219,7 +220,7 @@ type Short = SeriesN<4>;
 
 /// `P − Q` along `y` (series arguments).
 #[inline(never)]
-fn residual(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Long; 4]) -> [Long; 3] {
+fn residual(p: &Centred<'_>, q: &Centred<'_>, y: &[Long; 4]) -> [Long; 3] {
     let a = p.eval(y[0], y[1]);
     let b = q.eval(y[2], y[3]);
     std::array::from_fn(|r| a[r] - b[r])
@@ -228,8 +229,8 @@ fn residual(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Long; 4]) -> 
 /// The Jacobian columns of `P − Q` for the coordinates `free` along `y` (`jac[col][row]`).
 #[inline(never)]
 fn jacobian(
-    p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
+    p: &Centred<'_>,
+    q: &Centred<'_>,
     y: &[Short; 4],
     free: &[usize; 3],
 ) -> [[Short; 3]; 3] {
@@ -497,23 +498,26 @@ pub(crate) fn hull(a: f64, b: f64) -> Interval {
 /// box at least `need` wide in each offset (half-widths; so that boxes that must lie in the tube
 /// do).
 pub(crate) fn prove_segment(
-    p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
+    lean: [&LeanPatch<'_>; 2],
     pred: Predictor,
     x_range: [f64; 2],
     need: [f64; 3],
 ) -> Result<SegmentProof, SegmentFailure> {
+    let (p, q) = (lean[0].patch(), lean[1].patch());
     let j = pred.along;
     let free = others(j);
     let xi = hull(x_range[0], x_range[1]) - point(pred.x0);
     let centre = xi.mid();
     let tau = xi - point(centre);
     // F and J_o along the predictor: Taylor coefficients at the centre, and over all of Ξ (for
-    // the Lagrange remainders).
-    let g_c = residual(p, q, &pred.series(point(centre), ORDER + 1));
-    let g_o = residual(p, q, &pred.series(xi, ORDER + 2));
-    let j_c = jacobian(p, q, &pred.series(point(centre), 3), &free);
-    let j_o = jacobian(p, q, &pred.series(xi, 4), &free);
+    // the Lagrange remainders); both patches written around the predictor's point at the centre.
+    let at_centre: [Long; 4] = pred.series(point(centre), ORDER + 1);
+    let c = at_centre.each_ref().map(|s| s.coeff(0).mid());
+    let (lp, lq) = (lean[0].centred(c[0], c[1]), lean[1].centred(c[2], c[3]));
+    let g_c = residual(&lp, &lq, &at_centre);
+    let g_o = residual(&lp, &lq, &pred.series(xi, ORDER + 2));
+    let j_c = jacobian(&lp, &lq, &pred.series(point(centre), 3), &free);
+    let j_o = jacobian(&lp, &lq, &pred.series(xi, 4), &free);
     // The preconditioner follows the Jacobian along the segment: C(τ) = C0 + C1·τ + C2·τ², the
     // inverse of J0 + J1·τ + J2·τ² to second order (midpoints; any C(τ) is rigorous, this one
     // keeps I − C·J third order in τ).

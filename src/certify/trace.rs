@@ -28,6 +28,7 @@
 use crate::certify::anchor::{join_tolerance, reanchor};
 use crate::certify::budget::{h_max_for, StepBudget};
 use crate::certify::closing::{closes, Closure, Crossing};
+use crate::certify::contact_patch::ContactPatch;
 use crate::certify::curve::{CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
 use crate::certify::ode::TransversalOde;
 use crate::certify::term_target::TermTarget;
@@ -438,9 +439,12 @@ fn make_integrator(
     dir: f64,
     opts: &CertifyOptions,
 ) -> Result<Integrator> {
+    // The field is recorded once, on the lean centred form of polynomial patches (the same
+    // function, far fewer recorded operations; rational patches keep their own form).
+    let (lp, lq) = (ContactPatch::new(p), ContactPatch::new(q));
     let ode = TransversalOde {
-        p,
-        q,
+        p: &lp,
+        q: &lq,
         orientation: dir,
     };
     let h_max = h_max_for(p, q, opts.steps.h_max);

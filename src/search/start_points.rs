@@ -166,6 +166,27 @@ pub fn find_start_points(
         max_frontier: opts.max_frontier,
     };
     let mut report = SearchReport::default();
+    boundary_search(&ctx, p, q, &mut report);
+    dedup(&mut report.boundary, dp, dq);
+    pair_search(&ctx, p, q, &mut report);
+    dedup(&mut report.interior, dp, dq);
+    report.complete = !report.truncated && report.undecided_regions.is_empty();
+    report
+}
+
+/// The boundary search: each of the four boundary curves of each patch against the other patch.
+///
+/// The eight searches are independent and run in parallel, each as if nothing had been spent
+/// before it; they are merged in order, and a search whose budget could have run out at its place
+/// in the sequential order (or did run out) is run again there with the budget spent before it, so
+/// the result is the one of running them one after another.
+fn boundary_search(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    report: &mut SearchReport,
+) {
+    let mut jobs = Vec::new();
     for (a, b, swapped) in [(p, q, false), (q, p, true)] {
         for (fixed_index, upper) in [(0, false), (0, true), (1, false), (1, true)] {
             let edge = Piece::whole(a).face(fixed_index, upper);
@@ -177,27 +198,48 @@ pub fn find_start_points(
                     surface: usize::from(swapped),
                 },
             };
-            let mut found = Vec::new();
-            let undecided = edge_search(
-                &ctx,
-                &problem,
-                edge,
-                Piece::whole(b),
-                ctx.leaf,
-                ctx.leaf * REFINE_FAILED_LEAF,
-                &mut report,
-                &mut found,
-            );
-            report.boundary.extend(found);
-            report.undecided += undecided.len();
-            report.undecided_regions.extend(undecided);
+            jobs.push((problem, edge, Piece::whole(b)));
         }
     }
-    dedup(&mut report.boundary, dp, dq);
-    pair_search(&ctx, p, q, &mut report);
-    dedup(&mut report.interior, dp, dq);
-    report.complete = !report.truncated && report.undecided_regions.is_empty();
-    report
+    let run = |(problem, edge, whole): &(EdgeProblem, Piece, Piece), report: &mut SearchReport| {
+        let mut found = Vec::new();
+        let undecided = edge_search(
+            ctx,
+            problem,
+            edge.clone(),
+            whole.clone(),
+            ctx.leaf,
+            ctx.leaf * REFINE_FAILED_LEAF,
+            report,
+            &mut found,
+        );
+        (found, undecided)
+    };
+    let ahead: Vec<_> = jobs
+        .par_iter()
+        .map(|job| {
+            let mut local = SearchReport {
+                pairs: report.pairs,
+                ..SearchReport::default()
+            };
+            let out = run(job, &mut local);
+            (out, local.leaves, local.truncated)
+        })
+        .collect();
+    for (job, (out, leaves, truncated)) in jobs.iter().zip(ahead) {
+        // Without the budget in reach, the search from `report.leaves` spent leaves is the one
+        // run ahead from none (the budget is the only thing it reads from the report).
+        let (found, undecided) = if !truncated && report.leaves + leaves + report.pairs < ctx.budget
+        {
+            report.leaves += leaves;
+            out
+        } else {
+            run(job, report)
+        };
+        report.boundary.extend(found);
+        report.undecided += undecided.len();
+        report.undecided_regions.extend(undecided);
+    }
 }
 
 struct Ctx {
@@ -305,8 +347,15 @@ fn pair_search(
             // Hundreds of regions along a tangential contact: a Newton projection from each
             // centre gives points all along it; the corners' would add four times as many
             // (each Gauss–Newton run slow where the surfaces touch) and nothing new.
-            for (a, b) in next.drain(..) {
-                undecided_pair_at(ctx, p, q, &a, &b, report, false);
+            // (Their projections are independent: computed in parallel, recorded in order.)
+            let settled: Vec<_> = next
+                .par_iter()
+                .map(|(a, b)| undecided_region_at(ctx, p, q, a, b, false))
+                .collect();
+            next.clear();
+            for (region, points) in settled {
+                report.undecided_regions.push(region);
+                report.interior.extend(points);
             }
         }
         frontier = next;
@@ -338,12 +387,27 @@ fn undecided_pair_at(
     report: &mut SearchReport,
     corners: bool,
 ) {
+    let (region, points) = undecided_region_at(ctx, p, q, a, b, corners);
+    report.undecided_regions.push(region);
+    report.interior.extend(points);
+}
+
+/// The undecided region of a pair and the start points projected from it (its centre, and the
+/// corners of its P box if `corners`), for [`undecided_pair_at`].
+fn undecided_region_at(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    a: &Piece,
+    b: &Piece,
+    corners: bool,
+) -> (UndecidedRegion, Vec<StartPoint>) {
     let (dp, dq) = (p.domain(), q.domain());
     let (bp, bq) = (a.declared(&dp, 0.0), b.declared(&dq, 0.0));
-    report.undecided_regions.push(UndecidedRegion {
+    let region = UndecidedRegion {
         p: bounds2(&bp),
         q: bounds2(&bq),
-    });
+    };
     let (qu, qv) = (bq[0].mid(), bq[1].mid());
     let guesses = [
         [bp[0].mid(), bp[1].mid()],
@@ -353,16 +417,18 @@ fn undecided_pair_at(
         [bp[0].sup(), bp[1].sup()],
     ];
     let offered = if corners { &guesses[..] } else { &guesses[..1] };
+    let mut points = Vec::new();
     for &[pu, pv] in offered {
         if let Some(x) = project_onto_intersection(p, q, [pu, pv, qu, qv], ctx.tol) {
             if dp.contains(x[0], x[1], 1e-12) && dq.contains(x[2], x[3], 1e-12) {
-                report.interior.push(StartPoint {
+                points.push(StartPoint {
                     params: x,
                     kind: StartKind::Interior,
                 });
             }
         }
     }
+    (region, points)
 }
 
 /// A curve/surface problem: a boundary curve (or face) of `a` against a piece of `b`.

@@ -2,6 +2,7 @@
 //! joined without gaps, and the end where the half stops.
 
 use super::*;
+use crate::certify::lean_patch::LeanPatch;
 
 /// A guide point on the curve and its parameter velocity, oriented along the walk.
 #[derive(Debug, Clone, Copy)]
@@ -98,6 +99,8 @@ pub(super) struct Walker<'a> {
     /// The scaled length the next link should have, learnt from the last attempts (the tube's
     /// width grows like the sixth power of the length).
     pub(super) l_pred: Option<f64>,
+    /// Both patches in the form the link proofs evaluate.
+    lean: [LeanPatch<'a>; 2],
 }
 
 pub(super) fn velocity(p: &RationalBezierPatch, q: &RationalBezierPatch, x: &[f64; 4]) -> [f64; 4] {
@@ -129,6 +132,7 @@ impl<'a> Walker<'a> {
             closed: false,
             wants_closure: false,
             l_pred: None,
+            lean: [LeanPatch::new(p), LeanPatch::new(q)],
         }
     }
 
@@ -203,7 +207,7 @@ impl<'a> Walker<'a> {
                 need[r] = need[r].max((m[i] - o[r]).mag());
             }
         }
-        let proof = prove_segment(self.p, self.q, pred, [lo, hi], need).ok()?;
+        let proof = prove_segment([&self.lean[0], &self.lean[1]], pred, [lo, hi], need).ok()?;
         if !musts.iter().all(|m| proof.tube_contains(m)) {
             return None;
         }

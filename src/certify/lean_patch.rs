@@ -1,0 +1,324 @@
+//! A patch as a link proof of the cover chain sees it: the point and its first partials along a
+//! link, written around a centre near the link in the power basis.
+//!
+//! A link proof ([`crate::certify::segment`]) evaluates both patches along the link's predictor
+//! in truncated series arithmetic, where every product of two series costs `O(N²)`. The
+//! Bernstein form of a degree-`(m, n)` patch spends most of its products on the basis functions
+//! (about `m² + n²`) and on all four homogeneous coordinates, even where a coordinate is affine
+//! (the `x` and `y` of a height field) and the weight is one. For a polynomial patch (all weights
+//! equal and exact, [`PowerNet`]) this form instead encloses, once per link, the Taylor
+//! coefficients `T_kl` of each coordinate at a centre `c` (intervals, outward rounded), and
+//! evaluates `S = Σ T_kl dsᵏ drˡ` with `ds = (u − c_u)/Δu`, `dr = (v − c_v)/Δv` by Horner's rule,
+//! skipping the coefficients that are exactly zero: a height field's `x` and `y` cost no series
+//! product at all, its height one per monomial. The function is the patch's (a polynomial equals
+//! its Taylor expansion at any point); every coefficient is an enclosure, so every value is too,
+//! and near the centre the form is a centred one (tight). Rational patches keep the patch's own
+//! form.
+
+use crate::certify::contact_patch::{bernstein, binomial, PowerNet};
+use crate::geometry::RationalBezierPatch;
+use crate::numeric::imul::mul as imul;
+use crate::numeric::scalar::point;
+use crate::Scalar;
+use inari::Interval;
+
+/// A patch with its forward differences prepared when it is polynomial.
+#[derive(Debug, Clone)]
+pub(crate) struct LeanPatch<'a> {
+    patch: &'a RationalBezierPatch,
+    power: Option<PowerNet>,
+}
+
+impl<'a> LeanPatch<'a> {
+    /// The patch, with the lean form if all its weights are equal and exact.
+    pub(crate) fn new(patch: &'a RationalBezierPatch) -> Self {
+        LeanPatch {
+            patch,
+            power: PowerNet::of(patch),
+        }
+    }
+
+    /// The patch itself.
+    pub(crate) fn patch(&self) -> &'a RationalBezierPatch {
+        self.patch
+    }
+
+    /// The patch written around `(cu, cv)` (any finite point; the lean form is tightest near
+    /// it).
+    pub(crate) fn centred(&self, cu: f64, cv: f64) -> Centred<'_> {
+        let taylor = self
+            .power
+            .as_ref()
+            .filter(|_| cu.is_finite() && cv.is_finite())
+            .map(|net| Taylor::at(self.patch, net, cu, cv));
+        Centred {
+            patch: self.patch,
+            taylor,
+        }
+    }
+}
+
+/// A patch written around a centre ([`LeanPatch::centred`]).
+#[derive(Debug, Clone)]
+pub(crate) struct Centred<'a> {
+    patch: &'a RationalBezierPatch,
+    taylor: Option<Taylor>,
+}
+
+/// The Taylor coefficients of a polynomial patch at a centre, in the normalised offsets.
+#[derive(Debug, Clone)]
+struct Taylor {
+    m: usize,
+    n: usize,
+    centre: [f64; 2],
+    /// `1/Δu`, `1/Δv` (enclosures).
+    inv: [Interval; 2],
+    /// Per coordinate, `T_kl` at index `k·(n+1) + l`.
+    coeffs: [Vec<Interval>; 3],
+}
+
+impl Taylor {
+    fn at(patch: &RationalBezierPatch, net: &PowerNet, cu: f64, cv: f64) -> Taylor {
+        let (m, n) = (net.m, net.n);
+        let d = patch.domain();
+        let du = point(d.u[1]) - point(d.u[0]);
+        let dv = point(d.v[1]) - point(d.v[0]);
+        let cs = (point(cu) - point(d.u[0])) / du;
+        let cr = (point(cv) - point(d.v[0])) / dv;
+        let bs: Vec<Vec<Interval>> = (0..=m).map(|k| bernstein(m - k, cs)).collect();
+        let br: Vec<Vec<Interval>> = (0..=n).map(|l| bernstein(n - l, cr)).collect();
+        let coeffs = std::array::from_fn(|x| {
+            let mut out = vec![point(0.0); (m + 1) * (n + 1)];
+            for k in 0..=m {
+                for l in 0..=n {
+                    let Some(diffs) = net.diffs[k * (n + 1) + l][x].as_ref() else {
+                        continue;
+                    };
+                    // Σ_i bs_i·(Σ_j Δ_ij·br_j), with the branch-free product.
+                    let mut acc = point(0.0);
+                    for i in 0..=m - k {
+                        let row = &diffs[i * (n - l + 1)..(i + 1) * (n - l + 1)];
+                        let mut inner = point(0.0);
+                        for (d, b) in row.iter().zip(&br[l]) {
+                            inner += imul(*d, *b);
+                        }
+                        acc += imul(inner, bs[k][i]);
+                    }
+                    out[k * (n + 1) + l] = imul(acc, point(binomial(m, k) * binomial(n, l)));
+                }
+            }
+            out
+        });
+        Taylor {
+            m,
+            n,
+            centre: [cu, cv],
+            inv: [point(1.0) / du, point(1.0) / dv],
+            coeffs,
+        }
+    }
+
+    /// The normalised offsets `(ds, dr)` of `(u, v)`.
+    fn offsets<S: Scalar>(&self, u: S, v: S) -> (S, S) {
+        (
+            (u - S::from_f64(self.centre[0])) * S::from_interval(self.inv[0]),
+            (v - S::from_f64(self.centre[1])) * S::from_interval(self.inv[1]),
+        )
+    }
+
+    /// `Σ_{k,l} c(k, l)·dsᵏ·drˡ` over `k ≤ km`, `l ≤ ln` by Horner's rule in `dr`, then in `ds`,
+    /// without the terms whose coefficient is exactly zero.
+    fn horner<S: Scalar>(
+        km: usize,
+        ln: usize,
+        c: impl Fn(usize, usize) -> Interval,
+        ds: S,
+        dr: S,
+    ) -> S {
+        let nonzero = |x: Interval| !(x.inf() == 0.0 && x.sup() == 0.0);
+        let mut outer: Option<S> = None;
+        for k in (0..=km).rev() {
+            let mut inner: Option<S> = None;
+            for l in (0..=ln).rev() {
+                let a = c(k, l);
+                inner = inner.map(|s| s * dr);
+                if nonzero(a) {
+                    let a = S::from_interval(a);
+                    inner = Some(inner.map_or(a, |s| s + a));
+                }
+            }
+            outer = outer.map(|s| s * ds);
+            if let Some(i) = inner {
+                outer = Some(outer.map_or(i, |s| s + i));
+            }
+        }
+        outer.unwrap_or_else(S::zero)
+    }
+
+    fn value<S: Scalar>(&self, x: usize, ds: S, dr: S) -> S {
+        let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
+        Self::horner(m, n, |k, l| t[k * (n + 1) + l], ds, dr)
+    }
+
+    /// `∂/∂u`, in the normalised offsets times `1/Δu`.
+    fn along_u<S: Scalar>(&self, x: usize, ds: S, dr: S) -> S {
+        let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
+        if m == 0 {
+            return S::zero();
+        }
+        let d = Self::horner(
+            m - 1,
+            n,
+            |k, l| t[(k + 1) * (n + 1) + l] * point((k + 1) as f64),
+            ds,
+            dr,
+        );
+        d * S::from_interval(self.inv[0])
+    }
+
+    /// `∂/∂v`, in the normalised offsets times `1/Δv`.
+    fn along_v<S: Scalar>(&self, x: usize, ds: S, dr: S) -> S {
+        let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
+        if n == 0 {
+            return S::zero();
+        }
+        let d = Self::horner(
+            m,
+            n - 1,
+            |k, l| t[k * (n + 1) + l + 1] * point((l + 1) as f64),
+            ds,
+            dr,
+        );
+        d * S::from_interval(self.inv[1])
+    }
+}
+
+impl Centred<'_> {
+    /// The point at `(u, v)` (as [`RationalBezierPatch::eval`]).
+    pub(crate) fn eval<S: Scalar>(&self, u: S, v: S) -> [S; 3] {
+        let Some(t) = &self.taylor else {
+            return self.patch.eval(u, v);
+        };
+        let (ds, dr) = t.offsets(u, v);
+        std::array::from_fn(|x| t.value(x, ds, dr))
+    }
+
+    /// The point and its first partials `[S, S_u, S_v]` at `(u, v)` (as
+    /// [`RationalBezierPatch::first_derivs`]).
+    pub(crate) fn first_derivs<S: Scalar>(&self, u: S, v: S) -> [[S; 3]; 3] {
+        let Some(t) = &self.taylor else {
+            return self.patch.first_derivs(u, v);
+        };
+        let (ds, dr) = t.offsets(u, v);
+        [
+            std::array::from_fn(|x| t.value(x, ds, dr)),
+            std::array::from_fn(|x| t.along_u(x, ds, dr)),
+            std::array::from_fn(|x| t.along_v(x, ds, dr)),
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Domain, PowerSurface};
+    use crate::numeric::scalar::interval;
+    use crate::validated::SeriesN;
+
+    fn sextic() -> RationalBezierPatch {
+        // Fig. 7's height field (degree 6), over a domain that is not the unit square.
+        let d = Domain::new(-1.0, 1.0, -0.5, 2.0);
+        PowerSurface::graph(
+            d,
+            vec![
+                (0, 0, 0.21),
+                (2, 0, -3.21),
+                (0, 2, -1.07),
+                (4, 0, 16.2),
+                (2, 2, 10.8),
+                (0, 4, 1.8),
+                (6, 0, -27.0),
+                (4, 2, -27.0),
+                (2, 4, -9.0),
+                (0, 6, -1.0),
+            ],
+        )
+        .to_bezier()
+        .unwrap()
+    }
+
+    #[test]
+    fn lean_form_equals_and_encloses_the_patch() {
+        let p = sextic();
+        let lean = LeanPatch::new(&p);
+        assert!(lean.power.is_some());
+        for k in 0..20 {
+            let (u, v) = (-0.9 + 0.09 * k as f64, -0.4 + 0.12 * k as f64);
+            let c = lean.centred(u + 0.01, v - 0.02);
+            let want = p.first_derivs(u, v);
+            let got = c.first_derivs(point(u), point(v));
+            for (a, b) in want.iter().zip(&got) {
+                for x in 0..3 {
+                    assert!(
+                        b[x].inf() - 1e-11 <= a[x] && a[x] <= b[x].sup() + 1e-11,
+                        "{a:?} vs {b:?}"
+                    );
+                    assert!(b[x].wid() < 1e-11, "{b:?}");
+                }
+            }
+            // Over a box: encloses sampled values; along a series: its constant term is the
+            // value at the series' constant term.
+            let (bu, bv) = (
+                interval(u, u + 0.02).unwrap(),
+                interval(v, v + 0.03).unwrap(),
+            );
+            let e = c.eval(bu, bv);
+            for a in 0..=4 {
+                for b in 0..=4 {
+                    let y = p.eval(u + 0.005 * a as f64, v + 0.0075 * b as f64);
+                    for x in 0..3 {
+                        assert!(e[x].inf() - 1e-12 <= y[x] && y[x] <= e[x].sup() + 1e-12);
+                    }
+                }
+            }
+            type S = SeriesN<6>;
+            let su = S::new(&[point(u), point(0.3), point(-0.1)]);
+            let sv = S::new(&[point(v), point(-0.2)]);
+            let lean_series = c.eval(su, sv);
+            let patch_series = p.eval(su, sv);
+            for x in 0..3 {
+                for i in 0..6 {
+                    let (a, b) = (lean_series[x].coeff(i), patch_series[x].coeff(i));
+                    assert!(
+                        (a.mid() - b.mid()).abs() < 1e-9 * (1.0 + b.mag()),
+                        "{x} {i}: {a:?} vs {b:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rational_patches_keep_the_patch_form() {
+        let pts = [
+            [0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.2],
+            [1.0, 0.0, 0.1],
+            [1.0, 1.0, 0.5],
+        ];
+        let p = RationalBezierPatch::from_f64_points(
+            [1, 1],
+            &pts,
+            Some(&[1.0, 2.0, 1.0, 1.0]),
+            Domain::UNIT,
+        )
+        .unwrap();
+        let lean = LeanPatch::new(&p);
+        assert!(lean.power.is_none());
+        let c = lean.centred(0.5, 0.5);
+        assert_eq!(
+            c.eval(point(0.3), point(0.6)),
+            p.eval(point(0.3), point(0.6))
+        );
+    }
+}
