@@ -49,6 +49,7 @@
 
 mod bspline;
 mod build;
+mod fit;
 mod joined;
 mod poly;
 mod span;
@@ -230,7 +231,8 @@ pub(crate) struct Part<'a> {
     pub(crate) cuts: Vec<Cut>,
 }
 
-/// The edge of the traced branch `b` of `P ∩ Q`.
+/// The edge of the traced branch `b` of `P ∩ Q`, aiming at a tolerance a little above the
+/// certificate's (the requested one is not known here: see [`edge_from_branch_within`]).
 ///
 /// Errors: [`EdgeError::NotCertified`] without a certificate, else as
 /// [`edge_from_certified`].
@@ -238,6 +240,19 @@ pub fn edge_from_branch(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     b: &TracedBranch,
+) -> Result<Edge, EdgeError> {
+    edge_from_branch_within(p, q, b, None)
+}
+
+/// [`edge_from_branch`] aiming at the tolerance `requested` (the run's required tolerance):
+/// the coarse curves use the room between the certificate's tolerance and it.
+///
+/// Errors: as [`edge_from_branch`].
+pub fn edge_from_branch_within(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &TracedBranch,
+    requested: Option<f64>,
 ) -> Result<Edge, EdgeError> {
     let id = b.id();
     let cert = match &b.certificate {
@@ -252,7 +267,7 @@ pub fn edge_from_branch(
             reason: e.to_string(),
         })?,
     };
-    edge_from_certified(p, q, cert, id)
+    edge_from_certified_within(p, q, cert, id, requested)
 }
 
 /// The edge of the certified branch `cert` (numbered `branch` in errors) of `P ∩ Q`. A branch
@@ -264,6 +279,20 @@ pub fn edge_from_certified(
     q: &RationalBezierPatch,
     cert: &CertifiedBranch,
     branch: usize,
+) -> Result<Edge, EdgeError> {
+    edge_from_certified_within(p, q, cert, branch, None)
+}
+
+/// [`edge_from_certified`] aiming at the tolerance `requested` (see
+/// [`edge_from_branch_within`]).
+///
+/// Errors: as [`edge_from_certified`].
+pub fn edge_from_certified_within(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    cert: &CertifiedBranch,
+    branch: usize,
+    requested: Option<f64>,
 ) -> Result<Edge, EdgeError> {
     check_chain(cert, branch)?;
     let mut segs = chain_segs(cert, false);
@@ -288,7 +317,7 @@ pub fn edge_from_certified(
         segs,
         cuts,
     };
-    assemble(&[part], closed, closed)
+    assemble(&[part], closed, closed, requested)
 }
 
 /// Checks that `cert` is a gap-free cover chain this module can read.
@@ -394,7 +423,10 @@ pub fn edges_of(
 ) -> Vec<(usize, Result<Edge, EdgeError>)> {
     r.branches
         .iter()
-        .map(|b| (b.id(), edge_from_branch(p, q, b)))
+        .map(|b| {
+            let tol = Some(r.options.required_tolerance);
+            (b.id(), edge_from_branch_within(p, q, b, tol))
+        })
         .collect()
 }
 
