@@ -272,6 +272,15 @@ fn the_nurbs_sphere_shell_gives_one_closed_edge() {
     assert_eq!(doc["format"], EDGE_FORMAT);
     assert_eq!(doc["edges"][0]["closed"], true);
     assert_eq!(doc["edges"][0]["pcurves"].as_array().unwrap().len(), 8);
+    // The joined curve's number does not hide the 3D curve.
+    assert_eq!(doc["edges"][0]["curve_index"], 0);
+    assert_eq!(
+        doc["edges"][0]["curve"]["control_points"]
+            .as_array()
+            .unwrap()
+            .len(),
+        e.curve.points.len()
+    );
     // Marched only: the joins rest on marched points, and no edge is made.
     let march = Options {
         method: Method::March,

@@ -100,6 +100,18 @@ fn check_edge(
     truth: &[[f64; 3]],
 ) -> (f64, f64) {
     let tol = e.edge_tolerance;
+    // Within the requested tolerance (the default, 1e-9), and fewer control points than the
+    // link-by-link construction (five per link).
+    assert!(
+        tol <= 1e-9,
+        "{what}: tolerance {tol:e} above the requested 1e-9"
+    );
+    assert!(
+        e.curve.points.len() < 5 * e.links,
+        "{what}: {} control points for {} links",
+        e.curve.points.len(),
+        e.links
+    );
     // Samples, without repeats (a span of nearly zero length gives many copies of one point,
     // which would hide the neighbours the foot-point search brackets with).
     let (mut ss, mut pts) = (Vec::new(), Vec::<[f64; 3]>::new());

@@ -1,21 +1,29 @@
-//! Building an edge from its parts: spans, the 3D curve, the p-curves and the bounds.
+//! Building an edge from its parts: fine spans (one per link), coarse curves fitted over them,
+//! and the proven bounds, refined until they meet the target tolerance.
 
+use super::fit::{knots_on, least_squares, on_fine_spans};
 use super::poly::{self, eval_mid, Poly, DEGREE};
-use super::span::{bezier, bounds, box_diameter, model_box, model_deviation, model_jet};
-use super::{BSpline, Edge, EdgeBounds, EdgeError, PCurve, Part, Seg};
+use super::span::{bounds, box_diameter, model_box, model_jet, SpanBounds, SpanFixed};
+use super::{BSpline, Edge, EdgeBounds, EdgeError, PCurve, Part};
 use crate::geometry::RationalBezierPatch;
 
-/// One span of the edge: a piece of one link, re-expanded on `u ∈ [0, 1]`.
+/// One fine span of the edge: a piece of one link, re-expanded on `u ∈ [0, 1]`.
 struct Span {
-    part: usize,
     tube: usize,
     y: Poly<4>,
-    /// Its length in the edge's parameter `s` (nominal: a chord length).
-    ds: f64,
+    fixed: SpanFixed,
+    radius_param: f64,
+    radius_xyz: f64,
 }
 
-/// Longest chain of halvings of one link.
-const MAX_DEPTH: usize = 6;
+/// Samples of each fine span the coarse curves are fitted to.
+const SAMPLES: usize = 6;
+/// Most rounds of fitting and refining the coarse knots.
+const ROUNDS: usize = 16;
+/// Most pieces a coarse span is cut into in one round.
+const MOST_PIECES: usize = 8;
+/// Fine spans per coarse span at the start.
+const START_SPANS: usize = 8;
 
 fn chord_length(p: &RationalBezierPatch, y: &Poly<4>) -> f64 {
     let pt = |u: f64| {
@@ -32,230 +40,390 @@ fn chord_length(p: &RationalBezierPatch, y: &Poly<4>) -> f64 {
     len
 }
 
-/// The quintic Hermite Bézier control points between two model jets (value, d/ds, d²/ds²)
-/// over a span of length `ds`.
-fn hermite(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3], ds: f64) -> [[f64; 3]; 6] {
-    let f = |k: usize| -> [f64; 3] {
-        std::array::from_fn(|r| match k {
-            0 => a[0][r],
-            1 => a[0][r] + ds / 5.0 * a[1][r],
-            2 => a[0][r] + 2.0 * ds / 5.0 * a[1][r] + ds * ds / 20.0 * a[2][r],
-            3 => b[0][r] - 2.0 * ds / 5.0 * b[1][r] + ds * ds / 20.0 * b[2][r],
-            4 => b[0][r] - ds / 5.0 * b[1][r],
-            _ => b[0][r],
+/// The tolerance the coarse curves aim at: the requested one when the fine construction's
+/// floor (the certificates' tolerance and the cuts' fixed share) leaves room under it, else a
+/// little above the floor.
+fn target(floor: f64, requested: Option<f64>) -> f64 {
+    match requested {
+        Some(r) if floor <= 0.98 * r => r,
+        Some(r) => r.max(1.05 * floor),
+        None => 2.0 * floor,
+    }
+    .max(1e-13)
+}
+
+/// One part's coarse curves and what they prove.
+struct PartFit {
+    /// Breakpoints: indices into the part's fine knots (first 0, last the part's span count).
+    breaks: Vec<Break>,
+    /// The clamped knot vector on the breakpoints' values.
+    knots: Vec<f64>,
+    /// The 3D control points.
+    xyz: Vec<[f64; 3]>,
+    /// The p-curves' control points (`σ, t, u, v`).
+    params: Vec<[f64; 4]>,
+    /// Per fine span of the part.
+    bounds: Vec<SpanBounds>,
+}
+
+/// A part's fine spans and its fixed data.
+struct PartData<'a> {
+    pt: &'a Part<'a>,
+    /// Its spans' range in the edge's spans.
+    range: std::ops::Range<usize>,
+    /// The 3D values at its start and end (shared with the neighbouring parts).
+    ends_xyz: [[f64; 3]; 2],
+    /// The p-curves' values at its start and end.
+    ends_param: [[f64; 4]; 2],
+    /// Per cut of the part: its tube and the share of its bound that the fit does not change.
+    cuts: Vec<(usize, f64)>,
+    /// The fine knots (indices in the part) where the links' along coordinate changes: the
+    /// parametrisation has a jump of its second derivative there, and the coarse curves are
+    /// only C1 (always a breakpoint).
+    switches: Vec<usize>,
+}
+
+/// Fits the coarse curves of one part on the breakpoints `breaks` and bounds them.
+fn fit_part(d: &PartData, spans: &[Span], knots_s: &[f64], breaks: Vec<Break>) -> PartFit {
+    let (start, end) = (d.range.start, d.range.end);
+    let fine = &knots_s[start..=end];
+    let coarse: Vec<f64> = breaks.iter().map(|b| fine[b.0]).collect();
+    let knots = knots_on(&coarse, |i| breaks[i].1);
+    let mut s3 = Vec::with_capacity(SAMPLES * (end - start) + 1);
+    let mut s4 = Vec::with_capacity(SAMPLES * (end - start) + 1);
+    for (m, sp) in spans[start..end].iter().enumerate() {
+        let last = m + 1 == end - start;
+        let count = if last { SAMPLES + 1 } else { SAMPLES };
+        for j in 0..count {
+            let u = j as f64 / SAMPLES as f64;
+            let s = fine[m] + (fine[m + 1] - fine[m]) * u;
+            let x = eval_mid(&sp.y, u);
+            s3.push((s, d.pt.p.point_f64(x[0], x[1])));
+            s4.push((s, x));
+        }
+    }
+    let xyz = least_squares(&knots, &s3, d.ends_xyz);
+    let params = least_squares(&knots, &s4, d.ends_param);
+    let c3 = on_fine_spans(&knots, &xyz, &coarse, fine);
+    let c4 = on_fine_spans(&knots, &params, &coarse, fine);
+    let bounds = spans[start..end]
+        .iter()
+        .enumerate()
+        .map(|(m, sp)| {
+            bounds(
+                d.pt.p,
+                d.pt.q,
+                &sp.y,
+                &sp.fixed,
+                &c4[m],
+                &c3[m],
+                sp.radius_param,
+                sp.radius_xyz,
+            )
         })
+        .collect();
+    PartFit {
+        breaks,
+        knots,
+        xyz,
+        params,
+        bounds,
+    }
+}
+
+/// The largest distance of a part's curves from the reported curve on the spans of `tube`
+/// (on all its spans when none is on it).
+fn off_on(d: &PartData, spans: &[Span], f: &PartFit, tube: usize) -> f64 {
+    let on = |want: Option<usize>| {
+        f.bounds
+            .iter()
+            .zip(&spans[d.range.clone()])
+            .filter(|(_, sp)| want.is_none_or(|t| sp.tube == t))
+            .map(|(b, _)| b.off_reported)
+            .fold(f64::NEG_INFINITY, f64::max)
     };
-    std::array::from_fn(f)
+    let o = on(Some(tube));
+    if o.is_finite() {
+        o
+    } else {
+        on(None).max(0.0)
+    }
 }
 
-/// A model jet in `u` as one in `s` (`ds = ds/du`).
-fn jet_in_s(j: [[f64; 3]; 3], ds: f64) -> [[f64; 3]; 3] {
-    let d = if ds > 0.0 { ds } else { 1.0 };
-    [j[0], j[1].map(|v| v / d), j[2].map(|v| v / (d * d))]
-}
+/// A coarse breakpoint: an index into the part's fine knots and the knot's multiplicity
+/// (1: the curves are C4 there; up to [`DEGREE`]: C0).
+type Break = (usize, usize);
 
-/// The spans of one piece of a link, halved while its own Hermite fit is above `target`.
-fn split_seg(part: usize, pt: &Part, s: &Seg, target: Option<f64>, out: &mut Vec<Span>) {
-    let t = &pt.cert.tubes[s.tube];
-    let mut stack = vec![(s.ta, s.tb, 0usize)];
-    while let Some((ta, tb, depth)) = stack.pop() {
-        let y = poly::reparametrised(&t.coeffs, ta, tb);
-        let ds = chord_length(pt.p, &y);
-        if let Some(target) = target.filter(|_| depth < MAX_DEPTH && ta != tb) {
-            let a = jet_in_s(model_jet(pt.p, &y, 0.0), ds);
-            let b = jet_in_s(model_jet(pt.p, &y, 1.0), ds);
-            if model_deviation(pt.p, &y, &hermite(&a, &b, ds)) > target {
-                let tm = ta + 0.5 * (tb - ta);
-                // Pushed second half first: popped in order.
-                stack.push((tm, tb, depth + 1));
-                stack.push((ta, tm, depth + 1));
-                continue;
+/// New breakpoints for a part whose fine spans need the fit `ratio` times smaller (≤ 1: fine);
+/// `None` when nothing can be (or need be) refined. A coarse span of several fine spans is cut
+/// at fine knots; one that cannot be cut (a single fine span, or only knots next to its ends)
+/// has the multiplicity of its inner ends raised (the reported curve's links are not exactly
+/// smooth at their joins: lower continuity lets the coarse curves follow them there).
+fn refine(breaks: &[Break], ratio: &[f64], fine: &[f64]) -> Option<Vec<Break>> {
+    let last = breaks.len() - 1;
+    let mut out: Vec<Break> = breaks.to_vec();
+    let mut changed = false;
+    let mut add = Vec::new();
+    for (w, pair) in breaks.windows(2).enumerate() {
+        let ((a, _), (b, _)) = (pair[0], pair[1]);
+        let r = ratio[a..b].iter().copied().fold(0.0, f64::max);
+        if r <= 1.0 {
+            continue;
+        }
+        let pieces = (r.powf(1.0 / 6.0).ceil() as usize).clamp(2, MOST_PIECES);
+        let pieces = pieces.min(b - a);
+        // Not next to the span's ends (a cut piece of a link can be very short: a knot span of
+        // almost no length is of no use to the fit).
+        let room = 1e-3 * (fine[b] - fine[a]);
+        let mut cut = false;
+        for k in 1..pieces {
+            // The fine knot nearest to the k-th of `pieces` equal parts in s.
+            let s = fine[a] + (fine[b] - fine[a]) * k as f64 / pieces as f64;
+            let i = (a + 1..b)
+                .filter(|&i| fine[i] - fine[a] > room && fine[b] - fine[i] > room)
+                .min_by(|&i, &j| (fine[i] - s).abs().total_cmp(&(fine[j] - s).abs()));
+            if let Some(i) = i {
+                add.push((i, 1));
+                cut = true;
             }
         }
-        out.push(Span {
-            part,
-            tube: s.tube,
-            y,
-            ds,
-        });
+        if !cut {
+            for e in [w, w + 1] {
+                if e != 0 && e != last && out[e].1 < DEGREE {
+                    out[e].1 = (out[e].1 + 2).min(DEGREE);
+                    changed = true;
+                }
+            }
+        }
     }
+    for (i, m) in add {
+        if !out.iter().any(|x| x.0 == i) {
+            out.push((i, m));
+            changed = true;
+        }
+    }
+    out.sort_unstable();
+    changed.then_some(out)
 }
 
-/// The 3D curve over the spans: per span the Hermite interpolant of its own jets (so it
-/// follows the span's own parametrisation), the values shared at the knots. Also each span's
-/// control points.
-fn curve_3d(
-    parts: &[Part],
-    spans: &[Span],
-    knots_s: &[f64],
-    closed: bool,
-) -> (BSpline<3>, Vec<[[f64; 3]; 6]>) {
-    let n = spans.len();
-    let own = |i: usize, u: f64| {
-        let sp = &spans[i];
-        jet_in_s(model_jet(parts[sp.part].p, &sp.y, u), sp.ds)
-    };
-    let mut values: Vec<[f64; 3]> = (0..n).map(|i| own(i, 0.0)[0]).collect();
-    values.push(if closed {
-        values[0]
-    } else {
-        own(n - 1, 1.0)[0]
-    });
-    let mut points: Vec<[f64; 3]> = Vec::with_capacity(5 * n + 1);
-    let mut hs = Vec::with_capacity(n);
-    for (i, sp) in spans.iter().enumerate() {
-        let (mut a, mut b) = (own(i, 0.0), own(i, 1.0));
-        a[0] = values[i];
-        b[0] = values[i + 1];
-        let h = hermite(&a, &b, sp.ds);
-        if i == 0 {
-            points.push(h[0]);
+/// How many times too large each fine span's fit-dependent bounds are for the target `t`
+/// (cut bounds included: the spans of a cut's tube).
+fn ratios(d: &PartData, spans: &[Span], f: &PartFit, t: f64) -> Vec<f64> {
+    let mut r: Vec<f64> = f
+        .bounds
+        .iter()
+        .zip(&spans[d.range.clone()])
+        .map(|(b, sp)| {
+            let room = t - sp.radius_xyz;
+            let need = b
+                .model
+                .max(b.image_p - sp.radius_xyz)
+                .max(b.image_q - sp.radius_xyz);
+            if b.curve.max(b.image_p).max(b.image_q) <= t || room <= 0.0 {
+                0.0
+            } else {
+                need / room
+            }
+        })
+        .collect();
+    for &(tube, base) in &d.cuts {
+        let off = off_on(d, spans, f, tube);
+        if poly::add_up(base, off) > t && base < t {
+            let q = off / (t - base);
+            for (m, sp) in spans[d.range.clone()].iter().enumerate() {
+                if sp.tube == tube {
+                    r[m] = r[m].max(q);
+                }
+            }
         }
-        points.extend_from_slice(&h[1..]);
-        hs.push(h);
     }
-    let curve = BSpline {
-        degree: DEGREE,
-        knots: knot_vector(knots_s),
-        points,
-    };
-    (curve, hs)
-}
-
-/// The p-curves of part `k` over its spans `range`, adding their bounds to `b`; returns the
-/// largest distance of the span curves from the reported curve's image (for the cuts).
-#[allow(clippy::too_many_arguments)]
-fn part_pcurves(
-    k: usize,
-    pt: &Part,
-    spans: &[Span],
-    hs: &[[[f64; 3]; 6]],
-    range: std::ops::Range<usize>,
-    knots_s: &[f64],
-    closes: bool,
-    b: &mut EdgeBounds,
-    out: &mut Vec<PCurve>,
-) -> f64 {
-    debug_assert!(spans[range.clone()].iter().all(|s| s.part == k));
-    let (start, end) = (range.start, range.end);
-    let beziers: Vec<Poly<4>> = spans[range.clone()].iter().map(|s| bezier(&s.y)).collect();
-    let mut values: Vec<[f64; 4]> = beziers.iter().map(|z| z[0].map(|x| x.mid())).collect();
-    values.push(if closes {
-        values[0]
-    } else {
-        beziers[beziers.len() - 1][DEGREE].map(|x| x.mid())
-    });
-    let mut pts = Vec::new();
-    let (mut prm, mut img, mut off) = ([0.0f64; 2], [0.0f64; 2], 0.0f64);
-    for (m, i) in range.enumerate() {
-        let r: [[f64; 4]; 6] = std::array::from_fn(|c| match c {
-            0 => values[m],
-            DEGREE => values[m + 1],
-            c => beziers[m][c].map(|x| x.mid()),
-        });
-        if m == 0 {
-            pts.push(r[0]);
-        }
-        pts.extend_from_slice(&r[1..]);
-        let t = &pt.cert.tubes[spans[i].tube];
-        let sb = bounds(
-            pt.p,
-            pt.q,
-            &spans[i].y,
-            &r,
-            &hs[i],
-            t.radius_param,
-            t.radius_xyz,
-        );
-        prm = [prm[0].max(sb.delta_p), prm[1].max(sb.delta_q)];
-        img = [img[0].max(sb.image_p), img[1].max(sb.image_q)];
-        b.curve_3d = b.curve_3d.max(sb.curve);
-        b.model_fit = b.model_fit.max(sb.model);
-        b.same_parameter = b.same_parameter.max(sb.same_parameter);
-        off = off.max(sb.off_reported);
-    }
-    b.pcurve_p_param = b.pcurve_p_param.max(prm[0]);
-    b.pcurve_q_param = b.pcurve_q_param.max(prm[1]);
-    b.pcurve_p_image = b.pcurve_p_image.max(img[0]);
-    b.pcurve_q_image = b.pcurve_q_image.max(img[1]);
-    let knots = knot_vector(&knots_s[start..=end]);
-    for surface in 0..2 {
-        out.push(PCurve {
-            surface,
-            face: pt.faces[surface],
-            piece: pt.pieces[surface],
-            branch: pt.branch,
-            curve: BSpline {
-                degree: DEGREE,
-                knots: knots.clone(),
-                points: pts
-                    .iter()
-                    .map(|x| [x[2 * surface], x[2 * surface + 1]])
-                    .collect(),
-            },
-            param_tolerance: prm[surface],
-            image_tolerance: img[surface],
-        });
-    }
-    off
+    r
 }
 
 /// The edge of the parts in order (each part's segments in the edge's direction). `closed`:
 /// the edge's last point is its first; `pcurve_closed`: so are the p-curves' (one part, closed
-/// by its own certificate rather than across a seam).
+/// by its own certificate rather than across a seam); `requested`: the tolerance asked for.
 ///
-/// First one span per link; when the 3D curve's bound is then the largest, the links whose
-/// fit exceeds the other bounds (the certificate's tolerance and the p-curves' images, which
-/// the 3D curve cannot improve on) are halved and the edge is built again.
+/// One fine span per link; per part, coarse curves (3D and p-curves, one knot vector) on a
+/// subset of the fine knots, fitted by least squares and bounded on every fine span; coarse
+/// spans whose bounds exceed the target are cut at fine knots and the part fitted again.
 pub(crate) fn assemble(
     parts: &[Part],
     closed: bool,
     pcurve_closed: bool,
-) -> Result<Edge, EdgeError> {
-    let first = assemble_with(parts, closed, pcurve_closed, None)?;
-    let b = &first.bounds;
-    let floor = b
-        .certified_tolerance
-        .max(b.pcurve_p_image)
-        .max(b.pcurve_q_image)
-        .max(1e-13);
-    if b.curve_3d <= floor {
-        return Ok(first);
-    }
-    assemble_with(parts, closed, pcurve_closed, Some(floor))
-}
-
-/// [`assemble`] with links halved while their own fit exceeds `target` (`None`: not halved).
-fn assemble_with(
-    parts: &[Part],
-    closed: bool,
-    pcurve_closed: bool,
-    target: Option<f64>,
+    requested: Option<f64>,
 ) -> Result<Edge, EdgeError> {
     let cert_tol = parts
         .iter()
         .map(|p| p.cert.certified_tolerance)
         .fold(0.0, f64::max);
     let mut spans = Vec::new();
-    for (k, pt) in parts.iter().enumerate() {
+    let mut ds = Vec::new();
+    let mut ranges = Vec::with_capacity(parts.len());
+    for pt in parts {
+        let start = spans.len();
         for s in &pt.segs {
-            split_seg(k, pt, s, target, &mut spans);
+            let t = &pt.cert.tubes[s.tube];
+            let y = poly::reparametrised(&t.coeffs, s.ta, s.tb);
+            ds.push(chord_length(pt.p, &y));
+            spans.push(Span {
+                tube: s.tube,
+                fixed: SpanFixed::of(pt.p, pt.q, &y),
+                y,
+                radius_param: t.radius_param,
+                radius_xyz: t.radius_xyz,
+            });
         }
+        ranges.push(start..spans.len());
     }
-    if spans.is_empty() {
+    if spans.is_empty() || ranges.iter().any(|r| r.is_empty()) {
         return Err(EdgeError::NotGapFree {
             branch: parts.first().map(|p| p.branch).unwrap_or(0),
             reason: "nothing left after cutting".into(),
         });
     }
+    match_speeds(parts, &ranges, &spans, &mut ds);
     let mut knots_s = vec![0.0];
-    for sp in &spans {
+    for &d in &ds {
         let last: f64 = *knots_s.last().unwrap_or(&0.0);
         // Strictly increasing knots, also over a span of (nearly) zero length.
         let floor = 4.0 * f64::EPSILON * last.abs().max(1.0);
-        knots_s.push(last + sp.ds.max(floor));
+        knots_s.push(last + d.max(floor));
     }
-    let (curve, hs) = curve_3d(parts, &spans, &knots_s, closed);
+    let model_at = |i: usize, u: f64| {
+        let x = eval_mid(&spans[i].y, u);
+        (parts_p(parts, &ranges, i).point_f64(x[0], x[1]), x)
+    };
+    let n = parts.len();
+    let mut data = Vec::with_capacity(n);
+    let mut floor = cert_tol;
+    for (k, pt) in parts.iter().enumerate() {
+        let r = ranges[k].clone();
+        let start3 = model_at(r.start, 0.0).0;
+        let end3 = if k + 1 < n {
+            model_at(ranges[k + 1].start, 0.0).0
+        } else if closed {
+            model_at(0, 0.0).0
+        } else {
+            model_at(r.end - 1, 1.0).0
+        };
+        let start4 = model_at(r.start, 0.0).1;
+        let end4 = if pcurve_closed && n == 1 {
+            start4
+        } else {
+            model_at(r.end - 1, 1.0).1
+        };
+        let cuts: Vec<(usize, f64)> = pt
+            .cuts
+            .iter()
+            .map(|c| {
+                let t = &pt.cert.tubes[c.tube];
+                let mut m = model_box(pt.p, &t.coeffs, c.gap);
+                let mut rad = t.radius_xyz;
+                if let Some((tube, range)) = c.next {
+                    // The cut's range goes on into the next link: its reported points too.
+                    let nt = &pt.cert.tubes[tube];
+                    let mn = model_box(pt.p, &nt.coeffs, range);
+                    m = std::array::from_fn(|i| m[i].convex_hull(mn[i]));
+                    rad = rad.max(nt.radius_xyz);
+                }
+                (c.tube, poly::add_up(rad, box_diameter(&m)))
+            })
+            .collect();
+        floor = cuts.iter().map(|c| c.1).fold(floor, f64::max);
+        let along = |i: usize| pt.cert.tubes[spans[i].tube].along.map(|a| a.index);
+        let switches = (r.start + 1..r.end)
+            .filter(|&i| along(i) != along(i - 1))
+            .map(|i| i - r.start)
+            .collect();
+        data.push(PartData {
+            switches,
+            pt,
+            range: r,
+            ends_xyz: [start3, end3],
+            ends_param: [start4, end4],
+            cuts,
+        });
+    }
+    let goal = target(floor, requested);
+    let mut fits: Vec<PartFit> = data
+        .iter()
+        .map(|d| {
+            let m = d.range.len();
+            let pieces = m.div_ceil(START_SPANS).max(1);
+            let mut breaks: Vec<Break> = (0..=pieces).map(|k| (k * m / pieces, 1)).collect();
+            breaks.retain(|b| !d.switches.contains(&b.0));
+            breaks.extend(d.switches.iter().map(|&i| (i, DEGREE - 1)));
+            breaks.sort_unstable();
+            breaks.dedup_by_key(|b| b.0);
+            fit_part(d, &spans, &knots_s, breaks)
+        })
+        .collect();
+    for _ in 0..ROUNDS {
+        let mut changed = false;
+        for (d, f) in data.iter().zip(fits.iter_mut()) {
+            let r = ratios(d, &spans, f, goal);
+            let fine = &knots_s[d.range.start..=d.range.end];
+            if let Some(b) = refine(&f.breaks, &r, fine) {
+                *f = fit_part(d, &spans, &knots_s, b);
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+
+    finish(&data, &spans, &fits, closed, cert_tol)
+}
+
+/// Span lengths in `s` (`ds`, chord lengths on entry): per part, each span's speed at its
+/// start matches the previous one's at its end (the links' parametrisations differ in speed at
+/// a join), scaled so that the part's length is its chord length.
+fn match_speeds(parts: &[Part], ranges: &[std::ops::Range<usize>], spans: &[Span], ds: &mut [f64]) {
+    for r in ranges {
+        let speed = |i: usize, u: f64| {
+            let j = model_jet(parts_p(parts, ranges, i), &spans[i].y, u)[1];
+            (j[0] * j[0] + j[1] * j[1] + j[2] * j[2]).sqrt()
+        };
+        let chord: f64 = ds[r.clone()].iter().sum();
+        let mut len = vec![1.0f64; r.len()];
+        for m in 1..r.len() {
+            let (a, b) = (speed(r.start + m - 1, 1.0), speed(r.start + m, 0.0));
+            let q = if a > 0.0 && b > 0.0 && (b / a).is_finite() {
+                b / a
+            } else {
+                ds[r.start + m] / ds[r.start + m - 1].max(f64::MIN_POSITIVE)
+            };
+            len[m] = len[m - 1] * q.clamp(1e-12, 1e12);
+        }
+        let total: f64 = len.iter().sum();
+        if total > 0.0 && total.is_finite() && chord > 0.0 {
+            for (m, l) in len.iter().enumerate() {
+                ds[r.start + m] = l * chord / total;
+            }
+        }
+    }
+}
+
+/// The surface P of the part holding span `i`.
+fn parts_p<'a>(
+    parts: &'a [Part],
+    ranges: &[std::ops::Range<usize>],
+    i: usize,
+) -> &'a RationalBezierPatch {
+    let k = ranges.iter().position(|r| r.contains(&i)).unwrap_or(0);
+    parts[k].p
+}
+
+/// The edge of the final fits: its curves and bounds.
+fn finish(
+    data: &[PartData],
+    spans: &[Span],
+    fits: &[PartFit],
+    closed: bool,
+    cert_tol: f64,
+) -> Result<Edge, EdgeError> {
     let mut b = EdgeBounds {
         curve_3d: 0.0,
         model_fit: 0.0,
@@ -267,46 +435,58 @@ fn assemble_with(
         cuts: 0.0,
         certified_tolerance: cert_tol,
     };
+    let mut knots = Vec::new();
+    let mut points = Vec::new();
     let mut pcurves = Vec::new();
-    let (mut start, mut off) = (0, 0.0f64);
-    for (k, pt) in parts.iter().enumerate() {
-        let end = start + spans[start..].iter().take_while(|s| s.part == k).count();
-        if end > start {
-            let closes = pcurve_closed && parts.len() == 1;
-            let o = part_pcurves(
-                k,
-                pt,
-                &spans,
-                &hs,
-                start..end,
-                &knots_s,
-                closes,
-                &mut b,
-                &mut pcurves,
-            );
-            off = off.max(o);
+    for (k, (d, f)) in data.iter().zip(fits).enumerate() {
+        if k == 0 {
+            knots.extend_from_slice(&f.knots[..f.knots.len() - 1]);
+            points.extend_from_slice(&f.xyz);
+        } else {
+            knots.extend_from_slice(&f.knots[DEGREE + 1..f.knots.len() - 1]);
+            points.extend_from_slice(&f.xyz[1..]);
         }
-        start = end;
-    }
-    for pt in parts {
-        for c in &pt.cuts {
-            let t = &pt.cert.tubes[c.tube];
-            let mut m = model_box(pt.p, &t.coeffs, c.gap);
-            let mut r = t.radius_xyz;
-            if let Some((tube, range)) = c.next {
-                // The cut's range goes on into the next link: its reported points there too.
-                let n = &pt.cert.tubes[tube];
-                let mn = model_box(pt.p, &n.coeffs, range);
-                m = std::array::from_fn(|i| m[i].convex_hull(mn[i]));
-                r = r.max(n.radius_xyz);
-            }
-            // A true point of the cut's arc is within `r` of the reported curve there, that
-            // within the diameter of the reported points over the cut's range of the reported
-            // point at the cut, and that within `off` of each of the edge's three curves at its
-            // end.
-            let cut = poly::add_up(poly::add_up(r, box_diameter(&m)), off);
+        let (mut prm, mut img) = ([0.0f64; 2], [0.0f64; 2]);
+        for sb in &f.bounds {
+            prm = [prm[0].max(sb.delta_p), prm[1].max(sb.delta_q)];
+            img = [img[0].max(sb.image_p), img[1].max(sb.image_q)];
+            b.curve_3d = b.curve_3d.max(sb.curve);
+            b.model_fit = b.model_fit.max(sb.model);
+            b.same_parameter = b.same_parameter.max(sb.same_parameter);
+        }
+        for &(tube, base) in &d.cuts {
+            // A true point of the cut's arc is within `base` (the tube's radius and the
+            // diameter of the reported points over the cut's range) of the reported point at
+            // the cut, and that within `off` of each of the edge's three curves at its end.
+            let cut = poly::add_up(base, off_on(d, spans, f, tube));
             b.cuts = b.cuts.max(cut);
         }
+        b.pcurve_p_param = b.pcurve_p_param.max(prm[0]);
+        b.pcurve_q_param = b.pcurve_q_param.max(prm[1]);
+        b.pcurve_p_image = b.pcurve_p_image.max(img[0]);
+        b.pcurve_q_image = b.pcurve_q_image.max(img[1]);
+        for surface in 0..2 {
+            pcurves.push(PCurve {
+                surface,
+                face: d.pt.faces[surface],
+                piece: d.pt.pieces[surface],
+                branch: d.pt.branch,
+                curve: BSpline {
+                    degree: DEGREE,
+                    knots: f.knots.clone(),
+                    points: f
+                        .params
+                        .iter()
+                        .map(|x| [x[2 * surface], x[2 * surface + 1]])
+                        .collect(),
+                },
+                param_tolerance: prm[surface],
+                image_tolerance: img[surface],
+            });
+        }
+    }
+    if let Some(&last) = fits.last().and_then(|f| f.knots.last()) {
+        knots.push(last);
     }
     let edge_tolerance = [
         b.curve_3d,
@@ -325,31 +505,20 @@ fn assemble_with(
     ];
     if all.iter().any(|v| !v.is_finite()) {
         return Err(EdgeError::Unbounded {
-            branch: parts[0].branch,
+            branch: data[0].pt.branch,
         });
     }
     Ok(Edge {
-        curve,
+        curve: BSpline {
+            degree: DEGREE,
+            knots,
+            points,
+        },
         pcurves,
         closed,
         edge_tolerance,
         bounds: b,
-        branches: parts.iter().map(|p| p.branch).collect(),
-        links: parts.iter().map(|p| p.segs.len()).sum(),
+        branches: data.iter().map(|d| d.pt.branch).collect(),
+        links: data.iter().map(|d| d.pt.segs.len()).sum(),
     })
-}
-
-/// The clamped knot vector of degree-5 Bézier spans with ends `s` (interior knots of
-/// multiplicity 5).
-fn knot_vector(s: &[f64]) -> Vec<f64> {
-    let mut k = Vec::with_capacity(5 * s.len() + 2);
-    for (i, &v) in s.iter().enumerate() {
-        let m = if i == 0 || i + 1 == s.len() {
-            DEGREE + 1
-        } else {
-            DEGREE
-        };
-        k.extend(std::iter::repeat_n(v, m));
-    }
-    k
 }

@@ -94,7 +94,8 @@ pub fn edge_from_joined(
         let cuts = cut_ends(cert, &mut segs, ends, &doms, g, joined)?;
         if !cyclic && curve.closed {
             // One closed branch, no joins: closed by its own certificate.
-            return super::edge_from_certified(p, q, cert, g).map(|mut e| {
+            let tol = Some(shell.options.required_tolerance);
+            return super::edge_from_certified_within(p, q, cert, g, tol).map(|mut e| {
                 e.pcurves.iter_mut().for_each(|c| {
                     c.face = pi.faces[c.surface];
                     c.piece = pi.pieces[c.surface];
@@ -113,7 +114,12 @@ pub fn edge_from_joined(
             cuts,
         });
     }
-    assemble(&parts, curve.closed, false)
+    assemble(
+        &parts,
+        curve.closed,
+        false,
+        Some(shell.options.required_tolerance),
+    )
 }
 
 /// Cuts the chain `segs` (in the edge's direction, its certified ends `ends` in that order)

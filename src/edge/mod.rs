@@ -1,39 +1,44 @@
 //! Edges for a B-rep kernel: a certified branch (or a joined shell curve of several branches)
 //! as a 3D B-spline, two p-curves and one proven tolerance.
 //!
-//! A cover-chain certificate ([`crate::certify::chain`]) reports, per link, a quintic
-//! polynomial in one parameter `τ` ([`TubePiece::coeffs`], all four parameters `(σ, t, u, v)`)
-//! and proven radii: every true curve point is within `radius_param` (parameters, max norm)
-//! and `radius_xyz` (model space) of the reported point with the same along-coordinate, and the
+//! A cover-chain certificate ([`crate::certify::chain`]) reports, per link, a polynomial in
+//! one parameter `τ` ([`TubePiece::coeffs`], all four parameters `(σ, t, u, v)`) and proven
+//! radii: every true curve point is within `radius_param` (parameters, max norm) and
+//! `radius_xyz` (model space) of the reported point with the same along-coordinate, and the
 //! reverse. An edge is built from those polynomials:
 //!
-//! - **Spans.** Each link is one span, or a few: when the 3D curve's bound below is the largest
-//!   one, links are halved while their fit exceeds the certificate's tolerance and the
-//!   p-curves' image bounds. Knots of the common parameter `s` (an approximate arc
-//!   length, nominal) sit at the span ends.
-//! - **P-curves.** On each span the link's polynomial, re-expanded on `[0, 1]` and converted to
-//!   Bézier control points in interval arithmetic; the midpoints are reported. Consecutive
-//!   spans share their end control point (knots of multiplicity 5: C0); at a link join the
-//!   shared point is the next link's start, and the previous link's end differs from it by the
-//!   jump the chain allows there (the links join inside each other's tubes). Per span,
-//!   `δ = max |reported − exact control point|` (enclosed) bounds both the rounding and that
-//!   jump, since the Bernstein basis is a partition of unity.
-//! - **3D curve.** Per span, the quintic Hermite interpolant of `P(σ(τ), t(τ))` (value, first
-//!   and second derivative at both ends, of that span's own parametrisation), the value shared
-//!   at each knot: C0, and tangent-continuous in direction only (the links' parametrisations
-//!   differ in speed at a join). Its deviation from `P(σ(τ), t(τ))` is bounded by a Taylor
-//!   form of order 8 with a Lagrange remainder on four sub-intervals of each span, in interval arithmetic.
-//! - **Bounds**, per span: 3D curve to true ≤ that deviation + `radius_xyz`; `P(pcurve_P)` to
-//!   true ≤ `radius_xyz` + `|DP|·δ_P`; `Q(pcurve_Q)` to true ≤ `|DQ|·(radius_param + δ_Q)`,
-//!   the derivatives enclosed over the span's parameter box widened by those amounts (for Q also
-//!   `radius_xyz` + `|DQ|·δ_Q` + the residual `|P(σ, t) − Q(u, v)|` of the reported polynomial,
-//!   by its own Taylor form; the smaller is taken).
+//! - **Fine spans.** Each link (cut where the edge ends) is one fine span of the edge's
+//!   parameter `s`; its length in `s` makes the speed continuous at the joins of links (the
+//!   links' parametrisations differ in speed there), per part scaled to the part's chord
+//!   length. Where the links' along coordinate changes, the second derivative in `s` jumps.
+//! - **Coarse curves.** Per part (one branch's stretch of a joined curve), one clamped B-spline
+//!   of degree 5 on a few of the fine knots: the 3D curve and the two p-curves share its knots.
+//!   Interior knots are simple (C4), of multiplicity 4 where the along coordinate changes, and
+//!   raised (up to 5, C0) where refining cannot meet the target otherwise. Control points are
+//!   fitted by least squares to samples of the reported curve (`f64`, guidance only), the
+//!   part's ends fixed; the parts' 3D curves share their end points and are joined with knots of
+//!   multiplicity 5 (so each part's stretch is exactly a B-spline on the p-curves' knots).
+//! - **Bounds**, per fine span: the coarse spline's polynomial on the span is enclosed by
+//!   interval knot insertion and re-expansion in the span's `u` (`fit.rs`). P-curves:
+//!   `δ = sup |pcurve − y|` ≤ the largest Bernstein coefficient of the difference (partition of
+//!   unity), per surface. 3D: `sup |curve − P(y)|` by a Taylor form of order 8 with a Lagrange
+//!   remainder on four sub-intervals. Then 3D curve to true ≤ that + `radius_xyz`;
+//!   `P(pcurve_P)` to true ≤ `radius_xyz` + `|DP|·δ_P`; `Q(pcurve_Q)` to true ≤
+//!   `|DQ|·(radius_param + δ_Q)` or `radius_xyz` + `|DQ|·δ_Q` + the residual
+//!   `|P(σ, t) − Q(u, v)|` of the reported polynomial (the smaller), the derivatives enclosed
+//!   over the span's parameter box widened by those amounts. Both curves run over the same
+//!   `s`, so each bound holds both ways.
+//! - **Refinement.** The target is the requested tolerance (when the certificates leave room
+//!   under it; else a little above their floor). Coarse spans whose fine spans' bounds exceed
+//!   it are cut at fine knots (or their knots' multiplicity raised) and the part is fitted and
+//!   bounded again, a bounded number of rounds; the bounds reported are those of the final
+//!   curves, whatever the target.
 //! - **Cuts.** A chain is cut where the edge must end: a closed loop where its last link meets
 //!   the start box again, a boundary end (the chain goes on a little past the domain's side, on
 //!   the patch extended beyond it) and a joined curve's piece side at the side. A range `T` of
 //!   the link's `τ` is proven to hold the true end point; every curve point over `T` is within
 //!   `radius_xyz` + the diameter of `P(σ, t)` over `T` + the three curves' distance from the
-//!   reported image of the end of the edge's curves there.
+//!   reported image on the cut link's fine spans.
 //! - **Tolerance.** [`Edge::edge_tolerance`] is the largest of all those bounds and of the
 //!   certificates' own tolerances: every point of the 3D curve, and of each p-curve's image on
 //!   its surface, is within it of the true curve, and every true curve point is within it of
@@ -46,9 +51,13 @@
 //! through a corner is cut at the first side found); the links before the cut link are taken as
 //! inside the piece, as the certificate's chain between its ends is. The 3D curve is not
 //! rational and its knots are nominal; only the bounds are proven, the `f64` construction is not.
+//! The coarse curves are compared with each link's own polynomial at the same `s`: where the
+//! links' polynomials are not smooth across their joins at the tolerance's level, refining
+//! ends with knots at nearly every link (tens of control points are then not reached).
 
 mod bspline;
 mod build;
+mod fit;
 mod joined;
 mod poly;
 mod span;
@@ -148,7 +157,8 @@ pub struct PCurve {
     pub piece: usize,
     /// The branch it comes from.
     pub branch: usize,
-    /// The curve in the surface's parameters, on the same knots as the 3D curve over its range.
+    /// The curve in the surface's parameters, on the same knots as the 3D curve over its range
+    /// (degree 5).
     pub curve: BSpline<2>,
     /// Proven max-norm distance in parameters from the true curve's parameters.
     pub param_tolerance: f64,
@@ -183,7 +193,7 @@ pub struct EdgeBounds {
 /// An edge: the 3D curve, the p-curves and the proven tolerance.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Edge {
-    /// The 3D curve (degree 5, one Bézier segment per span).
+    /// The 3D curve (degree 5; per part a B-spline with few knots, parts joined C0).
     pub curve: BSpline<3>,
     /// The p-curves: for one branch, one on P then one on Q; for a joined curve, one per part
     /// and surface.
@@ -230,7 +240,8 @@ pub(crate) struct Part<'a> {
     pub(crate) cuts: Vec<Cut>,
 }
 
-/// The edge of the traced branch `b` of `P ∩ Q`.
+/// The edge of the traced branch `b` of `P ∩ Q`, aiming at a tolerance a little above the
+/// certificate's (the requested one is not known here: see [`edge_from_branch_within`]).
 ///
 /// Errors: [`EdgeError::NotCertified`] without a certificate, else as
 /// [`edge_from_certified`].
@@ -238,6 +249,19 @@ pub fn edge_from_branch(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     b: &TracedBranch,
+) -> Result<Edge, EdgeError> {
+    edge_from_branch_within(p, q, b, None)
+}
+
+/// [`edge_from_branch`] aiming at the tolerance `requested` (the run's required tolerance):
+/// the coarse curves use the room between the certificate's tolerance and it.
+///
+/// Errors: as [`edge_from_branch`].
+pub fn edge_from_branch_within(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &TracedBranch,
+    requested: Option<f64>,
 ) -> Result<Edge, EdgeError> {
     let id = b.id();
     let cert = match &b.certificate {
@@ -252,7 +276,7 @@ pub fn edge_from_branch(
             reason: e.to_string(),
         })?,
     };
-    edge_from_certified(p, q, cert, id)
+    edge_from_certified_within(p, q, cert, id, requested)
 }
 
 /// The edge of the certified branch `cert` (numbered `branch` in errors) of `P ∩ Q`. A branch
@@ -264,6 +288,20 @@ pub fn edge_from_certified(
     q: &RationalBezierPatch,
     cert: &CertifiedBranch,
     branch: usize,
+) -> Result<Edge, EdgeError> {
+    edge_from_certified_within(p, q, cert, branch, None)
+}
+
+/// [`edge_from_certified`] aiming at the tolerance `requested` (see
+/// [`edge_from_branch_within`]).
+///
+/// Errors: as [`edge_from_certified`].
+pub fn edge_from_certified_within(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    cert: &CertifiedBranch,
+    branch: usize,
+    requested: Option<f64>,
 ) -> Result<Edge, EdgeError> {
     check_chain(cert, branch)?;
     let mut segs = chain_segs(cert, false);
@@ -288,7 +326,7 @@ pub fn edge_from_certified(
         segs,
         cuts,
     };
-    assemble(&[part], closed, closed)
+    assemble(&[part], closed, closed, requested)
 }
 
 /// Checks that `cert` is a gap-free cover chain this module can read.
@@ -394,7 +432,10 @@ pub fn edges_of(
 ) -> Vec<(usize, Result<Edge, EdgeError>)> {
     r.branches
         .iter()
-        .map(|b| (b.id(), edge_from_branch(p, q, b)))
+        .map(|b| {
+            let tol = Some(r.options.required_tolerance);
+            (b.id(), edge_from_branch_within(p, q, b, tol))
+        })
         .collect()
 }
 

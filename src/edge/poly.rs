@@ -65,12 +65,12 @@ pub(crate) fn bezier_from_power<const D: usize>(c: &Poly<D>) -> Poly<D> {
 
 /// Power-basis coefficients of the Bézier polynomial with control points `b`:
 /// `c_k = C(n, k)·Σ_{i ≤ k} C(k, i)·(−1)^{k−i}·b_i`.
-pub(crate) fn power_from_bezier<const D: usize>(b: &[[f64; D]; DEGREE + 1]) -> Poly<D> {
+pub(crate) fn power_from_bezier<const D: usize>(b: &Poly<D>) -> Poly<D> {
     std::array::from_fn(|k| {
         std::array::from_fn(|d| {
             let s = (0..=k).fold(point(0.0), |acc, i| {
                 let sign = if (k - i) % 2 == 0 { 1.0 } else { -1.0 };
-                acc + point(sign * binom(k, i)) * point(b[i][d])
+                acc + point(sign * binom(k, i)) * b[i][d]
             });
             point(binom(DEGREE, k)) * s
         })
@@ -110,7 +110,7 @@ mod tests {
     #[test]
     fn bezier_round_trip_and_shift() {
         let b = [[1.0], [2.0], [-1.0], [0.5], [3.0], [0.25]];
-        let c = power_from_bezier(&b);
+        let c = power_from_bezier(&b.map(|r| r.map(point)));
         let back = bezier_from_power(&c);
         for i in 0..=DEGREE {
             assert!(back[i][0].contains(b[i][0]));

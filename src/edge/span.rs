@@ -1,10 +1,11 @@
-//! The proven bounds of one span of an edge: the p-curves' rounding and joins, the 3D curve's
-//! deviation from the image of the reported curve (a Taylor form with a Lagrange remainder on
-//! sub-intervals), and the images of the p-curves on P and Q.
+//! The proven bounds of one fine span of an edge: the coarse p-curves' distance from the
+//! reported curve (the Bernstein coefficients of the difference, enclosed), the coarse 3D
+//! curve's deviation from the image of the reported curve (a Taylor form with a Lagrange
+//! remainder on sub-intervals), and the images of the p-curves on P and Q.
 
-use super::poly::{
-    add_up, bezier_from_power, eval, norm_sup, power_from_bezier, taylor_shift, Poly, DEGREE,
-};
+#[cfg(test)]
+use super::poly::power_from_bezier;
+use super::poly::{add_up, bezier_from_power, eval, norm_sup, taylor_shift, Poly, DEGREE};
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::scalar::point;
 use crate::validated::SeriesN;
@@ -82,8 +83,9 @@ fn taylor_bound(y: &Poly<4>, h: Option<&Poly<3>>, f: &dyn Fn(&[Long; 4]) -> [Lon
 }
 
 /// An upper bound of `|H(u) − P(y(u))|` over `u ∈ [0, 1]` for the Bézier curve `h`.
+#[cfg(test)]
 pub(crate) fn model_deviation(p: &RationalBezierPatch, y: &Poly<4>, h: &[[f64; 3]; 6]) -> f64 {
-    let hp = power_from_bezier(h);
+    let hp = power_from_bezier(&h.map(|r| r.map(point)));
     taylor_bound(y, Some(&hp), &|s| p.eval(s[0], s[1]))
 }
 
@@ -128,20 +130,22 @@ pub(crate) fn param_box(y: &Poly<4>) -> [Interval; 4] {
     })
 }
 
-/// The interval Bézier control points of `y` on `[0, 1]`.
-pub(crate) fn bezier(y: &Poly<4>) -> Poly<4> {
-    bezier_from_power(y)
-}
-
-/// Largest `|r_i − b_i|` over the control points and the coordinates `dims`.
-fn control_gap(r: &[[f64; 4]; 6], b: &Poly<4>, dims: [usize; 2]) -> f64 {
+/// An upper bound of `max |c_d(u) − y_d(u)|` over `u ∈ [0, 1]` and the coordinates `dims`:
+/// the largest Bernstein coefficient of the difference (partition of unity).
+fn poly_gap(c: &Poly<4>, y: &Poly<4>, dims: [usize; 2]) -> f64 {
+    let diff: Poly<4> = std::array::from_fn(|k| std::array::from_fn(|d| c[k][d] - y[k][d]));
+    let b = bezier_from_power(&diff);
     let mut m = 0.0f64;
-    for i in 0..=DEGREE {
+    for row in &b {
         for d in dims {
-            m = m.max((point(r[i][d]) - b[i][d]).mag());
+            m = m.max(row[d].mag());
         }
     }
-    m
+    if m.is_nan() {
+        f64::INFINITY
+    } else {
+        m
+    }
 }
 
 /// `|∂S/∂a·e + ∂S/∂b·e|` for `e ∈ [−r, r]`, the derivatives over `(a, b) ∈ bx`.
@@ -152,31 +156,52 @@ fn image_of(s: &RationalBezierPatch, bx: [Interval; 2], r: f64) -> f64 {
     norm_sup(&v)
 }
 
-/// The bounds of one span with reported parameter control points `r` (all four coordinates),
-/// reported 3D control points `h`, over a tube piece with radii `radius_param`, `radius_xyz`.
+/// What a fine span's bounds need that does not depend on the fitted curves.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SpanFixed {
+    /// The enclosure of the reported curve over the span.
+    pub(crate) bx: [Interval; 4],
+    /// An upper bound of its residual `|P(σ, t) − Q(u, v)|`.
+    pub(crate) residual: f64,
+}
+
+impl SpanFixed {
+    /// The fixed data of the span whose reported curve is `y`.
+    pub(crate) fn of(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &Poly<4>) -> Self {
+        SpanFixed {
+            bx: param_box(y),
+            residual: residual(p, q, y),
+        }
+    }
+}
+
+/// The bounds of one fine span with reported curve `y` (enclosed polynomial in the span's
+/// `u`), the coarse p-curves' polynomial `c4` (all four coordinates) and the coarse 3D curve's
+/// `c3` on the same span (enclosed), over a tube piece with radii `radius_param`, `radius_xyz`.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn bounds(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     y: &Poly<4>,
-    r: &[[f64; 4]; 6],
-    h: &[[f64; 3]; 6],
+    fixed: &SpanFixed,
+    c4: &Poly<4>,
+    c3: &Poly<3>,
     radius_param: f64,
     radius_xyz: f64,
 ) -> SpanBounds {
-    let b = bezier(y);
-    let delta_p = control_gap(r, &b, [0, 1]);
-    let delta_q = control_gap(r, &b, [2, 3]);
-    let bx = param_box(y);
+    let delta_p = poly_gap(c4, y, [0, 1]);
+    let delta_q = poly_gap(c4, y, [2, 3]);
+    let bx = fixed.bx;
     let widen = |x: Interval, w: f64| x + inari::interval!(-w, w).unwrap_or(Interval::ENTIRE);
     let dp = image_of(p, [widen(bx[0], delta_p), widen(bx[1], delta_p)], delta_p);
     let rq = add_up(radius_param, delta_q);
     // Q(pcurve_Q) − true = Q(pcurve_Q) − Q(y_Q) + Q(y_Q) − P(y_P) + P(y_P) − true: the
-    // rounding, the residual, and radius_xyz; or directly through DQ and radius_param.
+    // fit, the residual, and radius_xyz; or directly through DQ and radius_param.
     let dq = image_of(q, [widen(bx[2], delta_q), widen(bx[3], delta_q)], delta_q);
-    let q_off = add_up(dq, residual(p, q, y));
+    let q_off = add_up(dq, fixed.residual);
     let image_q =
         image_of(q, [widen(bx[2], rq), widen(bx[3], rq)], rq).min(add_up(q_off, radius_xyz));
-    let model = model_deviation(p, y, h);
+    let model = taylor_bound(y, Some(c3), &|s| p.eval(s[0], s[1]));
     SpanBounds {
         delta_p: add_up(radius_param, delta_p),
         delta_q: rq,

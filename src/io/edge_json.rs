@@ -61,7 +61,9 @@ pub fn edge_to_json(e: &Edge) -> Value {
 }
 
 /// The edge document: `source` names what each outcome is numbered by (`"branch"` for a
-/// two-surface scene, `"curve"` for the joined curves of a shell scene).
+/// two-surface scene, `"curve"` for the joined curves of a shell scene). An edge's number is
+/// written as `source`, except that a joined curve's is `"curve_index"` (`"curve"` is the
+/// edge's 3D B-spline); a skipped outcome's as `source`.
 pub fn edges_document(
     scene: Option<&str>,
     source: &str,
@@ -73,7 +75,12 @@ pub fn edges_document(
         match o {
             Ok(e) => {
                 let mut v = edge_to_json(e);
-                v[source] = json!(k);
+                let key = if source == "curve" {
+                    "curve_index"
+                } else {
+                    source
+                };
+                v[key] = json!(k);
                 edges.push(v);
             }
             Err(err) => skipped.push(json!({ source: k, "error": err.to_string() })),

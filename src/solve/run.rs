@@ -34,6 +34,11 @@ const DUPLICATE_SLACK: f64 = 1e-9;
 /// step divided by 8, then by 64.
 const REPAIR_ROUNDS: i32 = 2;
 
+/// The share of the required tolerance a cover chain aims at: the rest is left to the edge
+/// built on it (the edge module), whose coarse B-spline adds its fit to the chain's tubes and
+/// must stay within the required tolerance.
+pub(crate) const CHAIN_SHARE: f64 = 0.8;
+
 /// Finds, traces and (unless the method is [`Method::March`](super::Method::March)) certifies
 /// every branch of `P ∩ Q`.
 ///
@@ -271,7 +276,7 @@ fn certify_within(
         ..CertifyOptions::default()
     };
     let chain = ChainOptions {
-        required_tolerance: opts.required_tolerance,
+        required_tolerance: CHAIN_SHARE * opts.required_tolerance,
         max_links: opts.max_steps.saturating_mul(2),
         deadline,
     };

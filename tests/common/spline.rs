@@ -21,7 +21,9 @@ pub(crate) fn samples<const D: usize>(b: &BSpline<D>, per_span: usize) -> Vec<f6
 }
 
 /// The distance from `x` to the spline: the nearest of the dense samples `pts` (at the
-/// parameters `ss`), refined by golden-section search between its neighbours.
+/// parameters `ss`), refined by golden-section search between its neighbours and between
+/// those and the next ones (a knot span of almost no length gives neighbours with almost no
+/// room between them).
 pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
     let (k, best) = pts
         .iter()
@@ -29,16 +31,25 @@ pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[
         .enumerate()
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .unwrap();
-    let (mut lo, mut hi) = (ss[k.saturating_sub(1)], ss[(k + 1).min(ss.len() - 1)]);
     let f = |s: f64| dist3(&b.eval(s), x);
     let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..100 {
-        let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if f(a) < f(c) {
-            hi = c;
-        } else {
-            lo = a;
+    let at = |i: usize| ss[i.min(ss.len() - 1)];
+    let brackets = [
+        (at(k.saturating_sub(1)), at(k + 1)),
+        (at(k.saturating_sub(2)), at(k.saturating_sub(1))),
+        (at(k + 1), at(k + 2)),
+    ];
+    let mut found = best;
+    for (mut lo, mut hi) in brackets {
+        for _ in 0..100 {
+            let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
+            if f(a) < f(c) {
+                hi = c;
+            } else {
+                lo = a;
+            }
         }
+        found = found.min(f(0.5 * (lo + hi)));
     }
-    f(0.5 * (lo + hi)).min(best)
+    found
 }
