@@ -50,6 +50,7 @@ OCCT_WRONG = {
     "viviani.json",
     "cubic_quadratic_tangential.json",
     "small_loop.json",
+    "concentric_circles_0_002.json",
 }
 YARDSTICK_MS = 12.0
 
