@@ -327,19 +327,7 @@ mod tests {
 
     #[test]
     fn rational_patches_keep_the_patch_form() {
-        let pts = [
-            [0.0, 0.0, 0.0],
-            [0.0, 1.0, 0.2],
-            [1.0, 0.0, 0.1],
-            [1.0, 1.0, 0.5],
-        ];
-        let p = RationalBezierPatch::from_f64_points(
-            [1, 1],
-            &pts,
-            Some(&[1.0, 2.0, 1.0, 1.0]),
-            Domain::UNIT,
-        )
-        .unwrap();
+        let p = crate::pair::fixtures::rational_bilinear();
         let lean = ContactPatch::new(&p);
         assert!(!lean.is_polynomial());
         let want = p.second_order_centred(0.3, 0.6, 0.5, 0.5);

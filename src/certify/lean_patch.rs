@@ -300,19 +300,7 @@ mod tests {
 
     #[test]
     fn rational_patches_keep_the_patch_form() {
-        let pts = [
-            [0.0, 0.0, 0.0],
-            [0.0, 1.0, 0.2],
-            [1.0, 0.0, 0.1],
-            [1.0, 1.0, 0.5],
-        ];
-        let p = RationalBezierPatch::from_f64_points(
-            [1, 1],
-            &pts,
-            Some(&[1.0, 2.0, 1.0, 1.0]),
-            Domain::UNIT,
-        )
-        .unwrap();
+        let p = crate::pair::fixtures::rational_bilinear();
         let lean = LeanPatch::new(&p);
         assert!(lean.power.is_none());
         let c = lean.centred(0.5, 0.5);

@@ -41,6 +41,25 @@ impl ScalarSurface for Bowl {
     }
 }
 
+/// A bilinear patch over the unit square with one uneven weight: the smallest rational patch,
+/// which the lean polynomial forms of the layers above must leave in the patch's own form.
+#[cfg(test)]
+pub(crate) fn rational_bilinear() -> crate::geometry::RationalBezierPatch {
+    let pts = [
+        [0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.2],
+        [1.0, 0.0, 0.1],
+        [1.0, 1.0, 0.5],
+    ];
+    crate::geometry::RationalBezierPatch::from_f64_points(
+        [1, 1],
+        &pts,
+        Some(&[1.0, 2.0, 1.0, 1.0]),
+        crate::geometry::Domain::UNIT,
+    )
+    .unwrap()
+}
+
 /// A wavy bicubic × biquadratic patch over `[−1, 2] × [0.5, 1.5]`, rational (uneven weights) or
 /// polynomial.
 #[cfg(test)]
