@@ -639,6 +639,20 @@ fn search_faces(
         kind: StartKind::Interior,
     };
     let mut found = Vec::new();
+    // Whether the search of `piece` against `N_Q` settled every leaf.
+    let mut settles = |piece: Piece, report: &mut SearchReport| {
+        edge_search(
+            ctx,
+            &problem,
+            piece,
+            region.q.clone(),
+            leaf,
+            leaf * REFINE_FAILED_LEAF,
+            report,
+            &mut found,
+        )
+        .is_empty()
+    };
     let mut settled = true;
     for (fixed, upper) in [(0, false), (0, true), (1, false), (1, true)] {
         let range = if fixed == 0 { region.p.s } else { region.p.r };
@@ -646,30 +660,10 @@ fn search_faces(
         if value == 0.0 || value == 1.0 {
             continue;
         }
-        let undecided = edge_search(
-            ctx,
-            &problem,
-            region.p.face(fixed, upper),
-            region.q.clone(),
-            leaf,
-            leaf * REFINE_FAILED_LEAF,
-            report,
-            &mut found,
-        );
-        settled &= undecided.is_empty();
+        settled &= settles(region.p.face(fixed, upper), report);
     }
     if let (Some(ray), true) = (ray, settled) {
-        let undecided = edge_search(
-            ctx,
-            &problem,
-            ray,
-            region.q.clone(),
-            leaf,
-            leaf * REFINE_FAILED_LEAF,
-            report,
-            &mut found,
-        );
-        settled &= undecided.is_empty();
+        settled &= settles(ray, report);
     }
     if settled {
         report.interior.extend(found);
