@@ -21,6 +21,9 @@
 // criterion_group!/criterion_main! generate undocumented functions.
 #![allow(missing_docs)]
 
+mod common;
+
+use common::median;
 use criterion::{criterion_group, criterion_main, Criterion};
 use ssitrace::certify::{certify_branch, certify_chain, CertifyOptions, ChainOptions};
 use ssitrace::io::scene::Scene;
@@ -28,7 +31,6 @@ use ssitrace::march::branch::Branch;
 use ssitrace::solve::{intersect, Method, Options};
 use std::hint::black_box;
 use std::path::Path;
-use std::time::Instant;
 
 const SCENES: [(&str, &str); 5] = [
     ("sphere", "scenes/sphere_patch_plane.json"),
@@ -57,19 +59,6 @@ fn marched(scene: &Scene) -> Vec<Branch> {
 fn middle(b: &Branch) -> [f64; 4] {
     let c = b.points[b.points.len() / 2];
     [c.p[0], c.p[1], c.q[0], c.q[1]]
-}
-
-/// Seconds of the median of `n` runs of `f`.
-fn median(n: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..n)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[n / 2]
 }
 
 fn print_ratios() {

@@ -18,6 +18,9 @@
 // criterion_group!/criterion_main! generate undocumented functions.
 #![allow(missing_docs)]
 
+mod common;
+
+use common::median;
 use criterion::{criterion_group, criterion_main, Criterion};
 use ssitrace::certify::contact::{certify_contact, ContactOptions};
 use ssitrace::certify::contact_cover::{contact_cover, CoverOptions};
@@ -33,7 +36,6 @@ use ssitrace::solve::{COVER_EVALUATIONS, COVER_LEAF};
 use ssitrace::validated::{Integrator, IntegratorOptions, OdeSystem};
 use std::hint::black_box;
 use std::path::Path;
-use std::time::Instant;
 
 /// The start on the contact curve, x = 0.25.
 const START: [f64; 4] = [0.25, 0.125, 0.25, 0.125];
@@ -143,19 +145,6 @@ fn one_thread<R: Send>(f: impl FnOnce() -> R + Send) -> R {
         .build()
         .expect("pool")
         .install(f)
-}
-
-/// Median wall time of `n` runs of `f`.
-fn median(n: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..n)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[n / 2]
 }
 
 fn print_ratios() {

@@ -71,6 +71,9 @@
 // criterion_group!/criterion_main! generate undocumented functions.
 #![allow(missing_docs)]
 
+mod common;
+
+use common::median;
 use criterion::{criterion_group, criterion_main, Criterion};
 use ssitrace::certify::budget::StepBudget;
 use ssitrace::certify::{
@@ -182,19 +185,6 @@ fn chain_all(p: &RationalBezierPatch, q: &RationalBezierPatch, jobs: &[Job]) -> 
         }
     }
     (links, tol)
-}
-
-/// Seconds of the median of `n` runs of `f`.
-fn median(n: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..n)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[n / 2]
 }
 
 /// Prints the default engine's ratio on one scene: the cover chain over every branch against
