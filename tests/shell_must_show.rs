@@ -185,6 +185,12 @@ fn closed_and_proven(what: &str, report: &ShellRunReport) {
     }
 }
 
+/// 4 000 points of a closed curve `t ↦ c(t)`, `t ∈ [0, 2π)`, evenly in `t`: the true curve the
+/// edges are checked against.
+fn around(c: impl Fn(f64) -> [f64; 3]) -> Vec<[f64; 3]> {
+    (0..4000).map(|m| c(2.0 * PI * m as f64 / 4000.0)).collect()
+}
+
 #[test]
 fn nurbs_cylinders_of_different_radii_meet_in_two_closed_curves() {
     // x² + y² = 1 about z and y² + z² = 1/4 about x: the loops x = ±√(1 − y²), (y, z) on the
@@ -211,9 +217,7 @@ fn nurbs_cylinders_of_different_radii_meet_in_two_closed_curves() {
         let sign = e.curve.points[0][0].signum();
         signs.push(sign);
         let off = |p: &[f64; 3]| dist3(p, &loop_point(p[2].atan2(p[1]), sign));
-        let truth: Vec<[f64; 3]> = (0..4000)
-            .map(|m| loop_point(2.0 * PI * m as f64 / 4000.0, sign))
-            .collect();
+        let truth = around(|t| loop_point(t, sign));
         check_edge(
             &format!("cylinders 1, 1/2: loop {k}"),
             e,
@@ -370,9 +374,7 @@ fn a_paraboloid_with_interior_knots_against_a_plane_is_one_closed_curve() {
     let rad = 0.28;
     let circle = |phi: f64| [0.45 + rad * phi.cos(), 0.55 + rad * phi.sin(), h];
     let off = |p: &[f64; 3]| dist3(p, &circle((p[1] - 0.55).atan2(p[0] - 0.45)));
-    let truth: Vec<[f64; 3]> = (0..4000)
-        .map(|m| circle(2.0 * PI * m as f64 / 4000.0))
-        .collect();
+    let truth = around(circle);
     let e = edges("paraboloid", &scene, &report);
     assert_eq!(e.len(), 1);
     assert!(e[0].closed);
@@ -418,9 +420,7 @@ fn four_quarter_cylinders_against_an_oblique_plane_are_one_closed_ellipse() {
     assert_eq!(r.curves[0].parts.len(), 4);
     let ellipse = |t: f64| [t.cos(), t.sin(), z(t.cos(), t.sin())];
     let off = |p: &[f64; 3]| dist3(p, &ellipse(p[1].atan2(p[0])));
-    let truth: Vec<[f64; 3]> = (0..4000)
-        .map(|m| ellipse(2.0 * PI * m as f64 / 4000.0))
-        .collect();
+    let truth = around(ellipse);
     let e = edges("quarter cylinders", &scene, &report);
     assert_eq!(e.len(), 1);
     assert!(e[0].closed);
