@@ -112,25 +112,24 @@ pub(crate) fn on_own_path(nodes: &[Node], arc: f64, watch_sine: f64) -> Option<u
         return None;
     }
     let param_speed = param_distance(&prev.x, &cur.x) / step;
-    // Marched length from node k to the last node, accumulated backwards.
-    let mut behind = 0.0;
-    let mut earliest = None;
-    for k in (0..n - 1).rev() {
-        behind += (nodes[k + 1].frame.xyz - nodes[k].frame.xyz).norm();
-        if k + OWN_PATH_GAP >= n || behind < 4.0 * arc {
-            continue;
+    let reach = 0.5 * arc;
+    // The earliest point near the last one, tested from the start (squared distance first: this
+    // runs after every marching step). The marched length back to it is summed only for that
+    // point: it is the longest of all candidates', so if it is too short, all are.
+    let k = nodes[..n - OWN_PATH_GAP].iter().position(|e| {
+        let off = e.frame.xyz - cur.frame.xyz;
+        off.norm_squared() <= reach * reach && {
+            let d = off.norm();
+            e.frame.sine >= watch_sine
+                && param_distance(&e.x, &cur.x) <= 2.0 * param_speed * d + 1e-9
+                && e.frame.tangent.dot(&cur.frame.tangent) > 0.9
         }
-        let e = &nodes[k];
-        let d = (e.frame.xyz - cur.frame.xyz).norm();
-        if d <= 0.5 * arc
-            && e.frame.sine >= watch_sine
-            && param_distance(&e.x, &cur.x) <= 2.0 * param_speed * d + 1e-9
-            && e.frame.tangent.dot(&cur.frame.tangent) > 0.9
-        {
-            earliest = Some(k);
-        }
-    }
-    earliest
+    })?;
+    let behind: f64 = nodes[k..]
+        .windows(2)
+        .map(|w| (w[1].frame.xyz - w[0].frame.xyz).norm())
+        .sum();
+    (behind >= 4.0 * arc).then_some(k)
 }
 
 #[cfg(test)]
