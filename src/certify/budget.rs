@@ -5,7 +5,6 @@
 
 use crate::geometry::RationalBezierPatch;
 use crate::validated::IntegratorOptions;
-use inari::Interval;
 use std::time::Instant;
 
 /// How the validated steps of one half are taken and when the half stops for its budget.
@@ -88,8 +87,7 @@ impl StepBudget {
 /// The largest step: `h_max`, at most 1/8 of the smaller model-space diameter of the two
 /// patches.
 pub(crate) fn h_max_for(p: &RationalBezierPatch, q: &RationalBezierPatch, h_max: f64) -> f64 {
-    let diameter = |b: [Interval; 3]| b.iter().map(|x| x.wid()).fold(0.0, f64::max);
-    let size = diameter(p.bounding_box()).min(diameter(q.bounding_box()));
+    let size = p.model_width().min(q.model_width());
     if size.is_finite() && size > 0.0 {
         h_max.min(0.125 * size)
     } else {

@@ -213,6 +213,15 @@ impl RationalBezierPatch {
         hull_of_net(self.homogeneous()).unwrap_or([Interval::ENTIRE; 3])
     }
 
+    /// The largest side of [`Self::bounding_box`]: the model size of the patch that steps,
+    /// leaves and budgets are scaled by (nominal; infinite if the box is unbounded).
+    pub fn model_width(&self) -> f64 {
+        self.bounding_box()
+            .iter()
+            .map(|x| x.wid())
+            .fold(0.0, f64::max)
+    }
+
     /// Rigorous enclosures of the point and all first and second partials over the box (naive
     /// interval evaluation of the derivative formulas). Inside the domain the denominator is
     /// positive; outside it, a denominator enclosing zero gives unbounded (or, if exactly zero,

@@ -155,9 +155,7 @@ pub fn find_start_points(
     opts: &SearchOptions,
 ) -> SearchReport {
     let (dp, dq) = (p.domain(), q.domain());
-    let size = diameter(&p.bounding_box())
-        .max(diameter(&q.bounding_box()))
-        .max(f64::MIN_POSITIVE);
+    let size = p.model_width().max(q.model_width()).max(f64::MIN_POSITIVE);
     let ctx = Ctx {
         leaf: size * opts.leaf_fraction,
         min_pair: size * opts.min_pair_fraction,

@@ -7,7 +7,6 @@ use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
 use crate::pair::boundary_direction::BoundaryOptions;
 use crate::search::start_points::SearchOptions;
-use inari::Interval;
 use std::time::Duration;
 
 /// How the branches are traced.
@@ -141,8 +140,7 @@ const STEP_SCALE_SIZE: f64 = 50.0;
 impl Options {
     /// The marching step in model units for the patches `p` and `q` (see [`Options::step`]).
     pub fn marching_step(&self, p: &RationalBezierPatch, q: &RationalBezierPatch) -> f64 {
-        let width = |b: [Interval; 3]| b.iter().map(|x| x.wid()).fold(0.0, f64::max);
-        let size = width(p.bounding_box()).min(width(q.bounding_box()));
+        let size = p.model_width().min(q.model_width());
         if size.is_finite() && size > STEP_SCALE_SIZE {
             self.step * (size / STEP_SCALE_SIZE)
         } else {
