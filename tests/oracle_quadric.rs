@@ -381,6 +381,7 @@ fn check_pair(seed: u64, fig: &mut Figures) {
         widen: 0.0,
         required: opts.required_tolerance,
         near: pair.near,
+        p: Some(&pair.p),
     };
     compare(&cmp, fig);
     for n in &mut fig.notes[before..] {

@@ -248,6 +248,7 @@ fn check_pair(seed: u64, fig: &mut Figures) {
         widen,
         required: opts.required_tolerance,
         near: 0.02,
+        p: Some(&p),
     };
     compare(&cmp, fig);
 }

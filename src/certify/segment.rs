@@ -218,12 +218,42 @@ type Long = SeriesN<{ ORDER + 2 }>;
 /// The series type of the Jacobian: coefficients up to its remainder's order (3).
 type Short = SeriesN<4>;
 
-/// `P − Q` along `y` (series arguments).
+/// `P` and `Q` along `y` (series arguments).
 #[inline(never)]
-fn residual(p: &Centred<'_>, q: &Centred<'_>, y: &[Long; 4]) -> [Long; 3] {
-    let a = p.eval(y[0], y[1]);
-    let b = q.eval(y[2], y[3]);
+fn both_along(p: &Centred<'_>, q: &Centred<'_>, y: &[Long; 4]) -> [[Long; 3]; 2] {
+    [p.eval(y[0], y[1]), q.eval(y[2], y[3])]
+}
+
+/// `P − Q` from [`both_along`].
+fn residual([a, b]: &[[Long; 3]; 2]) -> [Long; 3] {
     std::array::from_fn(|r| a[r] - b[r])
+}
+
+/// The model points of the curve over the whole segment, enclosed on one surface: the surface
+/// along the predictor (its Taylor form: coefficients `at_c` at the centre, the next one
+/// `at_o` over all of Ξ) plus the mean-value change to the curve, `Σ ∂S/∂x_c · k_c` over that
+/// surface's free coordinates (`jac` holds `±∂S/∂x_c` over the segments from the predictor to
+/// the curve; `sign` undoes the minus of `Q`'s columns).
+fn model_along(
+    at_c: &[Long; 3],
+    at_o: &[Long; 3],
+    tau: Interval,
+    proof: &SegmentProof,
+    surface: usize,
+) -> [Interval; 3] {
+    let sign = if surface == 0 { 1.0 } else { -1.0 };
+    std::array::from_fn(|r| {
+        let mut acc = at_o[r].coeff(ORDER + 1);
+        for k in (0..=ORDER).rev() {
+            acc = imul(acc, tau) + at_c[r].coeff(k);
+        }
+        for (c, &i) in others(proof.pred.along).iter().enumerate() {
+            if i / 2 == surface {
+                acc += imul(point(sign), imul(proof.jac[r][c], proof.k[c]));
+            }
+        }
+        acc
+    })
 }
 
 /// The Jacobian columns of `P − Q` for the coordinates `free` along `y` (`jac[col][row]`).
@@ -448,6 +478,9 @@ pub(crate) struct SegmentProof {
     /// enclosed over every point between the predictor and the curve within the segment (offsets
     /// in the hull of `k` and 0).
     pub(crate) jac: [[Interval; 3]; 3],
+    /// The model-space points of the curve for every `ξ ∈ xi`, enclosed (on `P` and on `Q`,
+    /// intersected).
+    pub(crate) model: [Interval; 3],
 }
 
 impl SegmentProof {
@@ -514,8 +547,9 @@ pub(crate) fn prove_segment(
     let at_centre: [Long; 4] = pred.series(point(centre), ORDER + 1);
     let c = at_centre.each_ref().map(|s| s.coeff(0).mid());
     let (lp, lq) = (lean[0].centred(c[0], c[1]), lean[1].centred(c[2], c[3]));
-    let g_c = residual(&lp, &lq, &at_centre);
-    let g_o = residual(&lp, &lq, &pred.series(xi, ORDER + 2));
+    let pq_c = both_along(&lp, &lq, &at_centre);
+    let pq_o = both_along(&lp, &lq, &pred.series(xi, ORDER + 2));
+    let (g_c, g_o) = (residual(&pq_c), residual(&pq_o));
     let j_c = jacobian(&lp, &lq, &pred.series(point(centre), 3), &free);
     let j_o = jacobian(&lp, &lq, &pred.series(xi, 4), &free);
     // The preconditioner follows the Jacobian along the segment: C(τ) = C0 + C1·τ + C2·τ², the
@@ -554,6 +588,7 @@ pub(crate) fn prove_segment(
         y,
         k: y,
         jac: [[Interval::ENTIRE; 3]; 3],
+        model: [Interval::ENTIRE; 3],
     };
     let b = proof.tube_over(x_range[0], x_range[1]);
     // K = −C·g + (A − C·ΔJ(x))·x for the offsets x (ΔJ: the Jacobian's change off the
@@ -583,5 +618,26 @@ pub(crate) fn prove_segment(
     let j_pred = jacobian_along(&j_c, &j_o, tau);
     let dj = jacobian_change(&h, &with_zero(&proof.k));
     proof.jac = combine(&j_pred, &dj, |a, b| a + b);
+    // Four enclosures of the same points: each surface along the curve, and over the
+    // parameter box of the curve (tighter where a coordinate is nearly affine in the
+    // parameters, as a height field's x and y). Rounding cannot make them disjoint, but never
+    // report an empty box.
+    let b = proof.box_over(x_range[0], x_range[1]);
+    let all = [
+        model_along(&pq_c[0], &pq_o[0], tau, &proof, 0),
+        model_along(&pq_c[1], &pq_o[1], tau, &proof, 1),
+        lp.eval(b[0], b[1]),
+        lq.eval(b[2], b[3]),
+    ];
+    proof.model = std::array::from_fn(|r| {
+        all[1..].iter().fold(all[0][r], |acc, e| {
+            let both = acc.intersection(e[r]);
+            if both.is_empty() {
+                acc
+            } else {
+                both
+            }
+        })
+    });
     Ok(proof)
 }

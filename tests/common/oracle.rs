@@ -18,6 +18,7 @@
 
 use inari::{interval, Interval};
 use ssitrace::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
+use ssitrace::geometry::RationalBezierPatch;
 use ssitrace::march::branch::Branch;
 use ssitrace::{Engine, SurfaceIntersection};
 
@@ -212,6 +213,9 @@ pub(crate) struct Comparison<'a> {
     /// A reference point closer than this (in P's parameters) to a branch's marched polyline
     /// is on that branch's component.
     pub(crate) near: f64,
+    /// P as traced, to check the model-space boxes: a reference point's model point (P over
+    /// its bracket) must meet the model box of some box whose parameters hold the point.
+    pub(crate) p: Option<&'a RationalBezierPatch>,
 }
 
 /// Counts the branches' certificate figures and checks every reference point (see the module
@@ -328,6 +332,12 @@ fn check_reference_point(c: &Comparison<'_>, r: &RefPoint, fig: &mut Figures) {
             "seed {seed}: reference point {r:?} off every certified tube"
         ));
     }
+    if !holders.is_empty() && !in_model_box(c, r) {
+        fig.soundness_violations += 1;
+        fig.notes.push(format!(
+            "seed {seed}: reference point {r:?} outside the model boxes of its parameter boxes"
+        ));
+    }
     if holders.len() > 1 {
         fig.twice += 1;
         fig.notes.push(format!(
@@ -374,6 +384,29 @@ fn check_reference_point(c: &Comparison<'_>, r: &RefPoint, fig: &mut Figures) {
             "seed {seed}: reference point {r:?} outside the certified boxes"
         ));
     }
+}
+
+/// Whether the model point of `r` (P enclosed over its bracket, widened) meets the model box of
+/// some certified box whose parameters hold `r` (true when P is not given).
+fn in_model_box(c: &Comparison<'_>, r: &RefPoint) -> bool {
+    let Some(p) = c.p else {
+        return true;
+    };
+    let w = c.widen;
+    let (Some(s), Some(t)) = (
+        interval!(r.x[0] - w, r.x[1] + w).ok(),
+        interval!(r.y[0] - w, r.y[1] + w).ok(),
+    ) else {
+        return true;
+    };
+    let m = p.enclose(s, t);
+    c.result
+        .branches
+        .iter()
+        .filter_map(|b| b.certified())
+        .flat_map(|cb| cb.boxes.iter())
+        .filter(|bx| !bx.p[0].intersection(s).is_empty() && !bx.p[1].intersection(t).is_empty())
+        .any(|bx| (0..3).all(|i| !bx.xyz[i].intersection(m[i]).is_empty()))
 }
 
 /// A pair that takes longer than this (check included) is named in the notes.

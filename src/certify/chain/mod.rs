@@ -73,9 +73,6 @@ impl Default for ChainOptions {
     }
 }
 
-/// Boxes reported per link (consecutive sub-intervals of its along coordinate; the straying
-/// check pairs each box with one tube piece, so one).
-const BOXES_PER_LINK: usize = 1;
 /// Splits of one marched interval before a half gives up there.
 const MAX_SPLITS: usize = 20_000;
 /// A link whose tube halving did not narrow is kept although wider than the tolerance when its

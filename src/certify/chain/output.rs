@@ -18,10 +18,10 @@ pub(super) fn assemble(
     let start_uniqueness = first.proof.tube_over(first.from, first.from);
     let (mut boxes, mut tubes) = (Vec::new(), Vec::new());
     // Backward half: outwards from the start at negative nominal arc lengths, then reversed.
-    let (bb, bt) = half_output(p, q, bwd, -1.0);
+    let (bb, bt) = half_output(p, bwd, -1.0);
     boxes.extend(bb.into_iter().rev());
     tubes.extend(bt.into_iter().rev());
-    let (fb, ft) = half_output(p, q, fwd, 1.0);
+    let (fb, ft) = half_output(p, fwd, 1.0);
     boxes.extend(fb);
     tubes.extend(ft);
     let all = bwd.iter().chain(fwd);
@@ -44,7 +44,6 @@ pub(super) fn assemble(
 /// Boxes and tube pieces of one half, in walking order, with nominal arc lengths `sign·s`.
 fn half_output(
     p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
     links: &[Link],
     sign: f64,
 ) -> (Vec<EnclosureBox>, Vec<TubePiece>) {
@@ -58,32 +57,25 @@ fn half_output(
             let y = pred.eval(xj - pred.x0);
             p.point_f64(y[0], y[1])
         };
-        // Sub-boxes from cover_from to to, in walking order.
-        let cuts: Vec<f64> = (0..=BOXES_PER_LINK)
-            .map(|k| match k {
-                0 => l.cover_from,
-                k if k == BOXES_PER_LINK => l.to,
-                k => l.from + (l.to - l.from) * k as f64 / BOXES_PER_LINK as f64,
-            })
-            .collect();
+        // One box from cover_from to to: its parameters from the segment's enclosure, its
+        // model-space box from the proof's (the curve over the whole segment, a superset).
         let s_link = s;
-        for w in cuts.windows(2) {
-            let ds = dist3(&model(w[0]), &model(w[1]));
-            let y = l.proof.box_over(w[0].min(w[1]), w[0].max(w[1]));
-            let xyz = model_box(p, q, &y);
-            let range = [s, s + ds];
-            s += ds;
-            boxes.push(EnclosureBox {
-                s: if sign > 0.0 {
-                    range
-                } else {
-                    [-range[1], -range[0]]
-                },
-                p: [y[0], y[1]],
-                q: [y[2], y[3]],
-                xyz,
-            });
-        }
+        let ds = dist3(&model(l.cover_from), &model(l.to));
+        let y = l
+            .proof
+            .box_over(l.cover_from.min(l.to), l.cover_from.max(l.to));
+        let range = [s, s + ds];
+        s += ds;
+        boxes.push(EnclosureBox {
+            s: if sign > 0.0 {
+                range
+            } else {
+                [-range[1], -range[0]]
+            },
+            p: [y[0], y[1]],
+            q: [y[2], y[3]],
+            xyz: l.proof.model,
+        });
         let mut coeffs = vec![[0.0; 4]; PREDICTOR_DEGREE + 1];
         coeffs[0][j] = l.from;
         coeffs[1][j] = dir;
@@ -111,16 +103,4 @@ fn half_output(
 
 fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-/// `P([σ],[t]) ∩ Q([u],[v])` (the P box alone if the intersection is empty, which rounding
-/// cannot cause on a proven box, so never in practice).
-fn model_box(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[Interval; 4]) -> [Interval; 3] {
-    let (a, b) = (p.enclose(y[0], y[1]), q.enclose(y[2], y[3]));
-    let both: [Interval; 3] = std::array::from_fn(|i| a[i].intersection(b[i]));
-    if both.iter().any(|x| x.is_empty()) {
-        a
-    } else {
-        both
-    }
 }
