@@ -127,8 +127,24 @@ impl Taylor {
     }
 
     /// `Σ_{k,l} c(k, l)·dsᵏ·drˡ` over `k ≤ km`, `l ≤ ln` by Horner's rule in `dr`, then in `ds`,
-    /// without the terms whose coefficient is exactly zero.
+    /// without the terms whose coefficient is exactly zero. The inner rule runs `(km + 1)·ln`
+    /// products and the outer `km`, so the variable with fewer stored terms (a link's along
+    /// coordinate is an affine series) goes inside; the value is the same polynomial either way.
     fn horner<S: Scalar>(
+        km: usize,
+        ln: usize,
+        c: impl Fn(usize, usize) -> Interval,
+        ds: S,
+        dr: S,
+    ) -> S {
+        if ds.terms() < dr.terms() {
+            return Self::horner_in(ln, km, |l, k| c(k, l), dr, ds);
+        }
+        Self::horner_in(km, ln, c, ds, dr)
+    }
+
+    /// Horner's rule in `dr` inside, `ds` outside (see [`Self::horner`]).
+    fn horner_in<S: Scalar>(
         km: usize,
         ln: usize,
         c: impl Fn(usize, usize) -> Interval,
@@ -281,18 +297,34 @@ mod tests {
                     }
                 }
             }
+            // Both Horner orders: the affine series inside or outside.
             type S = SeriesN<6>;
-            let su = S::new(&[point(u), point(0.3), point(-0.1)]);
-            let sv = S::new(&[point(v), point(-0.2)]);
-            let lean_series = c.eval(su, sv);
-            let patch_series = p.eval(su, sv);
-            for x in 0..3 {
-                for i in 0..6 {
-                    let (a, b) = (lean_series[x].coeff(i), patch_series[x].coeff(i));
-                    assert!(
-                        (a.mid() - b.mid()).abs() < 1e-9 * (1.0 + b.mag()),
-                        "{x} {i}: {a:?} vs {b:?}"
-                    );
+            let (long_u, long_v) = (
+                S::new(&[point(u), point(0.3), point(-0.1)]),
+                S::new(&[point(v), point(-0.2), point(0.05)]),
+            );
+            let (short_u, short_v) = (
+                S::new(&[point(u), point(0.3)]),
+                S::new(&[point(v), point(-0.2)]),
+            );
+            for (su, sv) in [(long_u, short_v), (short_u, long_v)] {
+                let lean_series = c.eval(su, sv);
+                let patch_series = p.eval(su, sv);
+                let lean_d = c.first_derivs(su, sv);
+                let patch_d = p.first_derivs(su, sv);
+                for x in 0..3 {
+                    for i in 0..6 {
+                        let mut pairs = vec![(lean_series[x].coeff(i), patch_series[x].coeff(i))];
+                        pairs.extend(
+                            (0..3).map(|d| (lean_d[d][x].coeff(i), patch_d[d][x].coeff(i))),
+                        );
+                        for (a, b) in pairs {
+                            assert!(
+                                (a.mid() - b.mid()).abs() < 1e-9 * (1.0 + b.mag()),
+                                "{x} {i}: {a:?} vs {b:?}"
+                            );
+                        }
+                    }
                 }
             }
         }

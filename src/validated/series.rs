@@ -153,6 +153,9 @@ impl<const N: usize> Div for SeriesN<N> {
 }
 
 impl<const N: usize> Scalar for SeriesN<N> {
+    fn terms(&self) -> usize {
+        self.len as usize
+    }
     fn from_f64(x: f64) -> Self {
         Self::constant(point(x))
     }
