@@ -37,30 +37,40 @@
 //! with the same certificates. On Viviani the search (loop exclusion, edge search) is a quarter
 //! of the run; on the tangential pair the Taylor recurrences of the contact trace are.
 //!
-//! **Certified / marched on the same branches** (this bench's first lines, 2026-12-02, a 2-core
-//! machine under load from other sessions (load average 5–10), so the ratios are rough). The
-//! chain (the default engine) against the marcher from the same start, medians of 5:
+//! **Certified / marched on the same branches** (this bench's first lines, 2026-12-02, the
+//! fastest of 9 runs each, other processes paused; the build of the session's start against
+//! this one, run alternately twice, the range of both runs):
 //!
-//! | scene | links | chain | marched | ratio | Taylor engine ratio |
-//! |---|---|---|---|---|---|
-//! | sphere_patch_plane | 245 | 13.8 ms | 0.39 ms | 36 | 82 |
-//! | bicubic_transversal | 21 (tol 8e-15) | 1.8 ms | 0.15 ms | 12 | 33 |
-//! | two_loops_s31_s32 | 445 | 23.0 ms | 1.22 ms | 19 | 46 |
-//! | Fig. 7, smallest loop | 180 | 57.4 ms | 0.39 ms | 146 | 2001 |
-//! | small_loop | 54 | 3.2 ms | 0.38 ms | 8.5 | 7 |
-//! | Fig. 7, three loops | 542 | 181 ms | 1.21 ms | 150 | – |
-//! | cylinders | 151 | 8.6 ms | 0.24 ms | 35 | – |
-//! | cylinders_full | 265 | 50 ms | 0.38 ms | 133 (noise: 89 before, task-clock unchanged) | – |
-//! | viviani | 167 | 11.1 ms | 0.29 ms | 38 | – |
+//! | scene | links before → after | ratio before | ratio after |
+//! |---|---|---|---|
+//! | sphere_patch_plane | 245 → 111 | 13–16 | 5.5–5.7 |
+//! | bicubic_transversal | 21 → 21 | 10–12 | 5.3–5.7 |
+//! | two_loops_s31_s32 | 445 → 293 | 8.8 | 3.4–3.5 |
+//! | Fig. 7, smallest loop | 180 → 123 | 83–85 | 20 |
+//! | small_loop | 54 → 44 | 4.0–4.4 | 2.2–2.3 |
+//! | Fig. 7, three loops | 542 → 380 | 70–84 | 20 |
+//! | cylinders | 151 → 156 | 21–27 | 22 |
+//! | cylinders_full | 265 → 251 | 38–41 | 30 |
+//! | viviani | 167 → 168 | 22–23 | 23.5 |
 //!
-//! (Before the lean polynomial form of the link proofs, `certify::lean_patch`, and of the
-//! Taylor engine's field, same bench and day: chain ratios 39 / 27 / 33 / 174 / 7.6 / 172 /
-//! 34 / 89 / 52; Taylor 56 / 65 / 50 / 4105 / 40, the bicubic branch in 32 links at 4.8e-10.)
-//! The goal of ≤ 10 holds only on the small loop. The marcher's branch costs 0.15–1.2 ms; a
-//! link costs 40–100 µs on low degrees and ~320 µs on Fig. 7's degree-6 patch, where a quarter
-//! of the scene's task-clock is the model-space box of each link (the sub-patch net of the
-//! 7×7 net, `geometry::enclosure::restrict_net`) and most of the rest the two series
-//! evaluations of the residual and the Jacobian along the predictor.
+//! What changed: (1) a link's model-space box comes from its own proof (each surface's Taylor
+//! form along the predictor plus the mean-value change over the offsets, and the centred form
+//! over the link's parameter box), not from the sub-patch nets of both patches over the box
+//! (`geometry::enclosure::restrict_net` had been 40–60 % of the chain on Fig. 7); (2) the
+//! residual's range over a link is the hull of its Bernstein coefficients on the two halves of
+//! the link: it vanishes to third order at both ends like `(τ² − r²)³`, which Horner's rule
+//! bounded 8 times too wide (the tube was 8.5 times the predictor's true deviation on every
+//! Fig. 7 link, now 1.0), so links are now as long as the quintic predictor's own error allows;
+//! (3) the power-basis form puts the affine series of the along coordinate inside Horner's rule.
+//!
+//! The goal of ≤ 10 holds on the sphere, the bicubic pair, S31/S32 and the small loop. On Fig. 7
+//! a link costs about 55 µs (a degree-6 patch) and the links are limited by the quintic
+//! predictor's error (`∝ L⁶`), about one marched interval each; a septic Hermite predictor
+//! (third derivatives at the nodes, from one more series evaluation) would allow links about
+//! 2.5 times longer at the same tolerance, but the edges (`src/edge`) read the tube pieces as
+//! quintics. On the cylinders and Viviani two thirds of the link attempts are spent on the
+//! approach to the tangential points, where the marched points halve their distance to the
+//! point and the tube is held up by the conditioning, not the length.
 //!
 //! The group `halves` times the open bicubic branch with its two halves one after the other and
 //! on two threads (`CertifyOptions::parallel_halves`).
