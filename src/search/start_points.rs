@@ -45,6 +45,7 @@ use pair_verdict::{classify_pair, PairVerdict};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
+mod critical_cover;
 mod faces;
 mod node_region;
 mod pair_verdict;
