@@ -183,12 +183,16 @@ fn radius(x: f64, y: f64, c: [f64; 2], k: f64) -> f64 {
 
 #[test]
 fn concentric_loops_are_searched_completely() {
-    // Whole searches: two loops round a ring of minima, in w 0.002 and 0.01 apart, circles and
+    // Whole searches: two loops round a ring of minima, in w 0.002 to 0.05 apart, circles and
     // an ellipse, on the square and on an off-centre domain: complete, and start points on
     // both loops (every start on one of them).
     for (domain, c, a, d, k) in [
         (SQUARE, [0.0, 0.0], 0.16, 0.002, 1.0),
         (SQUARE, [0.0, 0.0], 0.16, 0.01, 1.0),
+        // Radius 0.5: the inner circle touches the subdivision lines x, y = ±0.5, where the
+        // face searches meet it tangentially (tangent_leaf.rs).
+        (SQUARE, [0.0, 0.0], 0.25, 0.01, 1.0),
+        (SQUARE, [0.0, 0.0], 0.25, 0.05, 1.0),
         (
             Domain::new(0.0, 3.0, 0.0, 2.0),
             [1.4, 0.9],
