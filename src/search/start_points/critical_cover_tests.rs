@@ -191,6 +191,7 @@ fn concentric_loops_are_searched_completely() {
         (SQUARE, [0.0, 0.0], 0.16, 0.01, 1.0),
         // Radius 0.5: the inner circle touches the subdivision lines x, y = ±0.5, where the
         // face searches meet it tangentially (tangent_leaf.rs).
+        (SQUARE, [0.0, 0.0], 0.25, 0.002, 1.0),
         (SQUARE, [0.0, 0.0], 0.25, 0.01, 1.0),
         (SQUARE, [0.0, 0.0], 0.25, 0.05, 1.0),
         (
