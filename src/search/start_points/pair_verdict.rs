@@ -114,7 +114,7 @@ fn cover_settles(
 /// size, and no longer below [`COVER_ABOVE`] (a few levels: each failed try costs up to
 /// [`MAX_CELLS`] cells, and near-tangent pairs without a covered critical set, as Fig. 7's
 /// loops, fail at every level).
-const COVER_BELOW: f64 = 0.125;
+const COVER_BELOW: f64 = 1.0 / 16.0;
 
 /// See [`COVER_BELOW`].
 const COVER_ABOVE: f64 = 1.0 / 64.0;

@@ -10,7 +10,9 @@
 //! `Y`, for all values of the free parameter in `S` at once, whose image lies inside `Y`, proves
 //! that for each `s ∈ S` exactly one point of `Y` solves them: `C ∩ B` is one arc, a graph over
 //! `s` (where the curve touches the edge it runs along it, so the free parameter is the good
-//! one). Every curve point on the edge inside the leaf lies in `B`, so on that arc, and so does
+//! one). Where the curve crosses the edge but the surfaces meet at too small an angle for the
+//! leaf's own test, the roles swap: the arc is proven a graph over the fixed parameter, over
+//! `c ± h`, the free one among the unknowns. Every curve point on the edge inside the leaf lies in `B`, so on that arc, and so does
 //! `x*` (to the Newton tolerance, as every start point): the component through the leaf has a
 //! start point, and the leaf is settled.
 
@@ -49,20 +51,26 @@ pub(super) fn arc_through(
     // meet at a small angle its wide box would keep Krawczyk from contracting: narrower boxes
     // are tried too.
     let grow = |i: Interval, v: f64, h: f64| interval!(i.inf().min(v) - h, i.sup().max(v) + h).ok();
-    let (Some(s), Some(u), Some(v)) = (
-        grow(leaf[free], x[free], h),
-        grow(leaf[2], x[2], 4.0 * h),
-        grow(leaf[3], x[3], 4.0 * h),
-    ) else {
+    let (Some(u), Some(v)) = (grow(leaf[2], x[2], 4.0 * h), grow(leaf[3], x[3], 4.0 * h)) else {
         return false;
     };
-    [4.0, 0.25, 1.0 / 64.0].into_iter().any(|pad| {
-        grow(leaf[index], x[index], pad * h)
-            .is_some_and(|fixed| settles(a, b, index, s, [fixed, u, v], [x[index], x[2], x[3]]))
-    })
+    // The arc as a graph over the edge's free parameter (where it touches the edge), or over
+    // the fixed one (where it crosses the edge, at an angle too small for the leaf's own test).
+    [(index, free), (free, index)]
+        .into_iter()
+        .any(|(unknown, along)| {
+            let Some(s) = grow(leaf[along], x[along], h) else {
+                return false;
+            };
+            [4.0, 0.25, 1.0 / 64.0].into_iter().any(|pad| {
+                grow(leaf[unknown], x[unknown], pad * h)
+                    .is_some_and(|w| settles(a, b, unknown, s, [w, u, v], [x[unknown], x[2], x[3]]))
+            })
+        })
 }
 
-/// The Krawczyk iterations of [`arc_through`] over `S × Y`, `x*` at `xy` in `Y`.
+/// The Krawczyk iterations of [`arc_through`] over `S × Y`, `x*` at `xy` in `Y`; `index` is the
+/// parameter of `a` among the unknowns, the other one runs over `S`.
 fn settles(
     a: &RationalBezierPatch,
     b: &RationalBezierPatch,
