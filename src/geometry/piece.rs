@@ -407,7 +407,7 @@ fn widen(x: Interval, f: Interval) -> Interval {
 }
 
 /// `d0 + x·(d1 − d0)` over `x ∈ [s0 − g·w, s1 + g·w]`, `w = s1 − s0`, rounded outward.
-fn declared_range(d: [f64; 2], s: [f64; 2], grow: f64) -> Interval {
+pub(crate) fn declared_range(d: [f64; 2], s: [f64; 2], grow: f64) -> Interval {
     let w = point(s[1]) - point(s[0]);
     let lo = point(s[0]) - point(grow) * w;
     let hi = point(s[1]) + point(grow) * w;

@@ -44,10 +44,13 @@ use node_region::NodeRegions;
 use pair_verdict::{classify_pair, PairVerdict};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use tangent_leaf::{arc_through, leaf_point};
 
+mod critical_cover;
 mod faces;
 mod node_region;
 mod pair_verdict;
+mod tangent_leaf;
 
 /// Tuning of the start-point search.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -513,10 +516,21 @@ fn edge_search(
                 Leaf::Empty => continue,
                 Leaf::Unknown if leaf > min_leaf => leaf *= 0.5,
                 Leaf::Unknown => {
-                    undecided.push(region(&pa, &pb));
                     // Still offer a Newton point (not proven unique): at a tangential contact
-                    // or a singular point it is where the marcher reports the event.
-                    if let Some(x) = leaf_newton(a, b, &pa, &pb, ctx.tol) {
+                    // or a singular point it is where the marcher reports the event. Where the
+                    // curve merely touches the edge, every curve point of the leaf is proven
+                    // to lie on the arc through it: settled.
+                    let interior = matches!(problem.kind, StartKind::Interior);
+                    let x = leaf_point(a, b, &pa, &pb, ctx.tol, interior);
+                    let on_arc = x.is_some_and(|x| {
+                        da.contains(x[0], x[1], 1e-12)
+                            && db.contains(x[2], x[3], 1e-12)
+                            && arc_through(a, b, &pa, &pb, &x)
+                    });
+                    if !on_arc {
+                        undecided.push(region(&pa, &pb));
+                    }
+                    if let Some(x) = x {
                         offer(x, out);
                     }
                     continue;
@@ -598,25 +612,6 @@ fn settle_leaf(
         BoxVerdict::None => Leaf::Empty,
         BoxVerdict::Unknown => Leaf::Unknown,
     }
-}
-
-/// Newton on `A(edge) − B(u, v) = 0` from the centre of a leaf, the edge parameter held fixed.
-fn leaf_newton(
-    a: &RationalBezierPatch,
-    b: &RationalBezierPatch,
-    edge: &Piece,
-    other: &Piece,
-    tol: f64,
-) -> Option<[f64; 4]> {
-    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
-    let [xa, ya] = edge.declared(&a.domain(), 0.0);
-    let [xb, yb] = other.declared(&b.domain(), 0.0);
-    let x = [xa.mid(), ya.mid(), xb.mid(), yb.mid()];
-    let constraint = Constraint::Fixed {
-        index,
-        value: x[index],
-    };
-    refine(a, b, x, constraint, tol, 40).ok().map(|r| r.x)
 }
 
 /// Gauss–Newton (minimum-norm steps) from `x` onto `P(σ,t) = Q(u,v)`; `None` if it does not

@@ -236,7 +236,7 @@ fn normalised(d: [f64; 2], centre: f64, half: f64) -> Option<[f64; 2]> {
 }
 
 /// The basis `(e₁, e₂, n)` at P's point of `x`: `n` P's unit normal, `e₁`, `e₂` across it.
-fn frame_at(p: &RationalBezierPatch, x: &[f64; 4]) -> Option<Frame> {
+pub(super) fn frame_at(p: &RationalBezierPatch, x: &[f64; 4]) -> Option<Frame> {
     let n = p.derivs(x[0], x[1]).normal().try_normalize(0.0)?;
     let axis = if n.x.abs() <= n.y.abs() && n.x.abs() <= n.z.abs() {
         Vector3::x()
@@ -251,7 +251,7 @@ fn frame_at(p: &RationalBezierPatch, x: &[f64; 4]) -> Option<Frame> {
 }
 
 /// `(e₁, e₂, n)`, rows.
-type Frame = [[f64; 3]; 3];
+pub(super) type Frame = [[f64; 3]; 3];
 
 /// Newton in `f64` on `Φ = 0` (the critical points of `f`, see the module documentation) from
 /// `x0`, in the frame at `x0`: a point to centre a region on, or `None` when it does not converge within
@@ -364,7 +364,7 @@ fn graph_over_p(
 /// The parametric Krawczyk image of `G(σ, t, ·, ·) = 0` over `xq`, for all `(σ, t) ∈ xp` at once
 /// (`G` at the centre of `xq` by the mean-value form over `xp`): every solution `(u, v) ∈ xq` for
 /// some `(σ, t) ∈ xp` lies in it, and when it lies inside `xq` there is exactly one per `(σ, t)`.
-fn graph_image(
+pub(super) fn graph_image(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     e: &Frame,
@@ -447,7 +447,7 @@ fn critical_points(
 }
 
 /// The sign of an interval that excludes zero.
-fn sign(x: Interval) -> Option<f64> {
+pub(super) fn sign(x: Interval) -> Option<f64> {
     if x.inf() > 0.0 {
         Some(1.0)
     } else if x.sup() < 0.0 {
@@ -485,7 +485,7 @@ fn extremum_excludes_loop(
 /// An enclosure of `F = n·(P(σ, t) − Q(u, v))` over the box `x` by the mean-value form at its
 /// centre: near a point of parallel normals `∇F` nearly vanishes (`n` is almost the common
 /// normal), so this is far tighter than `n·(P(x_P) − Q(x_Q))` evaluated box by box.
-fn height_over(
+pub(super) fn height_over(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     n: &[f64; 3],
@@ -598,7 +598,7 @@ fn phi_jacobian<T: Scalar>(e: &Frame, pd: &[[T; 3]; 6], qd: &[[T; 3]; 6]) -> [[T
 
 /// The Krawczyk image of `Φ` over the box `x` (see [`critical_points`]): `Φ` at the box's
 /// centre, its Jacobian enclosed over the box by the centred second-order forms.
-fn phi_image(
+pub(super) fn phi_image(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
     e: &Frame,

@@ -1,9 +1,11 @@
 //! One pair of pieces of the interior search, tested on its own (pure, so a level's pairs are
 //! tested in parallel): disjoint, loop-free, undecided at the smallest size, or split.
 
+use super::critical_cover::{prove_by_cover, MAX_CELLS};
 use super::{diameter, Ctx};
 use crate::geometry::enclosure::boxes_disjoint;
 use crate::geometry::piece::Piece;
+use crate::geometry::ParametricSurface;
 use crate::geometry::RationalBezierPatch;
 use crate::search::loop_exclusion::loop_test;
 
@@ -36,6 +38,9 @@ pub(super) fn classify_pair(
         return PairVerdict::LoopFree;
     }
     let (wa, wb) = (diameter(&ea), diameter(&eb));
+    if cover_settles(ctx, p, q, a, b, wa, wb) {
+        return PairVerdict::LoopFree;
+    }
     if wa <= ctx.min_pair && wb <= ctx.min_pair {
         return PairVerdict::Undecided;
     }
@@ -68,6 +73,51 @@ pub(super) fn classify_pair(
     };
     PairVerdict::Split(halves)
 }
+
+/// Whether the critical set of the height difference over the smaller piece is covered
+/// ([`prove_by_cover`]; then every component in the pair reaches the boundary of that piece,
+/// and the pair counts as loop-free): tried only on pairs with one piece at most [`COVER_BELOW`] of the model
+/// size and nearly parallel normals at their centres (elsewhere the loop test settles pairs
+/// soon enough).
+fn cover_settles(
+    ctx: &Ctx,
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    a: &Piece,
+    b: &Piece,
+    wa: f64,
+    wb: f64,
+) -> bool {
+    let size = ctx.leaf * 64.0;
+    let w = wa.min(wb);
+    if w > COVER_BELOW * size || w < COVER_ABOVE * size {
+        return false;
+    }
+    let (dp, dq) = (p.domain(), q.domain());
+    let (bp, bq) = (a.declared(&dp, 0.0), b.declared(&dq, 0.0));
+    let (np, nq) = (
+        p.derivs(bp[0].mid(), bp[1].mid()).normal(),
+        q.derivs(bq[0].mid(), bq[1].mid()).normal(),
+    );
+    let parallel = np.cross(&nq).norm() <= 0.5 * np.norm() * nq.norm();
+    // The graph over the smaller piece (the larger one holds its image more easily).
+    if !parallel {
+        false
+    } else if wa <= wb {
+        prove_by_cover(p, a, q, b, MAX_CELLS)
+    } else {
+        prove_by_cover(q, b, p, a, MAX_CELLS)
+    }
+}
+
+/// Pairs are tried by [`cover_settles`] once one piece is at most this fraction of the model
+/// size, and no longer below [`COVER_ABOVE`] (a few levels: each failed try costs up to
+/// [`MAX_CELLS`] cells, and near-tangent pairs without a covered critical set, as Fig. 7's
+/// loops, fail at every level).
+const COVER_BELOW: f64 = 1.0 / 16.0;
+
+/// See [`COVER_BELOW`].
+const COVER_ABOVE: f64 = 1.0 / 64.0;
 
 /// Whether the pieces' control hulls are proven apart along the normal of one of them (a flat
 /// face, as a plane far larger than its partner, is never split, and its axis-aligned box holds
