@@ -1,4 +1,5 @@
-//! The coarse curves of an edge: a clamped B-spline of degree [`DEGREE`] on a few of the fine
+//! The coarse curves of an edge: a clamped B-spline of degree [`DEGREE`] (the poly module's
+//! `SPLINE_DEGREE`) on a few of the fine
 //! knots, fitted in `f64` by least squares (guidance only), and its polynomial on each fine
 //! span enclosed in interval arithmetic (what the bounds are computed from).
 //!
@@ -9,7 +10,7 @@
 //! coarse span the polynomial is re-expanded in the fine span's own `u ∈ [0, 1]` (power basis,
 //! a Taylor shift and a scaling by enclosed ratios of knot differences).
 
-use super::poly::{power_from_bezier, taylor_shift, Poly, DEGREE};
+use super::poly::{power_from_bezier, taylor_shift, SPoly, SPLINE_DEGREE as DEGREE};
 use crate::numeric::scalar::point;
 use inari::Interval;
 use nalgebra::DMatrix;
@@ -106,7 +107,7 @@ pub(crate) fn least_squares<const D: usize>(
 
 /// The enclosed Bézier control points of every span of the clamped spline (`knots`,
 /// `points`, degree [`DEGREE`]), in order, by interval knot insertion.
-fn bezier_spans<const D: usize>(knots: &[f64], points: &[[f64; D]]) -> Vec<Poly<D>> {
+fn bezier_spans<const D: usize>(knots: &[f64], points: &[[f64; D]]) -> Vec<SPoly<D>> {
     let p = DEGREE;
     let mut u: Vec<f64> = knots.to_vec();
     let mut c: Vec<[Interval; D]> = points.iter().map(|x| x.map(point)).collect();
@@ -151,9 +152,9 @@ pub(crate) fn on_fine_spans<const D: usize>(
     points: &[[f64; D]],
     coarse: &[f64],
     fine: &[f64],
-) -> Vec<Poly<D>> {
+) -> Vec<SPoly<D>> {
     let spans = bezier_spans(knots, points);
-    let power: Vec<Poly<D>> = spans.iter().map(power_from_bezier).collect();
+    let power: Vec<SPoly<D>> = spans.iter().map(power_from_bezier).collect();
     let mut out = Vec::with_capacity(fine.len().saturating_sub(1));
     let mut c = 0;
     for w in fine.windows(2) {
