@@ -86,8 +86,8 @@ fn the_sphere_plane_circle_is_within_the_edge_tolerance_both_ways() {
     let tol = e.edge_tolerance;
     assert!(tol >= cert.certified_tolerance);
     assert!(tol <= 1e-8, "{tol:e}");
-    assert_eq!(e.curve.degree, 5);
-    assert_eq!(e.curve.knots.len(), e.curve.points.len() + 6);
+    assert_eq!(e.curve.degree, 8);
+    assert_eq!(e.curve.knots.len(), e.curve.points.len() + 9);
     assert_eq!(e.pcurves.len(), 2);
     // Spline to circle.
     let ss = samples(&e.curve, 200);
@@ -124,7 +124,7 @@ fn the_sphere_plane_circle_is_within_the_edge_tolerance_both_ways() {
     let v = &doc["edges"][0];
     assert_eq!(v["branch"], 0);
     assert_eq!(v["edge_tolerance"].as_f64(), Some(tol));
-    assert_eq!(v["curve"]["degree"], 5);
+    assert_eq!(v["curve"]["degree"], 8);
     assert_eq!(
         v["curve"]["control_points"].as_array().unwrap().len(),
         e.curve.points.len()

@@ -1,44 +1,34 @@
-//! Building an edge from its parts: fine spans (one per link), coarse curves fitted over them,
-//! and the proven bounds, refined until they meet the target tolerance.
+//! Building an edge from its parts: fine spans (one per link, as long as its arc length, with
+//! its warp), coarse curves fitted over them, and the proven bounds, refined until they meet the
+//! target tolerance.
 
 use super::fit::{knots_on, least_squares, on_fine_spans};
-use super::poly::{self, eval_mid, Poly, DEGREE};
-use super::span::{bounds, box_diameter, model_box, model_jet, SpanBounds, SpanFixed};
+use super::poly::{self, eval_mid, Poly, SPLINE_DEGREE as DEGREE};
+use super::span::{bounds, box_diameter, model_box, SpanBounds, SpanFixed};
+use super::warp::{arc_length_warp, Warp};
 use super::{BSpline, Edge, EdgeBounds, EdgeError, PCurve, Part};
 use crate::geometry::RationalBezierPatch;
 
-/// One fine span of the edge: a piece of one link, re-expanded on `u ∈ [0, 1]`.
+/// One fine span of the edge: a piece of one link, re-expanded on `u ∈ [0, 1]`, compared with
+/// the coarse curves at `u = w(r)` (`r ∈ [0, 1]` affine in the edge parameter).
 struct Span {
     tube: usize,
     y: Poly<4>,
+    warp: Warp,
     fixed: SpanFixed,
     radius_param: f64,
     radius_xyz: f64,
 }
 
-/// Samples of each fine span the coarse curves are fitted to.
-const SAMPLES: usize = 6;
+/// Samples of each fine span the coarse curves are fitted to (more than a span of the coarse
+/// curves has control points, so that the fit stays determined when every fine knot is one).
+const SAMPLES: usize = DEGREE + 3;
 /// Most rounds of fitting and refining the coarse knots.
 const ROUNDS: usize = 16;
 /// Most pieces a coarse span is cut into in one round.
 const MOST_PIECES: usize = 8;
 /// Fine spans per coarse span at the start.
-const START_SPANS: usize = 8;
-
-fn chord_length(p: &RationalBezierPatch, y: &Poly<4>) -> f64 {
-    let pt = |u: f64| {
-        let x = eval_mid(y, u);
-        p.point_f64(x[0], x[1])
-    };
-    let mut len = 0.0;
-    let mut a = pt(0.0);
-    for k in 1..=8 {
-        let b = pt(k as f64 / 8.0);
-        len += ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
-        a = b;
-    }
-    len
-}
+const START_SPANS: usize = 32;
 
 /// The tolerance the coarse curves aim at: the requested one when the fine construction's
 /// floor (the certificates' tolerance and the cuts' fixed share) leaves room under it, else a
@@ -77,10 +67,6 @@ struct PartData<'a> {
     ends_param: [[f64; 4]; 2],
     /// Per cut of the part: its tube and the share of its bound that the fit does not change.
     cuts: Vec<(usize, f64)>,
-    /// The fine knots (indices in the part) where the links' along coordinate changes: the
-    /// parametrisation has a jump of its second derivative there, and the coarse curves are
-    /// only C1 (always a breakpoint).
-    switches: Vec<usize>,
 }
 
 /// Fits the coarse curves of one part on the breakpoints `breaks` and bounds them.
@@ -95,9 +81,9 @@ fn fit_part(d: &PartData, spans: &[Span], knots_s: &[f64], breaks: Vec<Break>) -
         let last = m + 1 == end - start;
         let count = if last { SAMPLES + 1 } else { SAMPLES };
         for j in 0..count {
-            let u = j as f64 / SAMPLES as f64;
-            let s = fine[m] + (fine[m + 1] - fine[m]) * u;
-            let x = eval_mid(&sp.y, u);
+            let r = j as f64 / SAMPLES as f64;
+            let s = fine[m] + (fine[m + 1] - fine[m]) * r;
+            let x = eval_mid(&sp.y, sp.warp.at(r));
             s3.push((s, d.pt.p.point_f64(x[0], x[1])));
             s4.push((s, x));
         }
@@ -113,7 +99,6 @@ fn fit_part(d: &PartData, spans: &[Span], knots_s: &[f64], breaks: Vec<Break>) -
             bounds(
                 d.pt.p,
                 d.pt.q,
-                &sp.y,
                 &sp.fixed,
                 &c4[m],
                 &c3[m],
@@ -151,7 +136,7 @@ fn off_on(d: &PartData, spans: &[Span], f: &PartFit, tube: usize) -> f64 {
 }
 
 /// A coarse breakpoint: an index into the part's fine knots and the knot's multiplicity
-/// (1: the curves are C4 there; up to [`DEGREE`]: C0).
+/// (1: the curves are C7 there; up to [`DEGREE`]: C0).
 type Break = (usize, usize);
 
 /// New breakpoints for a part whose fine spans need the fit `ratio` times smaller (≤ 1: fine);
@@ -170,7 +155,8 @@ fn refine(breaks: &[Break], ratio: &[f64], fine: &[f64]) -> Option<Vec<Break>> {
         if r <= 1.0 {
             continue;
         }
-        let pieces = (r.powf(1.0 / 6.0).ceil() as usize).clamp(2, MOST_PIECES);
+        let pieces =
+            ((1.2 * r.powf(1.0 / (DEGREE + 1) as f64)).ceil() as usize).clamp(2, MOST_PIECES);
         let pieces = pieces.min(b - a);
         // Not next to the span's ends (a cut piece of a link can be very short: a knot span of
         // almost no length is of no use to the fit).
@@ -265,10 +251,12 @@ pub(crate) fn assemble(
         for s in &pt.segs {
             let t = &pt.cert.tubes[s.tube];
             let y = poly::reparametrised(&t.coeffs, s.ta, s.tb);
-            ds.push(chord_length(pt.p, &y));
+            let (warp, len) = arc_length_warp(pt.p, &y);
+            ds.push(len);
             spans.push(Span {
                 tube: s.tube,
-                fixed: SpanFixed::of(pt.p, pt.q, &y),
+                fixed: SpanFixed::of(pt.p, pt.q, &y, &warp),
+                warp,
                 y,
                 radius_param: t.radius_param,
                 radius_xyz: t.radius_xyz,
@@ -282,7 +270,6 @@ pub(crate) fn assemble(
             reason: "nothing left after cutting".into(),
         });
     }
-    match_speeds(parts, &ranges, &spans, &mut ds);
     let mut knots_s = vec![0.0];
     for &d in &ds {
         let last: f64 = *knots_s.last().unwrap_or(&0.0);
@@ -331,13 +318,7 @@ pub(crate) fn assemble(
             })
             .collect();
         floor = cuts.iter().map(|c| c.1).fold(floor, f64::max);
-        let along = |i: usize| pt.cert.tubes[spans[i].tube].along.map(|a| a.index);
-        let switches = (r.start + 1..r.end)
-            .filter(|&i| along(i) != along(i - 1))
-            .map(|i| i - r.start)
-            .collect();
         data.push(PartData {
-            switches,
             pt,
             range: r,
             ends_xyz: [start3, end3],
@@ -352,9 +333,6 @@ pub(crate) fn assemble(
             let m = d.range.len();
             let pieces = m.div_ceil(START_SPANS).max(1);
             let mut breaks: Vec<Break> = (0..=pieces).map(|k| (k * m / pieces, 1)).collect();
-            breaks.retain(|b| !d.switches.contains(&b.0));
-            breaks.extend(d.switches.iter().map(|&i| (i, DEGREE - 1)));
-            breaks.sort_unstable();
             breaks.dedup_by_key(|b| b.0);
             fit_part(d, &spans, &knots_s, breaks)
         })
@@ -375,35 +353,6 @@ pub(crate) fn assemble(
     }
 
     finish(&data, &spans, &fits, closed, cert_tol)
-}
-
-/// Span lengths in `s` (`ds`, chord lengths on entry): per part, each span's speed at its
-/// start matches the previous one's at its end (the links' parametrisations differ in speed at
-/// a join), scaled so that the part's length is its chord length.
-fn match_speeds(parts: &[Part], ranges: &[std::ops::Range<usize>], spans: &[Span], ds: &mut [f64]) {
-    for r in ranges {
-        let speed = |i: usize, u: f64| {
-            let j = model_jet(parts_p(parts, ranges, i), &spans[i].y, u)[1];
-            (j[0] * j[0] + j[1] * j[1] + j[2] * j[2]).sqrt()
-        };
-        let chord: f64 = ds[r.clone()].iter().sum();
-        let mut len = vec![1.0f64; r.len()];
-        for m in 1..r.len() {
-            let (a, b) = (speed(r.start + m - 1, 1.0), speed(r.start + m, 0.0));
-            let q = if a > 0.0 && b > 0.0 && (b / a).is_finite() {
-                b / a
-            } else {
-                ds[r.start + m] / ds[r.start + m - 1].max(f64::MIN_POSITIVE)
-            };
-            len[m] = len[m - 1] * q.clamp(1e-12, 1e12);
-        }
-        let total: f64 = len.iter().sum();
-        if total > 0.0 && total.is_finite() && chord > 0.0 {
-            for (m, l) in len.iter().enumerate() {
-                ds[r.start + m] = l * chord / total;
-            }
-        }
-    }
 }
 
 /// The surface P of the part holding span `i`.

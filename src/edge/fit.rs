@@ -1,4 +1,5 @@
-//! The coarse curves of an edge: a clamped B-spline of degree [`DEGREE`] on a few of the fine
+//! The coarse curves of an edge: a clamped B-spline of degree [`DEGREE`] (the poly module's
+//! `SPLINE_DEGREE`) on a few of the fine
 //! knots, fitted in `f64` by least squares (guidance only), and its polynomial on each fine
 //! span enclosed in interval arithmetic (what the bounds are computed from).
 //!
@@ -9,10 +10,9 @@
 //! coarse span the polynomial is re-expanded in the fine span's own `u ∈ [0, 1]` (power basis,
 //! a Taylor shift and a scaling by enclosed ratios of knot differences).
 
-use super::poly::{power_from_bezier, taylor_shift, Poly, DEGREE};
+use super::poly::{power_from_bezier, taylor_shift, SPoly, SPLINE_DEGREE as DEGREE};
 use crate::numeric::scalar::point;
 use inari::Interval;
-use nalgebra::DMatrix;
 
 /// The clamped knot vector of degree [`DEGREE`] on the breakpoints `s` (strictly increasing),
 /// the interior breakpoint `i` of multiplicity `mult(i)` (clamped to `1..=DEGREE`).
@@ -71,42 +71,77 @@ pub(crate) fn least_squares<const D: usize>(
     if free == 0 {
         return out;
     }
-    let m = samples.len();
-    let mut a = DMatrix::<f64>::zeros(m, free);
-    let mut b = DMatrix::<f64>::zeros(m, D);
-    for (row, (s, x)) in samples.iter().enumerate() {
+    // Banded QR by Givens rotations: each sample's row has at most DEGREE + 1 consecutive
+    // non-zeros, so R has DEGREE + 1 diagonals (r[i][k] is entry (i, i + k)).
+    const W: usize = DEGREE + 1;
+    let mut r = vec![[0.0f64; W]; free];
+    let mut rb = vec![[0.0f64; D]; free];
+    for (s, x) in samples {
         let (first, nb) = basis(knots, n, *s);
         let mut rhs = *x;
-        for (j, v) in nb.iter().enumerate() {
+        // The row over the free columns first - 1 .. first - 1 + DEGREE (column i is control
+        // point i + 1); the fixed end points go to the right-hand side.
+        let mut v = [0.0f64; W];
+        let base = first as isize - 1;
+        for (j, w) in nb.iter().enumerate() {
             let i = first + j;
             if i == 0 || i == n - 1 {
                 let e = if i == 0 { ends[0] } else { ends[1] };
                 for d in 0..D {
-                    rhs[d] -= v * e[d];
+                    rhs[d] -= w * e[d];
                 }
             } else {
-                a[(row, i - 1)] = *v;
+                v[j] = *w;
             }
         }
-        for d in 0..D {
-            b[(row, d)] = rhs[d];
+        for j in 0..W {
+            let col = base + j as isize;
+            if v[j] == 0.0 || col < 0 || col as usize >= free {
+                continue;
+            }
+            let c = col as usize;
+            let rr = &mut r[c];
+            if rr[0] == 0.0 {
+                // An empty row of R: the rest of this row becomes it.
+                rr[..W - j].copy_from_slice(&v[j..]);
+                rb[c] = rhs;
+                break;
+            }
+            let h = rr[0].hypot(v[j]);
+            let (cs, sn) = (rr[0] / h, v[j] / h);
+            for k in 0..W - j {
+                let (a, b) = (rr[k], v[j + k]);
+                rr[k] = cs * a + sn * b;
+                v[j + k] = -sn * a + cs * b;
+            }
+            for d in 0..D {
+                let (a, b) = (rb[c][d], rhs[d]);
+                rb[c][d] = cs * a + sn * b;
+                rhs[d] = -sn * a + cs * b;
+            }
         }
     }
-    // Householder QR (the SVD solver of this size was found to lose accuracy).
-    let qr = a.qr();
-    let rhs = qr.q().transpose() * &b;
-    let Some(sol) = qr.r().solve_upper_triangular(&rhs) else {
-        return out;
-    };
-    for i in 0..free {
-        out[i + 1] = std::array::from_fn(|d| sol[(i, d)]);
+    let mut sol = vec![[0.0f64; D]; free];
+    for i in (0..free).rev() {
+        if r[i][0] == 0.0 || !r[i][0].is_finite() {
+            // Not determined by the samples: the ends' chord for the guidance.
+            return out;
+        }
+        let mut acc = rb[i];
+        for k in 1..W.min(free - i) {
+            for d in 0..D {
+                acc[d] -= r[i][k] * sol[i + k][d];
+            }
+        }
+        sol[i] = acc.map(|a| a / r[i][0]);
     }
+    out[1..=free].copy_from_slice(&sol);
     out
 }
 
 /// The enclosed Bézier control points of every span of the clamped spline (`knots`,
 /// `points`, degree [`DEGREE`]), in order, by interval knot insertion.
-fn bezier_spans<const D: usize>(knots: &[f64], points: &[[f64; D]]) -> Vec<Poly<D>> {
+fn bezier_spans<const D: usize>(knots: &[f64], points: &[[f64; D]]) -> Vec<SPoly<D>> {
     let p = DEGREE;
     let mut u: Vec<f64> = knots.to_vec();
     let mut c: Vec<[Interval; D]> = points.iter().map(|x| x.map(point)).collect();
@@ -151,9 +186,9 @@ pub(crate) fn on_fine_spans<const D: usize>(
     points: &[[f64; D]],
     coarse: &[f64],
     fine: &[f64],
-) -> Vec<Poly<D>> {
+) -> Vec<SPoly<D>> {
     let spans = bezier_spans(knots, points);
-    let power: Vec<Poly<D>> = spans.iter().map(power_from_bezier).collect();
+    let power: Vec<SPoly<D>> = spans.iter().map(power_from_bezier).collect();
     let mut out = Vec::with_capacity(fine.len().saturating_sub(1));
     let mut c = 0;
     for w in fine.windows(2) {

@@ -8,26 +8,31 @@
 //! reverse. An edge is built from those polynomials:
 //!
 //! - **Fine spans.** Each link (cut where the edge ends) is one fine span of the edge's
-//!   parameter `s`; its length in `s` makes the speed continuous at the joins of links (the
-//!   links' parametrisations differ in speed there), per part scaled to the part's chord
-//!   length. Where the links' along coordinate changes, the second derivative in `s` jumps.
+//!   parameter `s`, as long as the arc length of its reported image `P(σ, t)` (nominal, `f64`):
+//!   `s` is a nominal arc length, smooth across the links whatever their along coordinates.
+//!   On the span, `r ∈ [0, 1]` is affine in `s`, and the reported curve is compared with the
+//!   coarse curves at `u = w(r)`, the span's warp (`warp.rs`): a polynomial of degree 5 with
+//!   exact ends `w(0) = 0`, `w(1) = 1` and `w([0, 1]) ⊂ [0, 1]` (Bernstein coefficients in
+//!   `[0, 1]`), fitted to the inverse arc length. So every point of the link's piece is compared
+//!   at some `s` of its span, and every `s` with a point of the piece.
 //! - **Coarse curves.** Per part (one branch's stretch of a joined curve), one clamped B-spline
-//!   of degree 5 on a few of the fine knots: the 3D curve and the two p-curves share its knots.
-//!   Interior knots are simple (C4), of multiplicity 4 where the along coordinate changes, and
-//!   raised (up to 5, C0) where refining cannot meet the target otherwise. Control points are
-//!   fitted by least squares to samples of the reported curve (`f64`, guidance only), the
-//!   part's ends fixed; the parts' 3D curves share their end points and are joined with knots of
-//!   multiplicity 5 (so each part's stretch is exactly a B-spline on the p-curves' knots).
+//!   of degree 8 on a few of the fine knots: the 3D curve and the two
+//!   p-curves share its knots. Interior knots are simple (C7), raised (up to 8, C0) only where
+//!   refining a single fine span cannot meet the target otherwise. Control points are fitted
+//!   by least squares to samples `P(y(w(r)))`, `y(w(r))` (`f64`, guidance only), the part's
+//!   ends fixed; the parts' 3D curves share their end points and are joined with knots of
+//!   multiplicity 8 (so each part's stretch is exactly a B-spline on the p-curves' knots).
 //! - **Bounds**, per fine span: the coarse spline's polynomial on the span is enclosed by
-//!   interval knot insertion and re-expansion in the span's `u` (`fit.rs`). P-curves:
-//!   `δ = sup |pcurve − y|` ≤ the largest Bernstein coefficient of the difference (partition of
-//!   unity), per surface. 3D: `sup |curve − P(y)|` by a Taylor form of order 8 with a Lagrange
-//!   remainder on four sub-intervals. Then 3D curve to true ≤ that + `radius_xyz`;
-//!   `P(pcurve_P)` to true ≤ `radius_xyz` + `|DP|·δ_P`; `Q(pcurve_Q)` to true ≤
-//!   `|DQ|·(radius_param + δ_Q)` or `radius_xyz` + `|DQ|·δ_Q` + the residual
-//!   `|P(σ, t) − Q(u, v)|` of the reported polynomial (the smaller), the derivatives enclosed
-//!   over the span's parameter box widened by those amounts. Both curves run over the same
-//!   `s`, so each bound holds both ways.
+//!   interval knot insertion and re-expansion in the span's `r` (`fit.rs`). P-curves:
+//!   `δ = sup |pcurve − y(w(r))|` and 3D: `sup |curve − P(y(w(r)))|`, each by an interval
+//!   Taylor form of order 8 in `r` with a Lagrange remainder on four sub-intervals (the
+//!   reported side's coefficients, through the warp, computed once per span). Then 3D curve to
+//!   true ≤ that + `radius_xyz`; `P(pcurve_P)` to true ≤ `radius_xyz` + `|DP|·δ_P`;
+//!   `Q(pcurve_Q)` to true ≤ `|DQ|·(radius_param + δ_Q)` or `radius_xyz` + `|DQ|·δ_Q` + the
+//!   residual `|P(σ, t) − Q(u, v)|` of the reported polynomial (the smaller), the derivatives
+//!   enclosed over the span's parameter box widened by those amounts. Every curve is compared
+//!   with the same reported point at the same `s`, and the warp maps the span onto the link's
+//!   piece, so each bound holds both ways.
 //! - **Refinement.** The target is the requested tolerance (when the certificates leave room
 //!   under it; else a little above their floor). Coarse spans whose fine spans' bounds exceed
 //!   it are cut at fine knots (or their knots' multiplicity raised) and the part is fitted and
@@ -51,9 +56,9 @@
 //! through a corner is cut at the first side found); the links before the cut link are taken as
 //! inside the piece, as the certificate's chain between its ends is. The 3D curve is not
 //! rational and its knots are nominal; only the bounds are proven, the `f64` construction is not.
-//! The coarse curves are compared with each link's own polynomial at the same `s`: where the
-//! links' polynomials are not smooth across their joins at the tolerance's level, refining
-//! ends with knots at nearly every link (tens of control points are then not reached).
+//! Coarse knots are fine knots (link ends). The arc-length parameter is not the best one for
+//! every curve: the two loops of S31/S32 need about three times the spans that a parameter by
+//! the angle round the loop's centre would.
 
 mod bspline;
 mod build;
@@ -61,6 +66,7 @@ mod fit;
 mod joined;
 mod poly;
 mod span;
+mod warp;
 
 pub use bspline::BSpline;
 pub use joined::edge_from_joined;
@@ -158,7 +164,7 @@ pub struct PCurve {
     /// The branch it comes from.
     pub branch: usize,
     /// The curve in the surface's parameters, on the same knots as the 3D curve over its range
-    /// (degree 5).
+    /// (degree 8).
     pub curve: BSpline<2>,
     /// Proven max-norm distance in parameters from the true curve's parameters.
     pub param_tolerance: f64,
@@ -193,7 +199,7 @@ pub struct EdgeBounds {
 /// An edge: the 3D curve, the p-curves and the proven tolerance.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Edge {
-    /// The 3D curve (degree 5; per part a B-spline with few knots, parts joined C0).
+    /// The 3D curve (degree 8; per part a B-spline with few knots, parts joined C0).
     pub curve: BSpline<3>,
     /// The p-curves: for one branch, one on P then one on Q; for a joined curve, one per part
     /// and surface.

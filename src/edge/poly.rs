@@ -5,11 +5,20 @@
 use crate::numeric::scalar::point;
 use inari::Interval;
 
-/// The degree of every span (the cover chain's predictor degree).
+/// The degree of a link's reported polynomial (the cover chain's predictor degree).
 pub(crate) const DEGREE: usize = 5;
 
-/// Coefficients `c[k]` of `Σ c[k]·uᵏ`, `D` components, degree [`DEGREE`].
-pub(crate) type Poly<const D: usize> = [[Interval; D]; DEGREE + 1];
+/// The degree of the coarse curves (the 3D curve and the p-curves).
+pub(crate) const SPLINE_DEGREE: usize = 8;
+
+/// Coefficients `c[k]` of `Σ c[k]·uᵏ`, `D` components, `N − 1` the degree.
+pub(crate) type PolyN<const N: usize, const D: usize> = [[Interval; D]; N];
+
+/// A link's reported polynomial: degree [`DEGREE`].
+pub(crate) type Poly<const D: usize> = PolyN<{ DEGREE + 1 }, D>;
+
+/// A coarse curve's polynomial on one span: degree [`SPLINE_DEGREE`].
+pub(crate) type SPoly<const D: usize> = PolyN<{ SPLINE_DEGREE + 1 }, D>;
 
 /// `C(n, k)` (exact in `f64` for the sizes used here).
 pub(crate) fn binom(n: usize, k: usize) -> f64 {
@@ -17,11 +26,15 @@ pub(crate) fn binom(n: usize, k: usize) -> f64 {
 }
 
 /// The coefficients of `x ↦ c(a + x)` (Taylor shift by `a`), enclosed for every `a ∈ shift`.
-pub(crate) fn taylor_shift<const D: usize>(c: &Poly<D>, shift: Interval) -> Poly<D> {
+pub(crate) fn taylor_shift<const N: usize, const D: usize>(
+    c: &PolyN<N, D>,
+    shift: Interval,
+) -> PolyN<N, D> {
     let mut out = *c;
+    let deg = N - 1;
     // Repeated synthetic division: after pass k, out[k] is final.
-    for k in 0..DEGREE {
-        for i in (k..DEGREE).rev() {
+    for k in 0..deg {
+        for i in (k..deg).rev() {
             let next = out[i + 1];
             for (v, n) in out[i].iter_mut().zip(next) {
                 *v += shift * n;
@@ -51,13 +64,14 @@ pub(crate) fn reparametrised(coeffs: &[[f64; 4]], ta: f64, tb: f64) -> Poly<4> {
     out
 }
 
+#[cfg(test)]
 /// Bernstein (Bézier) coefficients on `[0, 1]` of the power-basis polynomial `c`:
 /// `b_i = Σ_{k ≤ i} C(i, k) / C(n, k) · c_k`.
-pub(crate) fn bezier_from_power<const D: usize>(c: &Poly<D>) -> Poly<D> {
+pub(crate) fn bezier_from_power<const N: usize, const D: usize>(c: &PolyN<N, D>) -> PolyN<N, D> {
     std::array::from_fn(|i| {
         std::array::from_fn(|d| {
             (0..=i).fold(point(0.0), |acc, k| {
-                acc + point(binom(i, k)) / point(binom(DEGREE, k)) * c[k][d]
+                acc + point(binom(i, k)) / point(binom(N - 1, k)) * c[k][d]
             })
         })
     })
@@ -65,25 +79,29 @@ pub(crate) fn bezier_from_power<const D: usize>(c: &Poly<D>) -> Poly<D> {
 
 /// Power-basis coefficients of the Bézier polynomial with control points `b`:
 /// `c_k = C(n, k)·Σ_{i ≤ k} C(k, i)·(−1)^{k−i}·b_i`.
-pub(crate) fn power_from_bezier<const D: usize>(b: &Poly<D>) -> Poly<D> {
+pub(crate) fn power_from_bezier<const N: usize, const D: usize>(b: &PolyN<N, D>) -> PolyN<N, D> {
     std::array::from_fn(|k| {
         std::array::from_fn(|d| {
             let s = (0..=k).fold(point(0.0), |acc, i| {
                 let sign = if (k - i) % 2 == 0 { 1.0 } else { -1.0 };
                 acc + point(sign * binom(k, i)) * b[i][d]
             });
-            point(binom(DEGREE, k)) * s
+            point(binom(N - 1, k)) * s
         })
     })
 }
 
 /// Horner enclosure of `c` over `u ∈ x`, component `d`.
-pub(crate) fn eval<const D: usize>(c: &Poly<D>, x: Interval, d: usize) -> Interval {
+pub(crate) fn eval<const N: usize, const D: usize>(
+    c: &PolyN<N, D>,
+    x: Interval,
+    d: usize,
+) -> Interval {
     c.iter().rev().fold(point(0.0), |acc, row| acc * x + row[d])
 }
 
 /// `f64` value of the midpoint polynomial at `u` (guidance only).
-pub(crate) fn eval_mid<const D: usize>(c: &Poly<D>, u: f64) -> [f64; D] {
+pub(crate) fn eval_mid<const N: usize, const D: usize>(c: &PolyN<N, D>, u: f64) -> [f64; D] {
     std::array::from_fn(|d| c.iter().rev().fold(0.0, |acc, row| acc * u + row[d].mid()))
 }
 

@@ -20,36 +20,43 @@ pub(crate) fn samples<const D: usize>(b: &BSpline<D>, per_span: usize) -> Vec<f6
     out
 }
 
-/// The distance from `x` to the spline: the nearest of the dense samples `pts` (at the
-/// parameters `ss`), refined by golden-section search between its neighbours and between
-/// those and the next ones (a knot span of almost no length gives neighbours with almost no
-/// room between them).
+/// The distance from `x` to the spline: the nearest local minima of the distance over the dense
+/// samples `pts` (at the parameters `ss`), each refined by golden-section search between its
+/// neighbours and between those and the next ones (a knot span of almost no length gives
+/// neighbours with almost no room between them).
 pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
-    let (k, best) = pts
-        .iter()
-        .map(|p| dist3(p, x))
-        .enumerate()
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .unwrap();
+    // The four nearest local minima of the sampled distance (on a closed curve the first and
+    // last samples are one point, and near the seam or a C0 join the nearest sample can lie on
+    // the wrong side of the nearest point).
+    let d: Vec<f64> = pts.iter().map(|p| dist3(p, x)).collect();
+    let n = d.len();
+    let mut order: Vec<(usize, f64)> = (0..n)
+        .filter(|&k| (k == 0 || d[k] <= d[k - 1]) && (k + 1 == n || d[k] <= d[k + 1]))
+        .map(|k| (k, d[k]))
+        .collect();
+    order.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let best = order.first().map_or(f64::INFINITY, |o| o.1);
     let f = |s: f64| dist3(&b.eval(s), x);
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let at = |i: usize| ss[i.min(ss.len() - 1)];
-    let brackets = [
-        (at(k.saturating_sub(1)), at(k + 1)),
-        (at(k.saturating_sub(2)), at(k.saturating_sub(1))),
-        (at(k + 1), at(k + 2)),
-    ];
     let mut found = best;
-    for (mut lo, mut hi) in brackets {
-        for _ in 0..100 {
-            let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
-            if f(a) < f(c) {
-                hi = c;
-            } else {
-                lo = a;
+    for &(k, _) in order.iter().take(4) {
+        let brackets = [
+            (at(k.saturating_sub(1)), at(k + 1)),
+            (at(k.saturating_sub(2)), at(k.saturating_sub(1))),
+            (at(k + 1), at(k + 2)),
+        ];
+        for (mut lo, mut hi) in brackets {
+            for _ in 0..100 {
+                let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
+                if f(a) < f(c) {
+                    hi = c;
+                } else {
+                    lo = a;
+                }
             }
+            found = found.min(f(0.5 * (lo + hi)));
         }
-        found = found.min(f(0.5 * (lo + hi)));
     }
     found
 }
