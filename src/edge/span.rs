@@ -305,17 +305,7 @@ mod tests {
     #[test]
     fn the_model_box_encloses_the_image_and_is_first_order_tight() {
         // A quarter of the unit cylinder (rational, degree 2 × 1) and a curve on it.
-        let h = std::f64::consts::FRAC_1_SQRT_2;
-        let net = [
-            [1.0, 0.0, 0.0],
-            [1.0, 0.0, 1.0],
-            [1.0, 1.0, 0.0],
-            [1.0, 1.0, 1.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 1.0, 1.0],
-        ];
-        let w = [1.0, 1.0, h, h, 1.0, 1.0];
-        let p = RationalBezierPatch::from_f64_points([2, 1], &net, Some(&w), Domain::UNIT).unwrap();
+        let p = crate::pair::fixtures::quarter_cylinder();
         let coeffs = [
             [0.2, 0.1, 0.0, 0.0],
             [0.9, 0.4, 0.0, 0.0],

@@ -179,22 +179,8 @@ pub(crate) fn composite<const L: usize>(
 pub(crate) mod tests {
     use super::*;
     use crate::edge::poly::{eval, reparametrised};
-    use crate::geometry::Domain;
 
-    /// A quarter of the unit cylinder (rational, degree 2 × 1).
-    fn cylinder() -> RationalBezierPatch {
-        let h = std::f64::consts::FRAC_1_SQRT_2;
-        let net = [
-            [1.0, 0.0, 0.0],
-            [1.0, 0.0, 1.0],
-            [1.0, 1.0, 0.0],
-            [1.0, 1.0, 1.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 1.0, 1.0],
-        ];
-        let w = [1.0, 1.0, h, h, 1.0, 1.0];
-        RationalBezierPatch::from_f64_points([2, 1], &net, Some(&w), Domain::UNIT).unwrap()
-    }
+    use crate::pair::fixtures::quarter_cylinder as cylinder;
 
     #[test]
     fn the_warp_makes_the_parameter_an_arc_length() {

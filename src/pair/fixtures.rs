@@ -90,3 +90,32 @@ pub(crate) const TANGENTIAL_CUBIC: [crate::geometry::power::PowerTerm; 6] = [
     (2, 1, -0.3),
     (3, 0, 0.075),
 ];
+
+/// The height field `z = Σ c·uᵃ·vᵇ` over `[−1, 1]²` (terms `(a, b, c)`), as a Bézier patch.
+pub(crate) fn square_graph(terms: Vec<(u32, u32, f64)>) -> crate::geometry::RationalBezierPatch {
+    crate::geometry::PowerSurface::graph(crate::geometry::Domain::new(-1.0, 1.0, -1.0, 1.0), terms)
+        .to_bezier()
+        .unwrap()
+}
+
+/// A quarter of the unit cylinder `x² + y² = 1`, `0 ≤ z ≤ 1` (rational, degree 2 × 1, weights
+/// `cos 45°` on the middle row), over the unit square.
+pub(crate) fn quarter_cylinder() -> crate::geometry::RationalBezierPatch {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let net = [
+        [1.0, 0.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 0.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let w = [1.0, 1.0, h, h, 1.0, 1.0];
+    crate::geometry::RationalBezierPatch::from_f64_points(
+        [2, 1],
+        &net,
+        Some(&w),
+        crate::geometry::Domain::UNIT,
+    )
+    .unwrap()
+}

@@ -222,13 +222,8 @@ fn frame(np: &[f64; 3], nq: &[f64; 3]) -> [[f64; 3]; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{Domain, PowerSurface};
 
-    fn graph(terms: Vec<(u32, u32, f64)>) -> RationalBezierPatch {
-        PowerSurface::graph(Domain::new(-1.0, 1.0, -1.0, 1.0), terms)
-            .to_bezier()
-            .unwrap()
-    }
+    use crate::pair::fixtures::square_graph as graph;
 
     /// The piece of `patch` over the dyadic normalised box `[s0, s1] × [r0, r1]`, by halving.
     fn piece(patch: &RationalBezierPatch, s: [f64; 2], r: [f64; 2]) -> Piece {

@@ -186,13 +186,8 @@ fn leaf_newton(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{Domain, PowerSurface};
 
-    fn graph(terms: Vec<(u32, u32, f64)>) -> RationalBezierPatch {
-        PowerSurface::graph(Domain::new(-1.0, 1.0, -1.0, 1.0), terms)
-            .to_bezier()
-            .unwrap()
-    }
+    use crate::pair::fixtures::square_graph as graph;
 
     /// The face `t = 0.5` (normalised 0.75) of P over normalised `s` round `x`, and Q's piece
     /// round `(x, 0.5)`, each `w` wide (normalised).
