@@ -678,12 +678,7 @@ mod tests {
     #[test]
     fn nearest_point_is_the_brute_force_minimum() {
         let mut h = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = || {
-            h ^= h << 13;
-            h ^= h >> 7;
-            h ^= h << 17;
-            (h >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = || crate::numeric::rounding::uniform_pm1(&mut h);
         for n in [0, 1, 2, 7, 300] {
             let mut pts: Vec<[f64; 3]> = (0..n).map(|_| [next(), next(), 0.1 * next()]).collect();
             pts.sort_by(|a, b| a[0].total_cmp(&b[0]));

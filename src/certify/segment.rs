@@ -696,12 +696,7 @@ mod tests {
     #[test]
     fn polynomial_range_encloses_and_is_tight_on_the_residual_shape() {
         let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = || crate::numeric::rounding::uniform_pm1(&mut state);
         for _ in 0..200 {
             let c: Vec<f64> = (0..ORDER + 2).map(|_| next()).collect();
             let (lo, hi) = (-0.1 - next().abs(), 0.05 + next().abs());

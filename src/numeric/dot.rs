@@ -125,7 +125,7 @@ impl DotAcc {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::numeric::rounding::xorshift;
+    use crate::numeric::rounding::uniform_pm1;
     use crate::numeric::scalar::interval;
 
     #[test]
@@ -164,7 +164,7 @@ mod tests {
     #[test]
     fn dot_encloses_inari_sum_on_pseudo_random_data() {
         let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || (xorshift(&mut state) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+        let mut next = || uniform_pm1(&mut state);
         for trial in 0..2000 {
             let n = 1 + trial % 40;
             let scale = 10f64.powi((trial % 9) * 20 - 80);

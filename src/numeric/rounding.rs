@@ -121,6 +121,12 @@ pub(crate) fn xorshift(state: &mut u64) -> u64 {
     *state
 }
 
+/// A pseudo-random number in `[−1, 1)` from [`xorshift`] (test data).
+#[cfg(test)]
+pub(crate) fn uniform_pm1(state: &mut u64) -> f64 {
+    (xorshift(state) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
