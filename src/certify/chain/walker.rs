@@ -99,6 +99,8 @@ pub(super) struct Walker<'a> {
     /// The scaled length the next link should have, learnt from the last attempts (the tube's
     /// width grows like the sixth power of the length).
     pub(super) l_pred: Option<f64>,
+    /// Scaled length and model width of the last link added.
+    prev: Option<(f64, f64)>,
     /// Both patches in the form the link proofs evaluate.
     lean: [LeanPatch<'a>; 2],
 }
@@ -132,6 +134,7 @@ impl<'a> Walker<'a> {
             closed: false,
             wants_closure: false,
             l_pred: None,
+            prev: None,
             lean: [LeanPatch::new(p), LeanPatch::new(q)],
         }
     }
@@ -346,6 +349,22 @@ impl<'a> Walker<'a> {
         }
     }
 
+    /// Whether a proven link of scaled length `len` and model width `width` shows the walk
+    /// held up by the conditioning, not by the predictor: wider than the aim (half the
+    /// tolerance) although the link before it was at least as long and less than 3/4 as wide.
+    /// Near a singular point the width grows like the inverse of the distance to it whatever
+    /// the length, and the walk would only creep on with links as wide (the cylinders: about
+    /// ten more attempts per end, to gain 1e-6); the caller ends the half there when the link
+    /// is shorter than [`FLOOR_LINK`] and a singular box lies within four times its length
+    /// (nearly tangent surfaces are not enough: on Fig. 7 the normals' cross product over boxes
+    /// 1e-4 round ordinary links contains zero).
+    fn conditioning_limited(&self, len: f64, width: f64) -> bool {
+        width > 0.5 * self.opts.required_tolerance
+            && self
+                .prev
+                .is_some_and(|(l, w)| l >= len && w <= 0.75 * width)
+    }
+
     /// Adds a proven link; on a loop, whether it closes the loop (then the walk stops).
     fn push(&mut self, link: Link) -> bool {
         if let Some(c) = self.shared {
@@ -427,12 +446,19 @@ impl<'a> Walker<'a> {
             };
             if let Some(link) = too_wide {
                 stalled = 0;
+                let limited = self.conditioning_limited(len, link.radius_xyz);
+                self.prev = Some((len, link.radius_xyz));
                 if self.push(link) {
                     return Stop::Done;
                 }
                 // Out of a domain on the way to a marched node: `leave.rs`.
                 if let Some(end) = self.stopped_outside(&stack[0].0, stack.len() > 1) {
                     return Stop::Failed(end);
+                }
+                if limited && len < FLOOR_LINK {
+                    if let Some(near) = self.singular_box(&cur.x, &tgt.x, 4.0 * len) {
+                        return Stop::Failed(CertifiedEnd::Singular { near });
+                    }
                 }
                 cur = tgt;
                 stack.pop();
@@ -606,9 +632,21 @@ impl<'a> Walker<'a> {
         // distance to it, every stride reaching the last one fails, and each success would
         // otherwise lengthen the next stride back to it).
         let mut single_until = 0;
+        // In that stretch, two intervals at a time while that holds: towards a singular point
+        // a link from distance `r` to `r/4` holds where one to `r/8` fails (the cylinders:
+        // widths far below the tolerance down to `r ≈ 1e-5`), so this halves the links there.
+        // After a pair fails, the next two intervals are single.
+        let mut singles_before_pair = 0;
         while i + 1 < n {
             // As many marched points ahead as the predicted length reaches (at least one).
             let mut k = 1;
+            if i < single_until && i + 2 < n {
+                if singles_before_pair == 0 {
+                    k = 2;
+                } else {
+                    singles_before_pair -= 1;
+                }
+            }
             if let (true, Some(l)) = (i >= single_until, self.l_pred) {
                 while i + k + 1 < n
                     && scaled_dist(&nodes[i].x, &nodes[i + k + 1].x, &self.scales) <= l
@@ -628,15 +666,26 @@ impl<'a> Walker<'a> {
                 let attempt = self.link(&nodes[i], &nodes[i + k], must);
                 self.learn(len, &attempt);
                 if let Attempt::Proven(link) = attempt {
+                    let limited = self.conditioning_limited(len, link.radius_xyz);
+                    self.prev = Some((len, link.radius_xyz));
                     if self.push(link) {
                         return Ok(());
                     }
                     if let Some(end) = self.stopped_outside(&nodes[i + k], false) {
                         return Err(end);
                     }
+                    if limited && len < FLOOR_LINK {
+                        if let Some(near) =
+                            self.singular_box(&nodes[i].x, &nodes[i + k].x, 4.0 * len)
+                        {
+                            return Err(CertifiedEnd::Singular { near });
+                        }
+                    }
                     i += k;
                 } else {
-                    if matches!(attempt, Attempt::Failed) {
+                    if i < single_until {
+                        singles_before_pair = 2;
+                    } else if matches!(attempt, Attempt::Failed) {
                         single_until = i + k;
                     }
                     if self.l_pred.is_some_and(|l| l >= len) {
