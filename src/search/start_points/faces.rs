@@ -3,7 +3,7 @@
 //! and merged in order.
 
 use super::{
-    diameter, edge_search, Ctx, EdgeProblem, FaceKey, SearchReport, StartKind, StartPoint,
+    diameter, edge_search, Ctx, EdgeProblem, FaceKey, Needs, SearchReport, StartKind, StartPoint,
     REFINE_FAILED_LEAF,
 };
 use crate::geometry::piece::Piece;
@@ -86,6 +86,7 @@ fn face_jobs<'a>(
                     b,
                     swapped,
                     kind: StartKind::Interior,
+                    needs: Needs::Any,
                 },
                 face: piece_a.face(fixed_index, upper),
                 partner: piece_b.clone(),
