@@ -37,6 +37,7 @@ use crate::geometry::piece::Piece;
 use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use crate::pair::curve_surface::{settle_box, BoxVerdict};
 use crate::pair::newton::{refine, Constraint};
+use faces::Needs;
 use faces::{face_search, face_searches_ahead};
 use inari::Interval;
 use nalgebra::{Matrix3x4, Vector3};
@@ -442,20 +443,6 @@ struct EdgeProblem<'a> {
     kind: StartKind,
     /// What the caller needs of the undecided leaves.
     needs: Needs,
-}
-
-/// What the caller of an [`edge_search`] needs of its undecided leaves.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Needs {
-    /// Each one (the boundary search reports every undecided leaf as a region).
-    Each,
-    /// Whether there is any, and the start points of the whole search (a face search: one
-    /// undecided leaf leaves its pair undecided, whatever the others' verdicts; after it, the
-    /// leaves still offer their Newton points but no arc is proven through them).
-    Any,
-    /// Whether there is any, and the start points only when there is none (the faces of a
-    /// node region): the search stops at the first undecided leaf.
-    None,
 }
 
 /// Outcome of one leaf of a curve/surface search.
