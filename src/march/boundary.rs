@@ -36,8 +36,23 @@ fn first_exit(a: &[f64; 4], b: &[f64; 4], dp: &Domain, dq: &Domain) -> Option<(u
     best
 }
 
+/// Halvings of the bracket along the curve before [`land_on_boundary`] gives up.
+const BRACKET_HALVINGS: usize = 10;
+
 /// Lands on the boundary between `cur` (inside) and `out` (outside): Newton with the exit
 /// parameter fixed at its bound. Returns the landed node and the surface whose boundary it is.
+///
+/// The guess for that Newton is interpolated linearly in the parameters between the two points,
+/// which is good while the curve crosses the boundary steeply within the bracket. A short arc
+/// that dips into the domain and leaves again through the same side (its two boundary points a
+/// step or less apart) crosses it at a small angle: the interpolated guess then sits near where
+/// the curve is tangent to the side, between its two boundary points, and Newton along the side
+/// diverges or finds the crossing behind the march. So a landing must lie between the two points
+/// ([`chord_position`]); otherwise the bracket is halved along the curve (a curve point on the
+/// plane through the chord's midpoint, kept on the side of the bracket where the curve is still
+/// outside) and the landing tried again from the shorter bracket. A landing on `cur` itself is
+/// kept only when no landing ahead of it is found: from a start on the boundary whose first step
+/// overshot the whole arc, the interpolated guess is the start, and the exit lies ahead.
 pub(crate) fn land_on_boundary<S1, S2>(
     p: &S1,
     q: &S2,
@@ -50,10 +65,53 @@ where
     S2: ParametricSurface + ?Sized,
 {
     let (dp, dq) = (p.domain(), q.domain());
-    let mut target = out;
+    let tol = opts.newton_tolerance;
+    let (mut inner, mut outer) = (cur.x, out);
+    let mut at_cur = None;
+    for _ in 0..=BRACKET_HALVINGS {
+        match land_between(p, q, &inner, &outer, opts) {
+            Some(landed) if chord_position(p, &cur.x, &outer, &landed.0) > tol => {
+                at_cur = Some(landed);
+                break;
+            }
+            Some(landed) => {
+                at_cur.get_or_insert(landed);
+            }
+            None => {}
+        }
+        let Some(mid) = midpoint_on_curve(p, q, &inner, &outer, opts) else {
+            break;
+        };
+        if inside(&mid, &dp, &dq, 0.0) {
+            inner = mid;
+        } else {
+            outer = mid;
+        }
+    }
+    at_cur.map(|(x, iterations, i)| {
+        let node = node_at(p, q, x, iterations, Some(cur.frame.tangent));
+        (node, usize::from(i >= 2))
+    })
+}
+
+/// One landing attempt from the bracket `inner` (inside) → `outer` (outside): the landed
+/// parameters, Newton's corrections and the index of the fixed parameter.
+fn land_between<S1, S2>(
+    p: &S1,
+    q: &S2,
+    inner: &[f64; 4],
+    outer: &[f64; 4],
+    opts: &MarchOptions,
+) -> Option<([f64; 4], usize, usize)>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (dp, dq) = (p.domain(), q.domain());
+    let mut target = *outer;
     for _ in 0..4 {
-        let (i, bound, s) = first_exit(&cur.x, &target, &dp, &dq)?;
-        let guess: [f64; 4] = std::array::from_fn(|k| cur.x[k] + s * (target[k] - cur.x[k]));
+        let (i, bound, s) = first_exit(inner, &target, &dp, &dq)?;
+        let guess: [f64; 4] = std::array::from_fn(|k| inner[k] + s * (target[k] - inner[k]));
         let r = refine(
             p,
             q,
@@ -66,14 +124,119 @@ where
             opts.max_newton_iterations,
         )
         .ok()?;
+        if !between(p, inner, outer, &r.x, opts.newton_tolerance) {
+            return None;
+        }
         if inside(&r.x, &dp, &dq, opts.domain_tolerance) {
-            let node = node_at(p, q, r.x, r.iterations, Some(cur.frame.tangent));
-            return Some((node, usize::from(i >= 2)));
+            return Some((r.x, r.iterations, i));
         }
         // Left through another side first: aim again at the landed point.
         target = r.x;
     }
     None
+}
+
+/// Where P at `x` projects onto the chord from P at `a` to P at `b` (0 at `a`, the chord's length
+/// at `b`; 0 for a degenerate chord).
+fn chord_position<S>(p: &S, a: &[f64; 4], b: &[f64; 4], x: &[f64; 4]) -> f64
+where
+    S: ParametricSurface + ?Sized,
+{
+    let (pa, pb, px) = (
+        p.point(a[0], a[1]),
+        p.point(b[0], b[1]),
+        p.point(x[0], x[1]),
+    );
+    let chord = pb - pa;
+    let len = chord.norm();
+    if len > 0.0 && len.is_finite() {
+        (px - pa).dot(&chord) / len
+    } else {
+        0.0
+    }
+}
+
+/// Whether the curve point `x` lies in the slab between the planes through P at `a` and at `b`
+/// orthogonal to the chord (with `tol` and a thousandth of the chord to spare). The arc from `a`
+/// to `b` turns by less than a half turn, so its points lie in that slab (exactly so on a
+/// circle); a landing from the bracket `a → b` outside it is a crossing behind the march (on a
+/// short arc, the boundary point where the march came in) or beyond its step.
+fn between<S>(p: &S, a: &[f64; 4], b: &[f64; 4], x: &[f64; 4], tol: f64) -> bool
+where
+    S: ParametricSurface + ?Sized,
+{
+    let len = (p.point(b[0], b[1]) - p.point(a[0], a[1])).norm();
+    let along = chord_position(p, a, b, x);
+    let spare = 1e-3 * len + tol;
+    !(along < -spare || along > len + spare)
+}
+
+/// The curve point on the plane through the midpoint of P at `a` and at `b`, orthogonal to the
+/// chord (Newton from the parameters' midpoint), if Newton finds one within the chord.
+fn midpoint_on_curve<S1, S2>(
+    p: &S1,
+    q: &S2,
+    a: &[f64; 4],
+    b: &[f64; 4],
+    opts: &MarchOptions,
+) -> Option<[f64; 4]>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (pa, pb) = (p.point(a[0], a[1]), p.point(b[0], b[1]));
+    let chord = pb - pa;
+    let len = chord.norm();
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
+    let guess: [f64; 4] = std::array::from_fn(|k| 0.5 * (a[k] + b[k]));
+    let r = refine(
+        p,
+        q,
+        guess,
+        Constraint::Plane {
+            point: pa + 0.5 * chord,
+            normal: chord / len,
+        },
+        opts.newton_tolerance,
+        opts.max_newton_iterations,
+    )
+    .ok()?;
+    between(p, a, b, &r.x, opts.newton_tolerance).then_some(r.x)
+}
+
+/// The curve point on the boundary next to `x`, a curve point just outside the domains: Newton
+/// with the most violated parameter held at its bound, from `x` moved onto it. `None` when
+/// Newton fails or lands outside again.
+pub(crate) fn onto_boundary<S1, S2>(
+    p: &S1,
+    q: &S2,
+    x: [f64; 4],
+    opts: &MarchOptions,
+) -> Option<[f64; 4]>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (dp, dq) = (p.domain(), q.domain());
+    let (index, value, _) = (0..4)
+        .filter_map(|i| {
+            let [lo, hi] = bounds(&dp, &dq, i);
+            let excess = (lo - x[i]).max(x[i] - hi) / (hi - lo);
+            (excess > 0.0).then(|| (i, if x[i] < lo { lo } else { hi }, excess))
+        })
+        .max_by(|a, b| a.2.total_cmp(&b.2))?;
+    let r = refine(
+        p,
+        q,
+        x,
+        Constraint::Fixed { index, value },
+        opts.newton_tolerance,
+        opts.max_newton_iterations,
+    )
+    .ok()?;
+    inside(&r.x, &dp, &dq, opts.domain_tolerance).then_some(r.x)
 }
 
 /// Whether moving along `sign · tangent` from the start enters both domains (false when the start

@@ -6,7 +6,10 @@
 //!
 //! Stop rules:
 //! - **Boundary**: a Newton point outside either domain is replaced by the point where the curve
-//!   leaves the domain, found by Newton with that boundary parameter held fixed (exactly on it).
+//!   leaves the domain, found by Newton with that boundary parameter held fixed (exactly on it),
+//!   between the last point and the outside one (on a short arc crossing a side at a small angle
+//!   the bracket is halved along the curve first, see `land_on_boundary`). A start that refines
+//!   to a point just outside is moved onto the boundary where the curve crosses it.
 //! - **Closed loop**: the start point is taken as the next point (the last step is shortened or
 //!   stretched to land exactly on it) only when all of these hold: it is within 1.5 predicted steps,
 //!   it lies ahead (the chord to it is within 60° of the tangent), the tangent agrees with the
@@ -38,7 +41,9 @@
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::pair_bounds as bounds;
 use crate::geometry::{ParametricSurface, Vec3};
-use crate::march::boundary::{boundary_surface_of, enters, land_on_boundary, touching};
+use crate::march::boundary::{
+    boundary_surface_of, enters, land_on_boundary, onto_boundary, touching,
+};
 use crate::march::branch::{Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind};
 use crate::march::circle_step::circular_step;
 use crate::march::closing::{add_turn, closing_turning, on_own_path, turn, OWN_PATH_GAP};
@@ -525,7 +530,14 @@ where
         opts.newton_tolerance,
         opts.max_newton_iterations,
     )?;
-    Ok(node_at(p, q, r.x, 0, None))
+    // A guess next to the boundary can refine to a point just outside (a short arc dipping into
+    // the domain): the start is then the nearby point where the curve crosses the boundary.
+    let x = if inside(&r.x, &dp, &dq, opts.domain_tolerance) {
+        r.x
+    } else {
+        onto_boundary(p, q, r.x, opts).unwrap_or(r.x)
+    };
+    Ok(node_at(p, q, x, 0, None))
 }
 
 fn to_curve_point(n: &Node) -> CurvePoint {

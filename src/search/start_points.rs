@@ -37,6 +37,7 @@ use crate::geometry::piece::Piece;
 use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use crate::pair::curve_surface::{settle_box, BoxVerdict};
 use crate::pair::newton::{refine, Constraint};
+use faces::Needs;
 use faces::{face_search, face_searches_ahead};
 use inari::Interval;
 use nalgebra::{Matrix3x4, Vector3};
@@ -198,6 +199,7 @@ fn boundary_search(
                 kind: StartKind::Boundary {
                     surface: usize::from(swapped),
                 },
+                needs: Needs::Each,
             };
             jobs.push((problem, edge, Piece::whole(b)));
         }
@@ -439,6 +441,8 @@ struct EdgeProblem<'a> {
     /// `a` is Q (the found parameters are swapped back to `(P, Q)` order).
     swapped: bool,
     kind: StartKind,
+    /// What the caller needs of the undecided leaves.
+    needs: Needs,
 }
 
 /// Outcome of one leaf of a curve/surface search.
@@ -454,7 +458,10 @@ enum Leaf {
 /// Pair subdivision of the edge piece `a0` of `problem.a` against the piece `b0` of `problem.b`,
 /// pruned where bounding boxes are disjoint; every leaf is settled by Krawczyk ([`settle_leaf`]).
 /// Found points go to `out` in `(P, Q)` order; returns the leaves left undecided (or not
-/// examined when the budget ran out).
+/// examined when the budget ran out) — all of them, or as many as `problem.needs` asks for (an
+/// arc proof at a deepest leaf is the search's dearest step, and a face search whose leaf is
+/// already undecided needs none: measured on two cones within 1e-8 of tangent along a line,
+/// 33 000 failing proofs made 9 of their 10 s).
 #[allow(clippy::too_many_arguments)]
 fn edge_search(
     ctx: &Ctx,
@@ -522,13 +529,18 @@ fn edge_search(
                     // to lie on the arc through it: settled.
                     let interior = matches!(problem.kind, StartKind::Interior);
                     let x = leaf_point(a, b, &pa, &pb, ctx.tol, interior);
-                    let on_arc = x.is_some_and(|x| {
-                        da.contains(x[0], x[1], 1e-12)
-                            && db.contains(x[2], x[3], 1e-12)
-                            && arc_through(a, b, &pa, &pb, &x)
-                    });
-                    if !on_arc {
+                    let moot = problem.needs != Needs::Each && !undecided.is_empty();
+                    let on_arc = !moot
+                        && x.is_some_and(|x| {
+                            da.contains(x[0], x[1], 1e-12)
+                                && db.contains(x[2], x[3], 1e-12)
+                                && arc_through(a, b, &pa, &pb, &x)
+                        });
+                    if !on_arc && !moot {
                         undecided.push(region(&pa, &pb));
+                        if problem.needs == Needs::None {
+                            return undecided;
+                        }
                     }
                     if let Some(x) = x {
                         offer(x, out);

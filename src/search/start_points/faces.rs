@@ -11,6 +11,20 @@ use crate::geometry::RationalBezierPatch;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
+/// What the caller of an [`edge_search`](super::edge_search) needs of its undecided leaves.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Needs {
+    /// Each one (the boundary search reports every undecided leaf as a region).
+    Each,
+    /// Whether there is any, and the start points of the whole search (a face search: one
+    /// undecided leaf leaves its pair undecided, whatever the others' verdicts; after it, the
+    /// leaves still offer their Newton points but no arc is proven through them).
+    Any,
+    /// Whether there is any, and the start points only when there is none (the faces of a
+    /// node region): the search stops at the first undecided leaf.
+    None,
+}
+
 /// One face search of a loop-free pair: the face of one piece against the other piece.
 struct FaceJob<'a> {
     key: FaceKey,
@@ -86,6 +100,7 @@ fn face_jobs<'a>(
                     b,
                     swapped,
                     kind: StartKind::Interior,
+                    needs: Needs::Any,
                 },
                 face: piece_a.face(fixed_index, upper),
                 partner: piece_b.clone(),
@@ -177,4 +192,72 @@ pub(super) fn face_searches_ahead(
         .map(|j| run_face(ctx, j, leaves, spent))
         .collect();
     jobs.iter().map(|j| j.key).zip(outcomes).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pair::fixtures::square_graph as graph;
+
+    /// The face `v = 0` of P (over `u ∈ [−0.5, 0.5]`) against the whole of Q, searched with
+    /// `needs`: the start points found and the number of undecided leaves returned.
+    fn search(
+        p: &RationalBezierPatch,
+        q: &RationalBezierPatch,
+        needs: Needs,
+    ) -> (Vec<[f64; 4]>, usize) {
+        let ctx = Ctx {
+            leaf: 2.0 / 64.0,
+            min_pair: 2.0 / 1024.0,
+            tol: 1e-10,
+            budget: 1_000_000,
+            max_frontier: 1024,
+        };
+        let problem = EdgeProblem {
+            a: p,
+            b: q,
+            swapped: false,
+            kind: StartKind::Interior,
+            needs,
+        };
+        let face = Piece::over(p, [0.25, 0.75], [0.25, 0.5])
+            .unwrap()
+            .face(1, true);
+        let mut report = SearchReport::default();
+        let mut found = Vec::new();
+        let undecided = edge_search(
+            &ctx,
+            &problem,
+            face,
+            Piece::whole(q),
+            ctx.leaf,
+            ctx.leaf * REFINE_FAILED_LEAF,
+            &mut report,
+            &mut found,
+        );
+        (found.iter().map(|s| s.params).collect(), undecided.len())
+    }
+
+    #[test]
+    fn a_face_search_that_needs_any_verdict_finds_the_same_points() {
+        // z = (u − 0.1)² − 1e-12 against z = 0: the lines u = 0.1 ± 1e-6 cross the face v = 0
+        // where the surfaces meet at an angle of 2e-6; leaves there stay undecided.
+        let p = graph(vec![(2, 0, 1.0), (1, 0, -0.2), (0, 0, 0.01 - 1e-12)]);
+        let q = graph(vec![(0, 0, 0.0), (1, 0, 0.0)]);
+        let (each, n_each) = search(&p, &q, Needs::Each);
+        assert!(
+            n_each >= 2,
+            "the case needs several undecided leaves: {n_each}"
+        );
+        let (any, n_any) = search(&p, &q, Needs::Any);
+        assert!(n_any >= 1, "still undecided");
+        assert_eq!(each, any, "the same start points");
+        assert!(!each.is_empty());
+        for x in &each {
+            assert!((x[0] - 0.1).abs() < 2e-6 && x[1] == 0.0, "{x:?}");
+        }
+        let (none, n_none) = search(&p, &q, Needs::None);
+        assert_eq!(n_none, 1, "stops at the first undecided leaf");
+        assert!(none.len() <= each.len());
+    }
 }

@@ -60,7 +60,9 @@
 //! inside a clipped `N_Q`, and the boundary search's own leaves at the node stay undecided): the
 //! search finds its arcs and reports a dozen small undecided regions there (tested).
 
-use super::{diameter, edge_search, Ctx, EdgeProblem, SearchReport, StartKind, REFINE_FAILED_LEAF};
+use super::{
+    diameter, edge_search, Ctx, EdgeProblem, Needs, SearchReport, StartKind, REFINE_FAILED_LEAF,
+};
 use crate::geometry::piece::Piece;
 use crate::geometry::{ParametricSurface, RationalBezierPatch};
 use crate::numeric::rounding::dot_point;
@@ -637,6 +639,7 @@ fn search_faces(
         b: q,
         swapped: false,
         kind: StartKind::Interior,
+        needs: Needs::None,
     };
     let mut found = Vec::new();
     // Whether the search of `piece` against `N_Q` settled every leaf.
@@ -653,18 +656,18 @@ fn search_faces(
         )
         .is_empty()
     };
-    let mut settled = true;
     for (fixed, upper) in [(0, false), (0, true), (1, false), (1, true)] {
         let range = if fixed == 0 { region.p.s } else { region.p.r };
         let value = range[usize::from(upper)];
         if value == 0.0 || value == 1.0 {
             continue;
         }
-        settled &= settles(region.p.face(fixed, upper), report);
+        // The points found are kept only if every face settles: stop at the first that does not.
+        if !settles(region.p.face(fixed, upper), report) {
+            return false;
+        }
     }
-    if let (Some(ray), true) = (ray, settled) {
-        settled &= settles(ray, report);
-    }
+    let settled = ray.is_none_or(|ray| settles(ray, report));
     if settled {
         report.interior.extend(found);
     }
