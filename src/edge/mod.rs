@@ -27,10 +27,13 @@
 //!   `δ = sup |pcurve − y(w(r))|` and 3D: `sup |curve − P(y(w(r)))|`, each by an interval
 //!   Taylor form of order 8 in `r` with a Lagrange remainder on four sub-intervals (the
 //!   reported side's coefficients, through the warp, computed once per span). Then 3D curve to
-//!   true ≤ that + `radius_xyz`; `P(pcurve_P)` to true ≤ `radius_xyz` + `|DP|·δ_P`;
-//!   `Q(pcurve_Q)` to true ≤ `|DQ|·(radius_param + δ_Q)` or `radius_xyz` + `|DQ|·δ_Q` + the
-//!   residual `|P(σ, t) − Q(u, v)|` of the reported polynomial (the smaller), the derivatives
-//!   enclosed over the span's parameter box widened by those amounts. Every curve is compared
+//!   true ≤ that + `radius_xyz`; `P(pcurve_P)` to true ≤ `radius_xyz` + `|DP·δ_P|`;
+//!   `Q(pcurve_Q)` to true ≤ `radius_xyz` + `|DQ·δ_Q|` (a link's `radius_xyz` bounds the
+//!   reported curve's images on both surfaces) or `|DQ·(radius_param + δ_Q)|` (the smaller),
+//!   the derivatives enclosed over the span's parameter box widened by those amounts. `δ` is
+//!   kept per parameter (`DQ·δ_Q = ∂Q/∂u·δ_u + ∂Q/∂v·δ_v`): on a domain whose sides differ by
+//!   orders of magnitude a max-norm `δ` would multiply the long side's error by the short
+//!   side's derivative. Every curve is compared
 //!   with the same reported point at the same `s`, and the warp maps the span onto the link's
 //!   piece, so each bound holds both ways.
 //! - **Refinement.** The target is the requested tolerance (when the certificates leave room
