@@ -353,6 +353,42 @@ fn refine_all(
     true
 }
 
+/// Breakpoints above which [`coarsen`] is not tried (each trial is a fit of the whole part).
+const COARSEN_MOST: usize = 40;
+
+/// Removes the coarse knots the refinement did not need: refinement cuts a coarse span into
+/// several pieces at once, by an estimate. Each interior breakpoint in turn is lowered in
+/// multiplicity (or removed) and the part fitted and bounded again; the change is kept when
+/// the part's worst bound stays within the goal (or within what it proved, if that is above
+/// the goal). Only on parts of at most [`COARSEN_MOST`] breakpoints.
+fn coarsen(d: &PartData, spans: &[Span], knots_s: &[f64], f: &mut PartFit, goal: f64) {
+    if f.breaks.len() > COARSEN_MOST {
+        return;
+    }
+    let worst = |f: &PartFit| {
+        ratios(d, spans, f, f64::INFINITY)
+            .iter()
+            .map(|x| x.1)
+            .fold(0.0, f64::max)
+    };
+    let limit = goal.max(worst(f));
+    let mut i = 1;
+    while i + 1 < f.breaks.len() {
+        let mut b = f.breaks.clone();
+        if b[i].1 > 1 {
+            b[i].1 -= 1;
+        } else {
+            b.remove(i);
+        }
+        let g = fit_part(d, spans, knots_s, b);
+        if worst(&g) <= limit {
+            *f = g;
+        } else {
+            i += 1;
+        }
+    }
+}
+
 /// The edge of the parts in order (each part's segments in the edge's direction). `closed`:
 /// the edge's last point is its first; `pcurve_closed`: so are the p-curves' (one part, closed
 /// by its own certificate rather than across a seam); `requested`: the tolerance asked for.
@@ -465,6 +501,9 @@ pub(crate) fn assemble(
         })
         .collect();
     let out_of_rounds = refine_all(&data, &spans, &knots_s, &mut fits, goal);
+    for (d, f) in data.iter().zip(fits.iter_mut()) {
+        coarsen(d, &spans, &knots_s, f, goal);
+    }
     let mut e = finish(&data, &spans, &fits, closed, cert_tol)?;
     e.requested = requested;
     e.shortfall = requested
