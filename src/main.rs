@@ -300,10 +300,14 @@ fn write_edges_file(
     for (k, e) in edges {
         match e {
             Ok(e) => say(&format!(
-                "  {source} {k}: {} control points, edge tolerance {:.2e}{}\n",
+                "  {source} {k}: {} control points, edge tolerance {:.2e}{}{}\n",
                 e.curve.points.len(),
                 e.edge_tolerance,
-                if e.closed { ", closed" } else { "" }
+                if e.closed { ", closed" } else { "" },
+                match (e.shortfall, e.requested) {
+                    (Some(s), Some(r)) => format!(" (above the requested {r:.1e}: {s})"),
+                    _ => String::new(),
+                }
             )),
             Err(err) => say(&format!("  {source} {k}: no edge ({err})\n")),
         }

@@ -6,7 +6,7 @@ use super::fit::{knots_on, least_squares, on_fine_spans};
 use super::poly::{self, eval_mid, Poly, SPLINE_DEGREE as DEGREE};
 use super::span::{bounds, box_diameter, model_box, SpanBounds, SpanFixed};
 use super::warp::{arc_length_warp, Warp};
-use super::{BSpline, Edge, EdgeBounds, EdgeError, PCurve, Part};
+use super::{BSpline, Edge, EdgeBounds, EdgeError, PCurve, Part, Shortfall};
 use crate::geometry::RationalBezierPatch;
 
 /// One fine span of the edge: a piece of one link, re-expanded on `u ∈ [0, 1]`, compared with
@@ -31,16 +31,22 @@ const MOST_PIECES: usize = 8;
 const START_SPANS: usize = 32;
 
 /// The tolerance the coarse curves aim at: the requested one when the fine construction's
-/// floor (the certificates' tolerance and the cuts' fixed share) leaves room under it, else a
-/// little above the floor.
+/// floor (the certificates' tolerance and the cuts' fixed share) is under it, else a quarter
+/// above the floor (the request cannot be met; the last few per cent above the floor would
+/// cost several times the control points).
 fn target(floor: f64, requested: Option<f64>) -> f64 {
     match requested {
-        Some(r) if floor <= 0.98 * r => r,
-        Some(r) => r.max(1.05 * floor),
+        Some(r) if floor <= r => r,
+        Some(_) => 1.25 * floor,
         None => 2.0 * floor,
     }
     .max(1e-13)
 }
+
+/// A refined region counts as improving while a round at least divides its worst ratio by
+/// this (a cut coarse span of degree 8 gains far more where the fit, not a floor, limits it;
+/// a raised knot gains little, but it gains).
+const GAIN: f64 = 1.02;
 
 /// One part's coarse curves and what they prove.
 struct PartFit {
@@ -193,9 +199,10 @@ fn refine(breaks: &[Break], ratio: &[f64], fine: &[f64]) -> Option<Vec<Break>> {
 }
 
 /// How many times too large each fine span's fit-dependent bounds are for the target `t`
-/// (cut bounds included: the spans of a cut's tube).
-fn ratios(d: &PartData, spans: &[Span], f: &PartFit, t: f64) -> Vec<f64> {
-    let mut r: Vec<f64> = f
+/// (cut bounds included: the spans of a cut's tube), and the largest bound that ratio is
+/// about (what the span proves now).
+fn ratios(d: &PartData, spans: &[Span], f: &PartFit, t: f64) -> Vec<(f64, f64)> {
+    let mut r: Vec<(f64, f64)> = f
         .bounds
         .iter()
         .zip(&spans[d.range.clone()])
@@ -205,25 +212,181 @@ fn ratios(d: &PartData, spans: &[Span], f: &PartFit, t: f64) -> Vec<f64> {
                 .model
                 .max(b.image_p - sp.radius_xyz)
                 .max(b.image_q - sp.radius_xyz);
-            if b.curve.max(b.image_p).max(b.image_q) <= t || room <= 0.0 {
-                0.0
+            let level = b.curve.max(b.image_p).max(b.image_q);
+            if level <= t || room <= 0.0 {
+                (0.0, level)
             } else {
-                need / room
+                (need / room, level)
             }
         })
         .collect();
     for &(tube, base) in &d.cuts {
         let off = off_on(d, spans, f, tube);
-        if poly::add_up(base, off) > t && base < t {
-            let q = off / (t - base);
-            for (m, sp) in spans[d.range.clone()].iter().enumerate() {
-                if sp.tube == tube {
-                    r[m] = r[m].max(q);
-                }
+        let level = poly::add_up(base, off);
+        let q = if level > t && base < t {
+            off / (t - base)
+        } else {
+            0.0
+        };
+        for (m, sp) in spans[d.range.clone()].iter().enumerate() {
+            if sp.tube == tube {
+                r[m] = (r[m].0.max(q), r[m].1.max(level));
             }
         }
     }
     r
+}
+
+/// Per part, what the refinement knows of its fine spans: the ratios for the goal before the
+/// last round, the fine-span ranges of the coarse spans that round refined, and per span how
+/// many refinements in a row failed to divide its region's worst ratio by [`GAIN`].
+struct Progress {
+    before: Vec<f64>,
+    refined: Vec<std::ops::Range<usize>>,
+    strikes: Vec<u8>,
+    /// The lowest bound each span has proven so far.
+    best: Vec<f64>,
+}
+
+/// Refinements in a row without gain after which a span is stalled.
+const STRIKES: u8 = 3;
+
+impl Progress {
+    fn new(n: usize) -> Self {
+        Progress {
+            before: vec![0.0; n],
+            refined: Vec::new(),
+            strikes: vec![0; n],
+            best: vec![f64::INFINITY; n],
+        }
+    }
+
+    /// Scores the last round's refinements against the ratios `now` (for the goal): a refined
+    /// region whose worst ratio is still above 1 and fell by less than [`GAIN`] gives a strike
+    /// to its spans above 1; one that gained clears them. (A region, not a span: the fit is
+    /// global, and a span next to a cut can get worse while its region gains.)
+    fn score(&mut self, now: &[(f64, f64)]) {
+        for (b, x) in self.best.iter_mut().zip(now) {
+            *b = b.min(x.1);
+        }
+        let worst = |r: &std::ops::Range<usize>, f: &dyn Fn(usize) -> f64| {
+            r.clone().map(f).fold(0.0, f64::max)
+        };
+        for r in &self.refined {
+            let was = worst(r, &|m| self.before[m]);
+            let is = worst(r, &|m| now[m].0);
+            let gained = is <= 1.0 || is * GAIN <= was;
+            for m in r.clone() {
+                if gained {
+                    self.strikes[m] = 0;
+                } else if now[m].0 > 1.0 {
+                    self.strikes[m] = self.strikes[m].saturating_add(1);
+                }
+            }
+        }
+    }
+
+    fn stalled(&self, m: usize) -> bool {
+        self.strikes[m] >= STRIKES
+    }
+}
+
+/// Fits, bounds and refines every part until its spans meet the goal, none can be refined, or
+/// the rounds run out. A span whose region was refined [`STRIKES`] times in a row without
+/// dividing its worst ratio by [`GAIN`] is stalled: never refined again, and all the other
+/// spans aim at the lowest bound it has proven instead of the goal when that is higher
+/// (control points that lower them below it buy nothing). Returns whether the rounds ran out.
+fn refine_all(
+    data: &[PartData],
+    spans: &[Span],
+    knots_s: &[f64],
+    fits: &mut [PartFit],
+    goal: f64,
+) -> bool {
+    let mut progress: Vec<Progress> = data.iter().map(|d| Progress::new(d.range.len())).collect();
+    for _ in 0..ROUNDS {
+        let now: Vec<Vec<(f64, f64)>> = data
+            .iter()
+            .zip(fits.iter())
+            .map(|(d, f)| ratios(d, spans, f, goal))
+            .collect();
+        let mut level = 0.0f64;
+        for (pr, r) in progress.iter_mut().zip(&now) {
+            pr.score(r);
+            for m in 0..r.len() {
+                if pr.stalled(m) {
+                    level = level.max(pr.best[m]);
+                }
+            }
+        }
+        let aim = goal.max(level);
+        let mut changed = false;
+        for ((d, f), (pr, r)) in data
+            .iter()
+            .zip(fits.iter_mut())
+            .zip(progress.iter_mut().zip(&now))
+        {
+            let mut want: Vec<f64> = ratios(d, spans, f, aim).iter().map(|x| x.0).collect();
+            for (m, w) in want.iter_mut().enumerate() {
+                if pr.stalled(m) {
+                    *w = 0.0;
+                }
+            }
+            pr.before = r.iter().map(|x| x.0).collect();
+            pr.refined.clear();
+            let fine = &knots_s[d.range.start..=d.range.end];
+            if let Some(b) = refine(&f.breaks, &want, fine) {
+                for pair in f.breaks.windows(2) {
+                    let region = pair[0].0..pair[1].0;
+                    if want[region.clone()].iter().any(|&x| x > 1.0) {
+                        pr.refined.push(region);
+                    }
+                }
+                *f = fit_part(d, spans, knots_s, b);
+                changed = true;
+            }
+        }
+        if !changed {
+            return false;
+        }
+    }
+    true
+}
+
+/// Breakpoints above which [`coarsen`] is not tried (each trial is a fit of the whole part).
+const COARSEN_MOST: usize = 40;
+
+/// Removes the coarse knots the refinement did not need: refinement cuts a coarse span into
+/// several pieces at once, by an estimate. Each interior breakpoint in turn is lowered in
+/// multiplicity (or removed) and the part fitted and bounded again; the change is kept when
+/// the part's worst bound stays within the goal (or within what it proved, if that is above
+/// the goal). Only on parts of at most [`COARSEN_MOST`] breakpoints.
+fn coarsen(d: &PartData, spans: &[Span], knots_s: &[f64], f: &mut PartFit, goal: f64) {
+    if f.breaks.len() > COARSEN_MOST {
+        return;
+    }
+    let worst = |f: &PartFit| {
+        ratios(d, spans, f, f64::INFINITY)
+            .iter()
+            .map(|x| x.1)
+            .fold(0.0, f64::max)
+    };
+    let limit = goal.max(worst(f));
+    let mut i = 1;
+    while i + 1 < f.breaks.len() {
+        let mut b = f.breaks.clone();
+        if b[i].1 > 1 {
+            b[i].1 -= 1;
+        } else {
+            b.remove(i);
+        }
+        let g = fit_part(d, spans, knots_s, b);
+        if worst(&g) <= limit {
+            *f = g;
+        } else {
+            i += 1;
+        }
+    }
 }
 
 /// The edge of the parts in order (each part's segments in the edge's direction). `closed`:
@@ -337,22 +500,44 @@ pub(crate) fn assemble(
             fit_part(d, &spans, &knots_s, breaks)
         })
         .collect();
-    for _ in 0..ROUNDS {
-        let mut changed = false;
-        for (d, f) in data.iter().zip(fits.iter_mut()) {
-            let r = ratios(d, &spans, f, goal);
-            let fine = &knots_s[d.range.start..=d.range.end];
-            if let Some(b) = refine(&f.breaks, &r, fine) {
-                *f = fit_part(d, &spans, &knots_s, b);
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
-        }
+    let out_of_rounds = refine_all(&data, &spans, &knots_s, &mut fits, goal);
+    for (d, f) in data.iter().zip(fits.iter_mut()) {
+        coarsen(d, &spans, &knots_s, f, goal);
     }
+    let mut e = finish(&data, &spans, &fits, closed, cert_tol)?;
+    e.requested = requested;
+    e.shortfall = requested
+        .filter(|&r| e.edge_tolerance > r)
+        .map(|r| shortfall(&data, &spans, &fits, floor, r, out_of_rounds));
+    Ok(e)
+}
 
-    finish(&data, &spans, &fits, closed, cert_tol)
+/// Why the final fits' tolerance is above the request `r`.
+fn shortfall(
+    data: &[PartData],
+    spans: &[Span],
+    fits: &[PartFit],
+    floor: f64,
+    r: f64,
+    out_of_rounds: bool,
+) -> Shortfall {
+    if floor > r {
+        return Shortfall::Certificate { floor };
+    }
+    if out_of_rounds {
+        return Shortfall::Rounds { rounds: ROUNDS };
+    }
+    let above: Vec<f64> = data
+        .iter()
+        .zip(fits)
+        .flat_map(|(d, f)| ratios(d, spans, f, r))
+        .map(|x| x.1)
+        .filter(|&l| l > r)
+        .collect();
+    Shortfall::FitStalled {
+        spans: above.len(),
+        level: above.iter().copied().fold(0.0, f64::max),
+    }
 }
 
 /// The surface P of the part holding span `i`.
@@ -469,5 +654,7 @@ fn finish(
         bounds: b,
         branches: data.iter().map(|d| d.pt.branch).collect(),
         links: data.iter().map(|d| d.pt.segs.len()).sum(),
+        requested: None,
+        shortfall: None,
     })
 }

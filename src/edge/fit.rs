@@ -71,6 +71,10 @@ pub(crate) fn least_squares<const D: usize>(
     if free == 0 {
         return out;
     }
+    // Fitted about the first end (`Σ Nᵢ = 1`): the rotations' rounding is then relative to the
+    // curve's variation, not to its distance from 0.
+    let a = ends[0];
+    let ends = ends.map(|e| std::array::from_fn::<f64, D, _>(|d| e[d] - a[d]));
     // Banded QR by Givens rotations: each sample's row has at most DEGREE + 1 consecutive
     // non-zeros, so R has DEGREE + 1 diagonals (r[i][k] is entry (i, i + k)).
     const W: usize = DEGREE + 1;
@@ -78,7 +82,7 @@ pub(crate) fn least_squares<const D: usize>(
     let mut rb = vec![[0.0f64; D]; free];
     for (s, x) in samples {
         let (first, nb) = basis(knots, n, *s);
-        let mut rhs = *x;
+        let mut rhs: [f64; D] = std::array::from_fn(|d| x[d] - a[d]);
         // The row over the free columns first - 1 .. first - 1 + DEGREE (column i is control
         // point i + 1); the fixed end points go to the right-hand side.
         let mut v = [0.0f64; W];
@@ -133,18 +137,20 @@ pub(crate) fn least_squares<const D: usize>(
                 acc[d] -= r[i][k] * sol[i + k][d];
             }
         }
-        sol[i] = acc.map(|a| a / r[i][0]);
+        sol[i] = acc.map(|v| v / r[i][0]);
     }
-    out[1..=free].copy_from_slice(&sol);
+    for (o, x) in out[1..=free].iter_mut().zip(&sol) {
+        *o = std::array::from_fn(|d| x[d] + a[d]);
+    }
     out
 }
 
 /// The enclosed Bézier control points of every span of the clamped spline (`knots`,
 /// `points`, degree [`DEGREE`]), in order, by interval knot insertion.
-fn bezier_spans<const D: usize>(knots: &[f64], points: &[[f64; D]]) -> Vec<SPoly<D>> {
+fn bezier_spans<const D: usize>(knots: &[f64], points: Vec<[Interval; D]>) -> Vec<SPoly<D>> {
     let p = DEGREE;
     let mut u: Vec<f64> = knots.to_vec();
-    let mut c: Vec<[Interval; D]> = points.iter().map(|x| x.map(point)).collect();
+    let mut c = points;
     let mut k = p + 1;
     // Walk the interior knots; raise each one's multiplicity to p.
     while k < u.len() - p - 1 {
@@ -187,8 +193,29 @@ pub(crate) fn on_fine_spans<const D: usize>(
     coarse: &[f64],
     fine: &[f64],
 ) -> Vec<SPoly<D>> {
-    let spans = bezier_spans(knots, points);
-    let power: Vec<SPoly<D>> = spans.iter().map(power_from_bezier).collect();
+    // Every enclosure below widens in proportion to the magnitude of what it encloses, and the
+    // bounds multiply a p-curve's widths by the surface's derivative: a parameter far from 0
+    // on a short side (v ∈ [2, 2.02], `|∂Q/∂v|` ~ 100) would carry rounding of 2 into every
+    // bound. So the spline is enclosed about an anchor, the first control point (`Σ Nᵢ = 1`:
+    // the spline is the anchor plus the spline of the control points less the anchor), and each
+    // coarse span again about its first Bézier point before the basis change and the shifts;
+    // the widths then scale with the curve's extent, not with its distance from 0.
+    let origin = points.first().copied().unwrap_or([0.0; D]);
+    let less: Vec<[Interval; D]> = points
+        .iter()
+        .map(|x| std::array::from_fn(|d| point(x[d]) - point(origin[d])))
+        .collect();
+    let spans = bezier_spans(knots, less);
+    let anchors: Vec<[f64; D]> = spans.iter().map(|b| b[0].map(|x| x.mid())).collect();
+    let power: Vec<SPoly<D>> = spans
+        .iter()
+        .zip(&anchors)
+        .map(|(b, a)| {
+            let less: SPoly<D> =
+                std::array::from_fn(|i| std::array::from_fn(|d| b[i][d] - point(a[d])));
+            power_from_bezier(&less)
+        })
+        .collect();
     let mut out = Vec::with_capacity(fine.len().saturating_sub(1));
     let mut c = 0;
     for w in fine.windows(2) {
@@ -206,6 +233,9 @@ pub(crate) fn on_fine_spans<const D: usize>(
                 *v *= pow;
             }
             pow *= dw;
+        }
+        for d in 0..D {
+            y[0][d] = y[0][d] + point(anchors[c][d]) + point(origin[d]);
         }
         out.push(y);
     }

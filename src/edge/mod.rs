@@ -27,17 +27,24 @@
 //!   `δ = sup |pcurve − y(w(r))|` and 3D: `sup |curve − P(y(w(r)))|`, each by an interval
 //!   Taylor form of order 8 in `r` with a Lagrange remainder on four sub-intervals (the
 //!   reported side's coefficients, through the warp, computed once per span). Then 3D curve to
-//!   true ≤ that + `radius_xyz`; `P(pcurve_P)` to true ≤ `radius_xyz` + `|DP|·δ_P`;
-//!   `Q(pcurve_Q)` to true ≤ `|DQ|·(radius_param + δ_Q)` or `radius_xyz` + `|DQ|·δ_Q` + the
-//!   residual `|P(σ, t) − Q(u, v)|` of the reported polynomial (the smaller), the derivatives
-//!   enclosed over the span's parameter box widened by those amounts. Every curve is compared
+//!   true ≤ that + `radius_xyz`; `P(pcurve_P)` to true ≤ `radius_xyz` + `|DP·δ_P|`;
+//!   `Q(pcurve_Q)` to true ≤ `radius_xyz` + `|DQ·δ_Q|` (a link's `radius_xyz` bounds the
+//!   reported curve's images on both surfaces) or `|DQ·(radius_param + δ_Q)|` (the smaller),
+//!   the derivatives enclosed over the span's parameter box widened by those amounts. `δ` is
+//!   kept per parameter (`DQ·δ_Q = ∂Q/∂u·δ_u + ∂Q/∂v·δ_v`): on a domain whose sides differ by
+//!   orders of magnitude a max-norm `δ` would multiply the long side's error by the short
+//!   side's derivative. Every curve is compared
 //!   with the same reported point at the same `s`, and the warp maps the span onto the link's
 //!   piece, so each bound holds both ways.
-//! - **Refinement.** The target is the requested tolerance (when the certificates leave room
-//!   under it; else a little above their floor). Coarse spans whose fine spans' bounds exceed
+//! - **Refinement.** The target is the requested tolerance (when the certificates' floor is
+//!   under it; else a quarter above the floor). Coarse spans whose fine spans' bounds exceed
 //!   it are cut at fine knots (or their knots' multiplicity raised) and the part is fitted and
-//!   bounded again, a bounded number of rounds; the bounds reported are those of the final
-//!   curves, whatever the target.
+//!   bounded again, a bounded number of rounds. A region refined three times in a row without
+//!   its worst bound falling stops being refined, and the other spans aim no lower than the
+//!   best bound it reached. Then, on parts of few coarse spans, the knots the refinement did
+//!   not need are removed one by one while the part's bounds stay within the goal. The bounds
+//!   reported are those of the final curves, whatever the target; an edge above the request
+//!   says why ([`Shortfall`]).
 //! - **Cuts.** A chain is cut where the edge must end: a closed loop where its last link meets
 //!   the start box again, a boundary end (the chain goes on a little past the domain's side, on
 //!   the patch extended beyond it) and a joined curve's piece side at the side. A range `T` of
@@ -196,6 +203,49 @@ pub struct EdgeBounds {
     pub certified_tolerance: f64,
 }
 
+/// Why an edge's proven tolerance is above the tolerance it was asked for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shortfall {
+    /// The certificates alone (the links' radii, the true arcs at the cuts) exceed the
+    /// request: no curve compared with the chain can meet it; the chain must be certified
+    /// more tightly. The coarse curves aimed a quarter above this floor.
+    Certificate {
+        /// The largest certified tolerance or cut share.
+        floor: f64,
+    },
+    /// Refining the coarse curves stopped lowering the bounds of some fine spans: a cut or a
+    /// raised knot no longer halved them (a link too long for one degree-8 piece through its
+    /// warp, the enclosures' rounding), or they could not be cut further. Refinement stopped
+    /// there rather than add control points that buy nothing; the other spans aimed at their
+    /// level.
+    FitStalled {
+        /// Fine spans whose bounds stayed above the request.
+        spans: usize,
+        /// The largest bound among them.
+        level: f64,
+    },
+    /// The rounds of refinement ran out while the bounds were still falling.
+    Rounds {
+        /// The rounds used.
+        rounds: usize,
+    },
+}
+
+impl std::fmt::Display for Shortfall {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Shortfall::Certificate { floor } => {
+                write!(f, "the certificates alone are {floor:.2e}")
+            }
+            Shortfall::FitStalled { spans, level } => write!(
+                f,
+                "refinement stopped lowering {spans} span(s) at {level:.2e}"
+            ),
+            Shortfall::Rounds { rounds } => write!(f, "{rounds} rounds of refinement ran out"),
+        }
+    }
+}
+
 /// An edge: the 3D curve, the p-curves and the proven tolerance.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Edge {
@@ -210,6 +260,10 @@ pub struct Edge {
     pub edge_tolerance: f64,
     /// The bounds it is made of.
     pub bounds: EdgeBounds,
+    /// The tolerance asked for (`None`: aim a little above the certificates').
+    pub requested: Option<f64>,
+    /// Why `edge_tolerance` is above `requested` (`None` when it is not, or none was asked).
+    pub shortfall: Option<Shortfall>,
     /// The branches, in order along the edge.
     pub branches: Vec<usize>,
     /// Chain links used.

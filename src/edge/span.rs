@@ -99,11 +99,14 @@ pub(crate) struct SpanBounds {
     pub(crate) off_reported: f64,
 }
 
-/// `|∂S/∂a·e + ∂S/∂b·e|` for `e ∈ [−r, r]`, the derivatives over `(a, b) ∈ bx`.
-fn image_of(s: &RationalBezierPatch, bx: [Interval; 2], r: f64) -> f64 {
-    let e = inari::interval!(-r, r).unwrap_or(Interval::ENTIRE);
+/// `|∂S/∂a·e_a + ∂S/∂b·e_b|` for `e_a ∈ [−r_a, r_a]`, `e_b ∈ [−r_b, r_b]`, the derivatives
+/// over `(a, b) ∈ bx`. Each parameter keeps its own radius: on a patch whose two parameters
+/// are scaled unlike each other (a domain of sides 50 and 0.03), a max-norm radius taken
+/// in both directions multiplies the long side's error by the short side's derivative.
+fn image_of(s: &RationalBezierPatch, bx: [Interval; 2], r: [f64; 2]) -> f64 {
+    let [ea, eb] = r.map(symmetric);
     let [_, da, db] = s.first_derivs(bx[0], bx[1]);
-    let v: Vec<Interval> = (0..3).map(|k| da[k] * e + db[k] * e).collect();
+    let v: Vec<Interval> = (0..3).map(|k| da[k] * ea + db[k] * eb).collect();
     norm_sup(&v)
 }
 
@@ -175,28 +178,36 @@ pub(crate) fn bounds(
     radius_param: f64,
     radius_xyz: f64,
 ) -> SpanBounds {
-    let (mut delta_p, mut delta_q, mut model) = (0.0f64, 0.0f64, 0.0f64);
+    // Per parameter (σ, t, u, v): the fit's distance from the reported curve.
+    let mut delta = [0.0f64; 4];
+    let mut model = 0.0f64;
     for k in 0..SUBS {
         let c = sub(k).mid();
         let g = fixed.params[k].gap(Some(c4), c);
-        delta_p = delta_p.max(g[0]).max(g[1]);
-        delta_q = delta_q.max(g[2]).max(g[3]);
+        for d in 0..4 {
+            delta[d] = delta[d].max(g[d]);
+        }
         let m = fixed.model[k].gap(Some(c3), c);
         model = model.max(norm_sup(&m.map(symmetric)));
     }
     let bx = fixed.bx;
-    let widen = |x: Interval, w: f64| x + symmetric(w);
-    let dp = image_of(p, [widen(bx[0], delta_p), widen(bx[1], delta_p)], delta_p);
-    let rq = add_up(radius_param, delta_q);
-    // Q(pcurve_Q) − true = Q(pcurve_Q) − Q(z_Q) + Q(z_Q) − P(z_P) + P(z_P) − true: the
-    // fit, the residual, and radius_xyz; or directly through DQ and radius_param.
-    let dq = image_of(q, [widen(bx[2], delta_q), widen(bx[3], delta_q)], delta_q);
+    let widen = |d: usize, w: [f64; 4]| bx[d] + symmetric(w[d]);
+    let on = |s: &RationalBezierPatch, i: usize, w: [f64; 4]| {
+        image_of(s, [widen(i, w), widen(i + 1, w)], [w[i], w[i + 1]])
+    };
+    let dp = on(p, 0, delta);
+    let with_tube = delta.map(|d| add_up(radius_param, d));
+    // Q(pcurve_Q) − true = Q(pcurve_Q) − Q(z_Q) + Q(z_Q) − true: the fit through DQ, and
+    // radius_xyz (a cover-chain link's radius bounds the reported curve's image on Q too, not
+    // only on P); or directly through DQ and radius_param.
+    let dq = on(q, 2, delta);
+    let image_q = on(q, 2, with_tube).min(add_up(dq, radius_xyz));
+    // Q(pcurve_Q) against the reported image on P: the fit and the reported residual.
     let q_off = add_up(dq, fixed.residual);
-    let image_q =
-        image_of(q, [widen(bx[2], rq), widen(bx[3], rq)], rq).min(add_up(q_off, radius_xyz));
+    let (delta_p, delta_q) = (delta[0].max(delta[1]), delta[2].max(delta[3]));
     SpanBounds {
         delta_p: add_up(radius_param, delta_p),
-        delta_q: rq,
+        delta_q: add_up(radius_param, delta_q),
         model,
         curve: add_up(model, radius_xyz),
         image_p: add_up(radius_xyz, dp),

@@ -5,7 +5,7 @@
 use serde_json::{json, Value};
 use std::path::Path;
 
-use crate::edge::{BSpline, Edge, EdgeError};
+use crate::edge::{BSpline, Edge, EdgeError, Shortfall};
 use crate::{Error, Result};
 
 /// The value of the `"format"` member.
@@ -39,10 +39,23 @@ pub fn edge_to_json(e: &Edge) -> Value {
             v
         })
         .collect();
+    let shortfall = e.shortfall.map(|s| {
+        let mut v = match s {
+            Shortfall::Certificate { floor } => json!({ "reason": "certificate", "floor": floor }),
+            Shortfall::FitStalled { spans, level } => {
+                json!({ "reason": "fit_stalled", "spans": spans, "level": level })
+            }
+            Shortfall::Rounds { rounds } => json!({ "reason": "rounds", "rounds": rounds }),
+        };
+        v["message"] = json!(s.to_string());
+        v
+    });
     json!({
         "branches": e.branches,
         "closed": e.closed,
         "edge_tolerance": e.edge_tolerance,
+        "requested_tolerance": e.requested,
+        "shortfall": shortfall,
         "links": e.links,
         "curve": spline_json(&e.curve),
         "pcurves": pcurves,
