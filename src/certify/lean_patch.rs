@@ -21,13 +21,22 @@ use crate::numeric::imul::mul as imul;
 use crate::numeric::scalar::point;
 use crate::Scalar;
 use inari::Interval;
+use std::cell::RefCell;
+use std::rc::Rc;
 
 /// A patch with its forward differences prepared when it is polynomial.
 #[derive(Debug, Clone)]
 pub(crate) struct LeanPatch<'a> {
     patch: &'a RationalBezierPatch,
     power: Option<PowerNet>,
+    /// The last centred form, reused for centres near its own ([`REUSE`]).
+    last: RefCell<Option<Rc<Taylor>>>,
 }
+
+/// A centred form is reused for a new centre within this part of the domain's width from its
+/// own in both parameters: the form is the patch's exactly wherever it is evaluated, only a
+/// little less tight away from its centre, and forming it costs a tenth of a link proof.
+const REUSE: f64 = 0.01;
 
 impl<'a> LeanPatch<'a> {
     /// The patch, with the lean form if all its weights are equal and exact.
@@ -35,12 +44,8 @@ impl<'a> LeanPatch<'a> {
         LeanPatch {
             patch,
             power: PowerNet::of(patch),
+            last: RefCell::new(None),
         }
-    }
-
-    /// The patch itself.
-    pub(crate) fn patch(&self) -> &'a RationalBezierPatch {
-        self.patch
     }
 
     /// The patch written around `(cu, cv)` (any finite point; the lean form is tightest near
@@ -50,7 +55,22 @@ impl<'a> LeanPatch<'a> {
             .power
             .as_ref()
             .filter(|_| cu.is_finite() && cv.is_finite())
-            .map(|net| Taylor::at(self.patch, net, cu, cv));
+            .map(|net| {
+                let d = self.patch.domain();
+                let near = |t: &Taylor| {
+                    (t.centre[0] - cu).abs() <= REUSE * (d.u[1] - d.u[0])
+                        && (t.centre[1] - cv).abs() <= REUSE * (d.v[1] - d.v[0])
+                };
+                let mut last = self.last.borrow_mut();
+                match last.as_ref().filter(|t| near(t)) {
+                    Some(t) => Rc::clone(t),
+                    None => {
+                        let t = Rc::new(Taylor::at(self.patch, net, cu, cv));
+                        *last = Some(Rc::clone(&t));
+                        t
+                    }
+                }
+            });
         Centred {
             patch: self.patch,
             taylor,
@@ -62,7 +82,7 @@ impl<'a> LeanPatch<'a> {
 #[derive(Debug, Clone)]
 pub(crate) struct Centred<'a> {
     patch: &'a RationalBezierPatch,
-    taylor: Option<Taylor>,
+    taylor: Option<Rc<Taylor>>,
 }
 
 /// The Taylor coefficients of a polynomial patch at a centre, in the normalised offsets.
@@ -209,7 +229,66 @@ impl Taylor {
     }
 }
 
+impl Taylor {
+    /// The second partials `[S_uu, S_uv, S_vv]` of coordinate `x` (normalised offsets times
+    /// `1/Δu²`, `1/(Δu·Δv)`, `1/Δv²`).
+    fn second<S: Scalar>(&self, x: usize, ds: S, dr: S) -> [S; 3] {
+        let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
+        let (iu, iv) = (S::from_interval(self.inv[0]), S::from_interval(self.inv[1]));
+        let c = |k: usize, l: usize, f: f64| t[k * (n + 1) + l] * point(f);
+        let uu = if m < 2 {
+            S::zero()
+        } else {
+            let d = Self::horner(
+                m - 2,
+                n,
+                |k, l| c(k + 2, l, ((k + 2) * (k + 1)) as f64),
+                ds,
+                dr,
+            );
+            d * iu * iu
+        };
+        let uv = if m < 1 || n < 1 {
+            S::zero()
+        } else {
+            let d = Self::horner(
+                m - 1,
+                n - 1,
+                |k, l| c(k + 1, l + 1, ((k + 1) * (l + 1)) as f64),
+                ds,
+                dr,
+            );
+            d * iu * iv
+        };
+        let vv = if n < 2 {
+            S::zero()
+        } else {
+            let d = Self::horner(
+                m,
+                n - 2,
+                |k, l| c(k, l + 2, ((l + 2) * (l + 1)) as f64),
+                ds,
+                dr,
+            );
+            d * iv * iv
+        };
+        [uu, uv, vv]
+    }
+}
+
 impl Centred<'_> {
+    /// The second partials `[S_uu, S_uv, S_vv]` at `(u, v)` (as the fields of
+    /// [`RationalBezierPatch::eval_derivs`]).
+    pub(crate) fn second_partials<S: Scalar>(&self, u: S, v: S) -> [[S; 3]; 3] {
+        let Some(t) = &self.taylor else {
+            let d = self.patch.eval_derivs(u, v);
+            return [d.suu, d.suv, d.svv];
+        };
+        let (ds, dr) = t.offsets(u, v);
+        let per: [[S; 3]; 3] = std::array::from_fn(|x| t.second(x, ds, dr));
+        std::array::from_fn(|d| std::array::from_fn(|x| per[x][d]))
+    }
+
     /// The point at `(u, v)` (as [`RationalBezierPatch::eval`]).
     pub(crate) fn eval<S: Scalar>(&self, u: S, v: S) -> [S; 3] {
         let Some(t) = &self.taylor else {
@@ -219,15 +298,15 @@ impl Centred<'_> {
         std::array::from_fn(|x| t.value(x, ds, dr))
     }
 
-    /// The point and its first partials `[S, S_u, S_v]` at `(u, v)` (as
-    /// [`RationalBezierPatch::first_derivs`]).
-    pub(crate) fn first_derivs<S: Scalar>(&self, u: S, v: S) -> [[S; 3]; 3] {
+    /// The first partials `[S_u, S_v]` at `(u, v)` (as the last two of
+    /// [`RationalBezierPatch::first_derivs`]; the point is not formed).
+    pub(crate) fn partials<S: Scalar>(&self, u: S, v: S) -> [[S; 3]; 2] {
         let Some(t) = &self.taylor else {
-            return self.patch.first_derivs(u, v);
+            let [_, su, sv] = self.patch.first_derivs(u, v);
+            return [su, sv];
         };
         let (ds, dr) = t.offsets(u, v);
         [
-            std::array::from_fn(|x| t.value(x, ds, dr)),
             std::array::from_fn(|x| t.along_u(x, ds, dr)),
             std::array::from_fn(|x| t.along_v(x, ds, dr)),
         ]
@@ -272,7 +351,8 @@ mod tests {
             let (u, v) = (-0.9 + 0.09 * k as f64, -0.4 + 0.12 * k as f64);
             let c = lean.centred(u + 0.01, v - 0.02);
             let want = p.first_derivs(u, v);
-            let got = c.first_derivs(point(u), point(v));
+            let [gu, gv] = c.partials(point(u), point(v));
+            let got = [c.eval(point(u), point(v)), gu, gv];
             for (a, b) in want.iter().zip(&got) {
                 for x in 0..3 {
                     assert!(
@@ -297,6 +377,30 @@ mod tests {
                     }
                 }
             }
+            let want2 = p.eval_derivs(u, v);
+            let got2 = c.second_partials(point(u), point(v));
+            for (a, b) in [want2.suu, want2.suv, want2.svv].iter().zip(&got2) {
+                for x in 0..3 {
+                    assert!(
+                        b[x].inf() - 1e-9 <= a[x] && a[x] <= b[x].sup() + 1e-9,
+                        "{a:?} vs {b:?}"
+                    );
+                    assert!(b[x].wid() < 1e-9, "{b:?}");
+                }
+            }
+            let box2 = c.second_partials(bu, bv);
+            for a in 0..=4 {
+                for b in 0..=4 {
+                    let d = p.eval_derivs(u + 0.005 * a as f64, v + 0.0075 * b as f64);
+                    for (k, y) in [d.suu, d.suv, d.svv].iter().enumerate() {
+                        for x in 0..3 {
+                            assert!(
+                                box2[k][x].inf() - 1e-9 <= y[x] && y[x] <= box2[k][x].sup() + 1e-9
+                            );
+                        }
+                    }
+                }
+            }
             // Both Horner orders: the affine series inside or outside.
             type S = SeriesN<6>;
             let (long_u, long_v) = (
@@ -310,7 +414,8 @@ mod tests {
             for (su, sv) in [(long_u, short_v), (short_u, long_v)] {
                 let lean_series = c.eval(su, sv);
                 let patch_series = p.eval(su, sv);
-                let lean_d = c.first_derivs(su, sv);
+                let [lu, lv] = c.partials(su, sv);
+                let lean_d = [lean_series, lu, lv];
                 let patch_d = p.first_derivs(su, sv);
                 for x in 0..3 {
                     for i in 0..6 {

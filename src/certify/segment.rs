@@ -264,8 +264,8 @@ fn jacobian(
     y: &[Short; 4],
     free: &[usize; 3],
 ) -> [[Short; 3]; 3] {
-    let [_, a_s, a_t] = p.first_derivs(y[0], y[1]);
-    let [_, b_u, b_v] = q.first_derivs(y[2], y[3]);
+    let [a_s, a_t] = p.partials(y[0], y[1]);
+    let [b_u, b_v] = q.partials(y[2], y[3]);
     let neg = |v: [Short; 3]| v.map(|x| -x);
     let cols = [a_s, a_t, neg(b_u), neg(b_v)];
     free.map(|k| cols[k])
@@ -302,23 +302,18 @@ type Hessian = [[[Interval; 3]; 3]; 3];
 
 /// The second derivatives of `P − Q` in the coordinates `free`, enclosed over `b`.
 #[inline(never)]
-fn hessian_over(
-    p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
-    b: &[Interval; 4],
-    free: &[usize; 3],
-) -> Hessian {
-    let dp = p.eval_derivs(b[0], b[1]);
-    let dq = q.eval_derivs(b[2], b[3]);
+fn hessian_over(p: &Centred<'_>, q: &Centred<'_>, b: &[Interval; 4], free: &[usize; 3]) -> Hessian {
+    let [puu, puv, pvv] = p.second_partials(b[0], b[1]);
+    let [quu, quv, qvv] = q.second_partials(b[2], b[3]);
     let zero = [point(0.0); 3];
     let second = |i: usize, k: usize| -> [Interval; 3] {
         match (i, k) {
-            (0, 0) => dp.suu,
-            (0, 1) | (1, 0) => dp.suv,
-            (1, 1) => dp.svv,
-            (2, 2) => dq.suu.map(|x| -x),
-            (2, 3) | (3, 2) => dq.suv.map(|x| -x),
-            (3, 3) => dq.svv.map(|x| -x),
+            (0, 0) => puu,
+            (0, 1) | (1, 0) => puv,
+            (1, 1) => pvv,
+            (2, 2) => quu.map(|x| -x),
+            (2, 3) | (3, 2) => quv.map(|x| -x),
+            (3, 3) => qvv.map(|x| -x),
             _ => zero,
         }
     };
@@ -577,7 +572,6 @@ pub(crate) fn prove_segment(
     x_range: [f64; 2],
     need: [f64; 3],
 ) -> Result<SegmentProof, SegmentFailure> {
-    let (p, q) = (lean[0].patch(), lean[1].patch());
     let j = pred.along;
     let free = others(j);
     let xi = hull(x_range[0], x_range[1]) - point(pred.x0);
@@ -635,7 +629,7 @@ pub(crate) fn prove_segment(
     // K = −C·g + (A − C·ΔJ(x))·x for the offsets x (ΔJ: the Jacobian's change off the
     // predictor, over the segment from 0 to x, inside Y and so inside B).
     // The second derivatives over the tube, once for every use below.
-    let h = hessian_over(p, q, &b, &free);
+    let h = hessian_over(&lp, &lq, &b, &free);
     let image = |x: &[Interval; 3]| krawczyk_image(&h, x, &a_over, &c_over, &cg);
     let k = image(&y).ok_or(SegmentFailure::Singular)?;
     let inside = (0..3).all(|r| k[r].interior(y[r]));

@@ -227,7 +227,10 @@ impl<'a> Walker<'a> {
             cover_from,
             radius_param,
             radius_xyz,
-            end_slice: tight_slice(self.p, self.q, &proof, to),
+            // The proof's own enclosure there; narrowed by Krawczyk (`tight_slice`, a seventh
+            // of a link's cost) only once the link is kept, in `push`. Near-tangent pairs need
+            // it: a wide slice widens the next link's uniqueness box and with it the tube.
+            end_slice: proof.box_over(to, to),
         })
     }
 
@@ -366,10 +369,11 @@ impl<'a> Walker<'a> {
     }
 
     /// Adds a proven link; on a loop, whether it closes the loop (then the walk stops).
-    fn push(&mut self, link: Link) -> bool {
+    fn push(&mut self, mut link: Link) -> bool {
         if let Some(c) = self.shared {
             c.fetch_add(1, Ordering::Relaxed);
         }
+        link.end_slice = tight_slice(self.p, self.q, &link.proof, link.to);
         self.join = Some(link.end_slice());
         self.links.push(link);
         if self.links.len() == 1 {
