@@ -5,8 +5,8 @@
 //! - A request below the certificate's own tolerance (sphere patch / plane, closed-form
 //!   circle): [`Shortfall::Certificate`]; the curves aim a quarter above the certificate's
 //!   floor, and the curve is still within its proven tolerance of the circle.
-//! - A request the certificate meets but one degree-8 piece per link cannot (the bicubic
-//!   pair's 21 long links, asked for twice their 8e-15): [`Shortfall::FitStalled`], the stated
+//! - A request the certificate meets but one degree-8 piece per fine span cannot (the bicubic
+//!   pair's long links, asked for twice their 8e-15): [`Shortfall::FitStalled`], the stated
 //!   level being the proven tolerance.
 //! - The run's own request (1e-9): no shortfall.
 
@@ -96,13 +96,15 @@ fn a_fit_that_cannot_reach_the_request_stops_and_says_so() {
     let Some(Shortfall::FitStalled { spans, level }) = e.shortfall else {
         panic!("{:?}", e.shortfall)
     };
-    assert!(spans >= 1 && spans <= e.links);
+    // Fine spans: two per link (`FINE_PER_LINK` in src/edge/build.rs).
+    assert!(spans >= 1 && spans <= 2 * e.links);
     // The level stated is what the worst span proves: the edge's tolerance (the other bounds
     // are the certificate's, far lower).
     assert!(level > requested && level <= e.edge_tolerance);
     assert!(level >= 0.5 * e.edge_tolerance, "{level:e}");
-    // At most one degree-8 piece per link (plus its end points): refinement did not run on.
-    assert!(e.curve.points.len() <= 8 * e.links + 1);
+    // At most one degree-8 piece per fine span (plus its end points): refinement did not run
+    // on.
+    assert!(e.curve.points.len() <= 16 * e.links + 1);
     let v = edge_to_json(&e);
     assert_eq!(v["shortfall"]["reason"], "fit_stalled");
     assert_eq!(v["shortfall"]["spans"].as_u64(), Some(spans as u64));

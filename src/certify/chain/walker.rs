@@ -343,7 +343,7 @@ impl<'a> Walker<'a> {
             }
         };
         let f = match attempt {
-            Attempt::Proven(l) => aim(l.radius_xyz).clamp(0.7, 2.0),
+            Attempt::Proven(l) => aim(l.radius_xyz).clamp(0.7, 3.0),
             Attempt::TooWide(l) => aim(l.radius_xyz).clamp(0.25, 0.9),
             Attempt::Failed => 0.5,
         };
