@@ -75,6 +75,33 @@
 //! approach to the tangential points, where the marched points halve their distance to the
 //! point and the tube is held up by the conditioning, not the length.
 //!
+//! **Stop 19** (same bench, session-start build against the final one, run alternately twice,
+//! the range of both runs; a soak ran at the lowest priority beside them):
+//!
+//! | scene | links before → after | ratio before | ratio after |
+//! |---|---|---|---|
+//! | sphere_patch_plane | 108 → 108 | 4.5–10.4 | 5.1–5.6 |
+//! | bicubic_transversal | 21 → 11 | 5.4–6.2 | 2.6–2.8 |
+//! | two_loops_s31_s32 | 265 → 249 | 4.4–6.2 | 2.8–2.9 |
+//! | Fig. 7, smallest loop | 119 → 119 | 25.7–26.7 | 16.5–16.7 |
+//! | small_loop | 42 → 40 | 3.4–3.6 | 1.9–2.2 |
+//! | Fig. 7, three loops | 364 → 364 | 20.4–21.4 | 17.4–17.7 |
+//! | cylinders | 156 → 84 | 18.3–19.2 | 7.9–12.1 |
+//! | cylinders_full | 251 → 185 | 44.7–45.4 | 20.8–31.3 |
+//! | viviani | 168 → 80 | 27.3–29.4 | 12.4–13.0 |
+//!
+//! What changed: towards a singular point a link spans two marched intervals (a link from
+//! distance `r` reaches `r/4`, not `r/8`) and the half ends once a short link is held up by the
+//! conditioning (wider than the aim although the longer link before it was narrower, a
+//! singular box within four lengths) instead of creeping on with links as wide; a link may be
+//! three times as long as the last proven one (was two); the Jacobian series forms the
+//! partials alone and the Hessian comes from the centred power form; the end slice is narrowed
+//! by Krawczyk only for kept links. A septic Hermite predictor (third derivatives at the nodes,
+//! Taylor form of order 8) was measured and not landed: Fig. 7 364 → 254 links and ratio about
+//! 12, cylinders_full 136 links, but with it one shell edge (sphere against the cube, two fine
+//! spans per link) had a true point 7.7e-5 from the curve by the test's search, not yet
+//! explained.
+//!
 //! The group `halves` times the open bicubic branch with its two halves one after the other and
 //! on two threads (`CertifyOptions::parallel_halves`).
 //!
