@@ -7,7 +7,7 @@
 mod common;
 
 use common::scenes::{scene, scene_path};
-use common::spline::{dist3, dist_to_spline, samples};
+use common::spline::{dist3, dist_to_spline, samples, yz_angle_range};
 use ssitrace::edge::{edge_from_branch, edge_from_certified, edges_of_shells, Edge, EdgeError};
 use ssitrace::io::edge_json::{edges_document, EDGE_FORMAT};
 use ssitrace::io::scene::{Scene, ShellScene};
@@ -96,13 +96,7 @@ fn the_sphere_plane_circle_is_within_the_edge_tolerance_both_ways() {
     eprintln!("sphere_patch_plane: largest sampled distance spline → circle {worst:.3e}");
     assert!(worst <= tol + SLACK, "{worst:e} > {tol:e}");
     // Circle to spline: the arc the spline spans (all of it when closed).
-    let angle = |x: &[f64; 3]| x[2].atan2(x[1]);
-    let (a0, a1) = if e.closed {
-        (0.0, 2.0 * std::f64::consts::PI)
-    } else {
-        let (a, b) = (angle(&pts[0]), angle(pts.last().unwrap()));
-        (a.min(b), a.max(b))
-    };
+    let (a0, a1) = yz_angle_range(&pts, e.closed);
     let r0 = (141.0f64 / 256.0).sqrt();
     let mut back = 0.0f64;
     for m in 0..=2000 {

@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::spline::{dist_to_spline, samples};
+use common::spline::{dist_to_spline, samples, yz_angle_range};
 use ssitrace::edge::{edge_from_branch_within, Edge};
 use ssitrace::geometry::Domain;
 use ssitrace::{intersect, Method, Options, RationalBezierPatch};
@@ -93,13 +93,7 @@ fn check(what: &str, e: &Edge, surf: [&RationalBezierPatch; 2]) {
         assert!(off_circle(x) <= e.edge_tolerance + SLACK, "{what}: {x:?}");
     }
     // The circle to the curve, over the arc the curve spans.
-    let angle = |x: &[f64; 3]| x[2].atan2(x[1]);
-    let (a0, a1) = if e.closed {
-        (0.0, 2.0 * std::f64::consts::PI)
-    } else {
-        let (a, b) = (angle(&pts[0]), angle(pts.last().unwrap()));
-        (a.min(b), a.max(b))
-    };
+    let (a0, a1) = yz_angle_range(&pts, e.closed);
     let r0 = (141.0f64 / 256.0).sqrt();
     for m in 0..=1000 {
         let a = a0 + (a1 - a0) * m as f64 / 1000.0;

@@ -60,3 +60,17 @@ pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[
     }
     found
 }
+
+/// The range of the angle `atan2(z, y)` that the sampled points `pts` of an edge on a circle
+/// round the `x` axis span (the whole turn when the edge is `closed`): where the circle must
+/// lie within the edge's tolerance of the curve.
+pub(crate) fn yz_angle_range(pts: &[[f64; 3]], closed: bool) -> (f64, f64) {
+    let angle = |x: &[f64; 3]| x[2].atan2(x[1]);
+    match (closed, pts.first(), pts.last()) {
+        (false, Some(a), Some(b)) => {
+            let (a, b) = (angle(a), angle(b));
+            (a.min(b), a.max(b))
+        }
+        _ => (0.0, 2.0 * std::f64::consts::PI),
+    }
+}
