@@ -23,7 +23,8 @@ pub(crate) fn samples<const D: usize>(b: &BSpline<D>, per_span: usize) -> Vec<f6
 /// The distance from `x` to the spline: the nearest local minima of the distance over the dense
 /// samples `pts` (at the parameters `ss`), each refined by golden-section search between its
 /// neighbours and between those and the next ones (a knot span of almost no length gives
-/// neighbours with almost no room between them).
+/// neighbours with almost no room between them); where that leaves more than 1e-8, a fine scan
+/// of the samples round those minima.
 pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
     // The four nearest local minima of the sampled distance (on a closed curve the first and
     // last samples are one point, and near the seam or a C0 join the nearest sample can lie on
@@ -56,6 +57,29 @@ pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[
                 }
             }
             found = found.min(f(0.5 * (lo + hi)));
+        }
+    }
+    if found > 1e-8 {
+        // Still far: golden-section search can stop at the kink of a C0 join (seen at a cube
+        // edge, 7.7e-5 where the curve passes within 6e-11). Scan the two sample intervals on
+        // each side of the nearest minima finely and refine the best scanned point.
+        for &(k, _) in order.iter().take(4) {
+            let (lo, hi) = (at(k.saturating_sub(2)), at(k + 2));
+            let n = 4000;
+            let t = |i: usize| lo + (hi - lo) * i as f64 / n as f64;
+            let best = (0..=n).min_by(|&a, &c| f(t(a)).total_cmp(&f(t(c))));
+            if let Some(i) = best {
+                let (mut a0, mut c0) = (t(i.saturating_sub(1)), t((i + 1).min(n)));
+                for _ in 0..100 {
+                    let (a, c) = (c0 - g * (c0 - a0), a0 + g * (c0 - a0));
+                    if f(a) < f(c) {
+                        c0 = c;
+                    } else {
+                        a0 = a;
+                    }
+                }
+                found = found.min(f(t(i))).min(f(0.5 * (a0 + c0)));
+            }
         }
     }
     found
