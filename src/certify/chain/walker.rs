@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::certify::lean_patch::LeanPatch;
+use crate::pair::branch_point::locate_singular_point_within;
 
 /// A guide point on the curve and its parameter velocity, oriented along the walk.
 #[derive(Debug, Clone, Copy)]
@@ -368,6 +369,17 @@ impl<'a> Walker<'a> {
                 .is_some_and(|(l, w)| l >= len && w <= 0.75 * width)
     }
 
+    /// Whether Gauss–Newton finds a point of `P = Q` with parallel normals (sine below 1e-6)
+    /// within the scaled distance `reach` of `x`: a singular point the walk is approaching, not
+    /// merely nearly tangent surfaces (on a torus 1e-6 from tangency the conditioning also
+    /// holds links up, but the curve goes on to the boundary). Guidance only: the end reported
+    /// is the proven singular box.
+    fn singular_point_near(&self, x: &[f64; 4], reach: f64) -> bool {
+        let scale = self.scales.iter().copied().fold(0.0, f64::max);
+        let tol = self.opts.required_tolerance.max(1e-12);
+        locate_singular_point_within(self.p, self.q, *x, tol, 1e-6, reach * scale, 50).is_some()
+    }
+
     /// Adds a proven link; on a loop, whether it closes the loop (then the walk stops).
     fn push(&mut self, mut link: Link) -> bool {
         if let Some(c) = self.shared {
@@ -459,7 +471,7 @@ impl<'a> Walker<'a> {
                 if let Some(end) = self.stopped_outside(&stack[0].0, stack.len() > 1) {
                     return Stop::Failed(end);
                 }
-                if limited && len < FLOOR_LINK {
+                if limited && len < FLOOR_LINK && self.singular_point_near(&tgt.x, 4.0 * len) {
                     if let Some(near) = self.singular_box(&cur.x, &tgt.x, 4.0 * len) {
                         return Stop::Failed(CertifiedEnd::Singular { near });
                     }
@@ -678,7 +690,10 @@ impl<'a> Walker<'a> {
                     if let Some(end) = self.stopped_outside(&nodes[i + k], false) {
                         return Err(end);
                     }
-                    if limited && len < FLOOR_LINK {
+                    if limited
+                        && len < FLOOR_LINK
+                        && self.singular_point_near(&nodes[i + k].x, 4.0 * len)
+                    {
                         if let Some(near) =
                             self.singular_box(&nodes[i].x, &nodes[i + k].x, 4.0 * len)
                         {
