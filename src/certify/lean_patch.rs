@@ -191,88 +191,33 @@ impl Taylor {
         outer.unwrap_or_else(S::zero)
     }
 
-    fn value<S: Scalar>(&self, x: usize, ds: S, dr: S) -> S {
+    /// The partial derivative `∂^(a+b) / ∂uᵃ ∂vᵇ` of coordinate `x` (the point for `(0, 0)`):
+    /// Horner's rule on the coefficients `T_{k+a, l+b}` times the falling factorials
+    /// `(k+a)!/k!·(l+b)!/l!` (small integers, exact), then `a` factors `1/Δu` and `b` factors
+    /// `1/Δv`.
+    fn derivative<S: Scalar>(&self, x: usize, a: usize, b: usize, ds: S, dr: S) -> S {
         let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
-        Self::horner(m, n, |k, l| t[k * (n + 1) + l], ds, dr)
-    }
-
-    /// `∂/∂u`, in the normalised offsets times `1/Δu`.
-    fn along_u<S: Scalar>(&self, x: usize, ds: S, dr: S) -> S {
-        let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
-        if m == 0 {
+        if a > m || b > n {
             return S::zero();
         }
-        let d = Self::horner(
-            m - 1,
-            n,
-            |k, l| t[(k + 1) * (n + 1) + l] * point((k + 1) as f64),
-            ds,
-            dr,
-        );
-        d * S::from_interval(self.inv[0])
-    }
-
-    /// `∂/∂v`, in the normalised offsets times `1/Δv`.
-    fn along_v<S: Scalar>(&self, x: usize, ds: S, dr: S) -> S {
-        let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
-        if n == 0 {
-            return S::zero();
+        let falling = |top: usize, k: usize| ((top - k + 1)..=top).product::<usize>() as f64;
+        let coeff = |k: usize, l: usize| {
+            let c = t[(k + a) * (n + 1) + l + b];
+            let f = falling(k + a, a) * falling(l + b, b);
+            if f == 1.0 {
+                c
+            } else {
+                c * point(f)
+            }
+        };
+        let mut d = Self::horner(m - a, n - b, coeff, ds, dr);
+        for _ in 0..a {
+            d = d * S::from_interval(self.inv[0]);
         }
-        let d = Self::horner(
-            m,
-            n - 1,
-            |k, l| t[k * (n + 1) + l + 1] * point((l + 1) as f64),
-            ds,
-            dr,
-        );
-        d * S::from_interval(self.inv[1])
-    }
-}
-
-impl Taylor {
-    /// The second partials `[S_uu, S_uv, S_vv]` of coordinate `x` (normalised offsets times
-    /// `1/Δu²`, `1/(Δu·Δv)`, `1/Δv²`).
-    fn second<S: Scalar>(&self, x: usize, ds: S, dr: S) -> [S; 3] {
-        let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
-        let (iu, iv) = (S::from_interval(self.inv[0]), S::from_interval(self.inv[1]));
-        let c = |k: usize, l: usize, f: f64| t[k * (n + 1) + l] * point(f);
-        let uu = if m < 2 {
-            S::zero()
-        } else {
-            let d = Self::horner(
-                m - 2,
-                n,
-                |k, l| c(k + 2, l, ((k + 2) * (k + 1)) as f64),
-                ds,
-                dr,
-            );
-            d * iu * iu
-        };
-        let uv = if m < 1 || n < 1 {
-            S::zero()
-        } else {
-            let d = Self::horner(
-                m - 1,
-                n - 1,
-                |k, l| c(k + 1, l + 1, ((k + 1) * (l + 1)) as f64),
-                ds,
-                dr,
-            );
-            d * iu * iv
-        };
-        let vv = if n < 2 {
-            S::zero()
-        } else {
-            let d = Self::horner(
-                m,
-                n - 2,
-                |k, l| c(k, l + 2, ((l + 2) * (l + 1)) as f64),
-                ds,
-                dr,
-            );
-            d * iv * iv
-        };
-        [uu, uv, vv]
+        for _ in 0..b {
+            d = d * S::from_interval(self.inv[1]);
+        }
+        d
     }
 }
 
@@ -285,7 +230,9 @@ impl Centred<'_> {
             return [d.suu, d.suv, d.svv];
         };
         let (ds, dr) = t.offsets(u, v);
-        let per: [[S; 3]; 3] = std::array::from_fn(|x| t.second(x, ds, dr));
+        let per: [[S; 3]; 3] = std::array::from_fn(|x| {
+            [(2, 0), (1, 1), (0, 2)].map(|(a, b)| t.derivative(x, a, b, ds, dr))
+        });
         std::array::from_fn(|d| std::array::from_fn(|x| per[x][d]))
     }
 
@@ -295,7 +242,7 @@ impl Centred<'_> {
             return self.patch.eval(u, v);
         };
         let (ds, dr) = t.offsets(u, v);
-        std::array::from_fn(|x| t.value(x, ds, dr))
+        std::array::from_fn(|x| t.derivative(x, 0, 0, ds, dr))
     }
 
     /// The first partials `[S_u, S_v]` at `(u, v)` (as the last two of
@@ -307,8 +254,8 @@ impl Centred<'_> {
         };
         let (ds, dr) = t.offsets(u, v);
         [
-            std::array::from_fn(|x| t.along_u(x, ds, dr)),
-            std::array::from_fn(|x| t.along_v(x, ds, dr)),
+            std::array::from_fn(|x| t.derivative(x, 1, 0, ds, dr)),
+            std::array::from_fn(|x| t.derivative(x, 0, 1, ds, dr)),
         ]
     }
 }

@@ -422,13 +422,14 @@ pub(crate) fn assemble(
             .flat_map(|s| (0..FINE_PER_LINK).map(move |k| (s, k)))
         {
             let t = &pt.cert.tubes[s.tube];
-            let step = (s.tb - s.ta) / FINE_PER_LINK as f64;
-            let ta = s.ta + k as f64 * step;
-            let tb = if k + 1 == FINE_PER_LINK {
-                s.tb
-            } else {
-                ta + step
+            // Piece k runs between the cut points k and k + 1, each computed once, so that
+            // neighbouring pieces share their end exactly (no gap of an ulp between them).
+            let cut = |i: usize| match i {
+                0 => s.ta,
+                i if i == FINE_PER_LINK => s.tb,
+                i => s.ta + (s.tb - s.ta) * i as f64 / FINE_PER_LINK as f64,
             };
+            let (ta, tb) = (cut(k), cut(k + 1));
             let y = poly::reparametrised(&t.coeffs, ta, tb);
             let (warp, len) = arc_length_warp(pt.p, &y);
             ds.push(len);

@@ -38,7 +38,6 @@ pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[
     order.sort_by(|a, b| a.1.total_cmp(&b.1));
     let best = order.first().map_or(f64::INFINITY, |o| o.1);
     let f = |s: f64| dist3(&b.eval(s), x);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
     let at = |i: usize| ss[i.min(ss.len() - 1)];
     let mut found = best;
     for &(k, _) in order.iter().take(4) {
@@ -47,16 +46,8 @@ pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[
             (at(k.saturating_sub(2)), at(k.saturating_sub(1))),
             (at(k + 1), at(k + 2)),
         ];
-        for (mut lo, mut hi) in brackets {
-            for _ in 0..100 {
-                let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
-                if f(a) < f(c) {
-                    hi = c;
-                } else {
-                    lo = a;
-                }
-            }
-            found = found.min(f(0.5 * (lo + hi)));
+        for (lo, hi) in brackets {
+            found = found.min(f(golden(&f, lo, hi)));
         }
     }
     if found > 1e-8 {
@@ -69,20 +60,27 @@ pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[
             let t = |i: usize| lo + (hi - lo) * i as f64 / n as f64;
             let best = (0..=n).min_by(|&a, &c| f(t(a)).total_cmp(&f(t(c))));
             if let Some(i) = best {
-                let (mut a0, mut c0) = (t(i.saturating_sub(1)), t((i + 1).min(n)));
-                for _ in 0..100 {
-                    let (a, c) = (c0 - g * (c0 - a0), a0 + g * (c0 - a0));
-                    if f(a) < f(c) {
-                        c0 = c;
-                    } else {
-                        a0 = a;
-                    }
-                }
-                found = found.min(f(t(i))).min(f(0.5 * (a0 + c0)));
+                let s = golden(&f, t(i.saturating_sub(1)), t((i + 1).min(n)));
+                found = found.min(f(t(i))).min(f(s));
             }
         }
     }
     found
+}
+
+/// The point of `[lo, hi]` where `f` is least, by 100 steps of golden-section search (a local
+/// minimum where `f` is not unimodal there).
+fn golden(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..100 {
+        let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        if f(a) < f(c) {
+            hi = c;
+        } else {
+            lo = a;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 /// The range of the angle `atan2(z, y)` that the sampled points `pts` of an edge on a circle

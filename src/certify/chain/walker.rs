@@ -358,15 +358,32 @@ impl<'a> Walker<'a> {
     /// tolerance) although the link before it was at least as long and less than 3/4 as wide.
     /// Near a singular point the width grows like the inverse of the distance to it whatever
     /// the length, and the walk would only creep on with links as wide (the cylinders: about
-    /// ten more attempts per end, to gain 1e-6); the caller ends the half there when the link
-    /// is shorter than [`FLOOR_LINK`] and a singular box lies within four times its length
-    /// (nearly tangent surfaces are not enough: on Fig. 7 the normals' cross product over boxes
-    /// 1e-4 round ordinary links contains zero).
+    /// ten more attempts per end, to gain 1e-6); the caller ends the half there when a
+    /// singular point is near ([`Self::conditioning_end`]; nearly tangent surfaces are not
+    /// enough: on Fig. 7 the normals' cross product over boxes 1e-4 round ordinary links
+    /// contains zero).
     fn conditioning_limited(&self, len: f64, width: f64) -> bool {
         width > 0.5 * self.opts.required_tolerance
             && self
                 .prev
                 .is_some_and(|(l, w)| l >= len && w <= 0.75 * width)
+    }
+
+    /// The end of a half after a kept link from `a` to `b` of scaled length `len` that was
+    /// [`Self::conditioning_limited`]: singular, when the link is shorter than [`FLOOR_LINK`],
+    /// a singular point is found near `b` and a singular box within four lengths.
+    fn conditioning_end(
+        &self,
+        limited: bool,
+        len: f64,
+        a: &[f64; 4],
+        b: &[f64; 4],
+    ) -> Option<CertifiedEnd> {
+        if !(limited && len < FLOOR_LINK && self.singular_point_near(b, 4.0 * len)) {
+            return None;
+        }
+        let near = self.singular_box(a, b, 4.0 * len)?;
+        Some(CertifiedEnd::Singular { near })
     }
 
     /// Whether Gauss–Newton finds a point of `P = Q` with parallel normals (sine below 1e-6)
@@ -380,8 +397,9 @@ impl<'a> Walker<'a> {
         locate_singular_point_within(self.p, self.q, *x, tol, 1e-6, reach * scale, 50).is_some()
     }
 
-    /// Adds a proven link; on a loop, whether it closes the loop (then the walk stops).
-    fn push(&mut self, mut link: Link) -> bool {
+    /// Adds a proven link of scaled length `len`; on a loop, whether it closes the loop (then the walk stops).
+    fn push(&mut self, mut link: Link, len: f64) -> bool {
+        self.prev = Some((len, link.radius_xyz));
         if let Some(c) = self.shared {
             c.fetch_add(1, Ordering::Relaxed);
         }
@@ -463,18 +481,15 @@ impl<'a> Walker<'a> {
             if let Some(link) = too_wide {
                 stalled = 0;
                 let limited = self.conditioning_limited(len, link.radius_xyz);
-                self.prev = Some((len, link.radius_xyz));
-                if self.push(link) {
+                if self.push(link, len) {
                     return Stop::Done;
                 }
                 // Out of a domain on the way to a marched node: `leave.rs`.
                 if let Some(end) = self.stopped_outside(&stack[0].0, stack.len() > 1) {
                     return Stop::Failed(end);
                 }
-                if limited && len < FLOOR_LINK && self.singular_point_near(&tgt.x, 4.0 * len) {
-                    if let Some(near) = self.singular_box(&cur.x, &tgt.x, 4.0 * len) {
-                        return Stop::Failed(CertifiedEnd::Singular { near });
-                    }
+                if let Some(end) = self.conditioning_end(limited, len, &cur.x, &tgt.x) {
+                    return Stop::Failed(end);
                 }
                 cur = tgt;
                 stack.pop();
@@ -683,22 +698,16 @@ impl<'a> Walker<'a> {
                 self.learn(len, &attempt);
                 if let Attempt::Proven(link) = attempt {
                     let limited = self.conditioning_limited(len, link.radius_xyz);
-                    self.prev = Some((len, link.radius_xyz));
-                    if self.push(link) {
+                    if self.push(link, len) {
                         return Ok(());
                     }
                     if let Some(end) = self.stopped_outside(&nodes[i + k], false) {
                         return Err(end);
                     }
-                    if limited
-                        && len < FLOOR_LINK
-                        && self.singular_point_near(&nodes[i + k].x, 4.0 * len)
+                    if let Some(end) =
+                        self.conditioning_end(limited, len, &nodes[i].x, &nodes[i + k].x)
                     {
-                        if let Some(near) =
-                            self.singular_box(&nodes[i].x, &nodes[i + k].x, 4.0 * len)
-                        {
-                            return Err(CertifiedEnd::Singular { near });
-                        }
+                        return Err(end);
                     }
                     i += k;
                 } else {
