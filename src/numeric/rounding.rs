@@ -127,10 +127,114 @@ pub(crate) fn uniform_pm1(state: &mut u64) -> f64 {
     (xorshift(state) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
 }
 
+/// A pseudo-random bound from [`xorshift`] (test data): zeros, ones, and signed numbers over
+/// `2^±20`, with one in seventeen over `2^±1000`, whose products overflow or fall into the
+/// subnormal range.
+#[cfg(test)]
+pub(crate) fn wide_bound(state: &mut u64) -> f64 {
+    let r = xorshift(state);
+    let mant = (r >> 11) as f64 / (1u64 << 53) as f64;
+    let exp = ((r >> 3) % 40) as i32 - 20;
+    let sign = if r & 1 == 0 { 1.0 } else { -1.0 };
+    match r % 17 {
+        0 => 0.0,
+        1 => 1.0,
+        2 => sign * mant * 2f64.powi(exp * 50),
+        _ => sign * mant * 2f64.powi(exp),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::numeric::scalar::{interval, point};
+
+    /// `x ∘ y` for `∘` in `+ − ×`, computed with the processor's rounding mode set to upward
+    /// for that one instruction (inline assembly, so that the compiler cannot move the
+    /// operation out of the mode): the reference for what every interval bound must be.
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    fn upward(op: char, x: f64, y: f64) -> f64 {
+        let mut v = x;
+        // Round up, all exceptions masked.
+        let mode: u32 = 0x5f80;
+        let mut saved: u32 = 0;
+        // SAFETY: the block saves MXCSR, sets it, does one scalar operation on registers and
+        // restores it; it touches no other memory than the two u32 named.
+        unsafe {
+            macro_rules! with_mode {
+                ($inst:literal) => {
+                    std::arch::asm!(
+                        "vstmxcsr [{saved}]",
+                        "vldmxcsr [{mode}]",
+                        $inst,
+                        "vldmxcsr [{saved}]",
+                        saved = in(reg) &mut saved,
+                        mode = in(reg) &mode,
+                        v = inout(xmm_reg) v,
+                        y = in(xmm_reg) y,
+                        options(nostack),
+                    )
+                };
+            }
+            match op {
+                '+' => with_mode!("vaddsd {v}, {v}, {y}"),
+                '-' => with_mode!("vsubsd {v}, {v}, {y}"),
+                _ => with_mode!("vmulsd {v}, {v}, {y}"),
+            }
+        }
+        v
+    }
+
+    #[test]
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    fn inari_sums_and_products_round_as_the_mode_does() {
+        // inari's sums, differences and products (vendor/inari, patched to round from exact
+        // errors instead of switching the mode on machines without AVX-512) must be the
+        // directed-rounded corner values, bound for bound: the lower bound −▲(−…), the upper
+        // one ▲(…).
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut checked = 0;
+        for k in 0..300_000 {
+            let mut iv = || {
+                let (p, q) = (wide_bound(&mut state), wide_bound(&mut state));
+                (p.min(q), p.max(q))
+            };
+            let ((a, b), (c, d)) = (iv(), iv());
+            // Now and then an unbounded side (sums only: 0·∞ is a special case of products).
+            let (a, d) = match k % 23 {
+                0 => (f64::NEG_INFINITY, d),
+                1 => (a, f64::INFINITY),
+                _ => (a, d),
+            };
+            let (x, y) = (interval(a, b).unwrap(), interval(c, d).unwrap());
+            let lo = |op, u: f64, v: f64| -upward(op, -u, v);
+            let s = x + y;
+            assert_eq!(
+                (s.inf(), s.sup()),
+                (-upward('+', -a, -c), upward('+', b, d))
+            );
+            let s = x - y;
+            assert_eq!(
+                (s.inf(), s.sup()),
+                (-upward('-', -a, -d), upward('-', b, c))
+            );
+            if a.is_finite() && d.is_finite() {
+                let corners = [(a, c), (a, d), (b, c), (b, d)];
+                let hi = corners
+                    .iter()
+                    .map(|&(u, v)| upward('*', u, v))
+                    .fold(f64::MIN, f64::max);
+                let lo = corners
+                    .iter()
+                    .map(|&(u, v)| lo('*', u, v))
+                    .fold(f64::MAX, f64::min);
+                let m = x * y;
+                assert_eq!((m.inf(), m.sup()), (lo, hi), "{a} {b} · {c} {d}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 250_000);
+    }
 
     #[test]
     fn float_directed_helpers_match_inari() {

@@ -1,0 +1,117 @@
+use std::arch::asm;
+
+macro_rules! impl_op_round {
+    ($t:ty, $f:ident ($x:ident $(,$y:ident)*), $inst:literal, rd) => {
+        impl_op_round!($t, $f ($x $(,$y)*), $inst, "16256"); // _MM_ROUND_DOWN | _MM_MASK_MASK
+    };
+
+    ($t:ty, $f:ident ($x:ident $(,$y:ident)*), $inst:literal, ru) => {
+        impl_op_round!($t, $f ($x $(,$y)*), $inst, "24448"); // _MM_ROUND_UP | _MM_MASK_MASK
+    };
+
+    ($t:ty, $f:ident ($x:ident $(,$y:ident)*), $inst:literal, $mxcsr:literal) => {
+        pub(crate) fn $f(mut $x: $t, $($y: $t,)*) -> $t {
+            unsafe {
+                asm!(
+                    "push {rax}", // Same as "sub rsp, 8", but does not modify flags.
+                    "vstmxcsr [rsp]",
+                    concat!("mov dword ptr [rsp + 4], ", $mxcsr),
+                    "vldmxcsr [rsp + 4]",
+                    $inst,
+                    "vldmxcsr [rsp]",
+                    "pop {rax}", // Same as "add rsp, 8", but does not modify flags.
+                    $x = inout(xmm_reg) $x,
+                    $($y = in(xmm_reg) $y,)*
+                    rax = out(reg) _, // Any 64-bit general-purpose register.
+                    options(pure, nomem, preserves_flags)
+                );
+            }
+            $x
+        }
+    };
+}
+
+impl_op_round!(f64, sqrt1_rd(x), "vsqrtsd {x}, {x}, {x}", rd);
+impl_op_round!(f64, sqrt1_ru(x), "vsqrtsd {x}, {x}, {x}", ru);
+impl_op_round!(f64, sub1_ru(x, y), "vsubsd {x}, {x}, {y}", ru);
+impl_op_round!(super::F64X2, add_ru_csr(x, y), "vaddpd {x}, {x}, {y}", ru);
+impl_op_round!(super::F64X2, sub_ru_csr(x, y), "vsubpd {x}, {x}, {y}", ru);
+impl_op_round!(super::F64X2, mul_ru_csr(x, y), "vmulpd {x}, {x}, {y}", ru);
+impl_op_round!(super::F64X2, div_ru(x, y), "vdivpd {x}, {x}, {y}", ru);
+impl_op_round!(
+    super::F64X2,
+    mul_add_ru(x, y, z),
+    "vfmadd213pd {x}, {y}, {z}",
+    ru
+);
+
+// ssitrace's change (see PATCHED.md): `add_ru`, `sub_ru` and `mul_ru` no longer switch the
+// rounding mode. Each lane is computed rounded to nearest together with its exact error (by
+// Knuth's two-sum for `+` and `−`, by a fused multiply-add for `×`), and the result is moved one
+// float up where the error is positive: that is the upward-rounded result, bit for bit. Where
+// the error might not be exact (a non-finite lane; a product below 2⁻⁹⁶⁰ without a zero
+// operand) the original rounding-mode form `*_csr` runs instead.
+
+use std::arch::x86_64::*;
+
+/// `s` rounded upward, given that the exact value is `s + e`: one float up where `e > 0` (then
+/// `s ≠ 0`, and one step of the bit pattern is +1 for `s > 0`, −1 for `s < 0`).
+#[inline(always)]
+unsafe fn up_from(s: __m128d, e: __m128d) -> __m128d {
+    let zero = _mm_setzero_pd();
+    let neg = _mm_castpd_si128(_mm_cmplt_pd(s, zero));
+    let step = _mm_or_si128(neg, _mm_set1_epi64x(1));
+    let above = _mm_castpd_si128(_mm_cmpgt_pd(e, zero));
+    _mm_castsi128_pd(_mm_add_epi64(_mm_castpd_si128(s), _mm_and_si128(step, above)))
+}
+
+/// Whether `|v| ≤ MAX` in both lanes (false for infinities and NaN).
+#[inline(always)]
+unsafe fn both_finite(v: __m128d) -> bool {
+    let m = _mm_andnot_pd(_mm_set1_pd(-0.0), v);
+    _mm_movemask_pd(_mm_cmple_pd(m, _mm_set1_pd(f64::MAX))) == 3
+}
+
+/// `x + y` rounded upward, lane by lane, from the to-nearest sum and its exact error.
+#[inline(always)]
+unsafe fn sum_ru(x: __m128d, y: __m128d) -> Option<__m128d> {
+    let s = _mm_add_pd(x, y);
+    let v = _mm_sub_pd(s, x);
+    let e = _mm_add_pd(_mm_sub_pd(x, _mm_sub_pd(s, v)), _mm_sub_pd(y, v));
+    // A non-finite operand or an overflow anywhere leaves `s` or `e` non-finite.
+    (both_finite(s) && both_finite(e)).then(|| up_from(s, e))
+}
+
+#[inline]
+pub(crate) fn add_ru(x: super::F64X2, y: super::F64X2) -> super::F64X2 {
+    unsafe { sum_ru(x, y) }.unwrap_or_else(|| add_ru_csr(x, y))
+}
+
+#[inline]
+pub(crate) fn sub_ru(x: super::F64X2, y: super::F64X2) -> super::F64X2 {
+    unsafe { sum_ru(x, _mm_xor_pd(y, _mm_set1_pd(-0.0))) }.unwrap_or_else(|| sub_ru_csr(x, y))
+}
+
+#[inline]
+pub(crate) fn mul_ru(x: super::F64X2, y: super::F64X2) -> super::F64X2 {
+    unsafe {
+        let p = _mm_mul_pd(x, y);
+        let e = _mm_fmsub_pd(x, y, p);
+        let zero = _mm_setzero_pd();
+        let m = _mm_andnot_pd(_mm_set1_pd(-0.0), p);
+        // |p| ≥ 2⁻⁹⁶⁰: the exponents' sum is far above the least at which the error is a float.
+        let in_range = _mm_and_pd(
+            _mm_cmpge_pd(m, _mm_set1_pd(f64::from_bits((1023 - 960) << 52))),
+            _mm_cmple_pd(m, _mm_set1_pd(f64::MAX)),
+        );
+        // A zero operand and a finite other: p = ±0 exactly, e = 0.
+        let zero_operand = _mm_and_pd(
+            _mm_cmpord_pd(p, p),
+            _mm_or_pd(_mm_cmpeq_pd(x, zero), _mm_cmpeq_pd(y, zero)),
+        );
+        if _mm_movemask_pd(_mm_or_pd(in_range, zero_operand)) != 3 {
+            return mul_ru_csr(x, y);
+        }
+        up_from(p, e)
+    }
+}
