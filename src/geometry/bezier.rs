@@ -55,6 +55,8 @@ pub struct RationalBezierPatch {
     /// that writing the patch out reproduces the input exactly.
     cartesian: Option<Vec<[Interval; 4]>>,
     domain: Domain,
+    /// [`RationalBezierPatch::net_differences`], formed on first use.
+    differences: std::sync::OnceLock<Vec<[Interval; 4]>>,
 }
 
 /// Whether `x` is a non-empty interval with finite bounds; the typed problem otherwise.
@@ -286,6 +288,7 @@ impl RationalBezierPatch {
             mid,
             cartesian: None,
             domain,
+            differences: std::sync::OnceLock::new(),
         })
     }
 
@@ -302,6 +305,42 @@ impl RationalBezierPatch {
     /// The homogeneous interval control net `(w·x, w·y, w·z, w)`, index `i*(n+1)+j`.
     pub fn homogeneous(&self) -> &[[Interval; 4]] {
         &self.homogeneous
+    }
+
+    /// The mixed forward differences `Δₛᵏ Δᵣˡ h_ij` of the homogeneous net, enclosed, for
+    /// `k ≤ m`, `l ≤ n`, `i ≤ m − k`, `j ≤ n − l`, in that nesting order (the `(k, l)` block
+    /// holds `(m − k + 1)(n − l + 1)` entries, row `i`): each is
+    /// `Σ_{a ≤ k, b ≤ l} (−1)^{k−a+l−b} C(k,a) C(l,b) h_{i+a, j+b}`, summed in that order. They
+    /// do not depend on where the patch is evaluated, so they are formed once per patch (the
+    /// centred power form of the search's second-order enclosures re-formed them per box).
+    pub(crate) fn net_differences(&self) -> &[[Interval; 4]] {
+        self.differences.get_or_init(|| {
+            let [m, n] = self.degree;
+            let at = |i: usize, j: usize| self.homogeneous[i * (n + 1) + j];
+            let mut out = Vec::new();
+            for k in 0..=m {
+                for l in 0..=n {
+                    for i in 0..=m - k {
+                        for j in 0..=n - l {
+                            let mut diff = [Interval::zero(); 4];
+                            for a in 0..=k {
+                                for b in 0..=l {
+                                    let c = binomial(k, a) * binomial(l, b);
+                                    let sign = (k - a + l - b) % 2 == 0;
+                                    let f = Interval::from_f64(if sign { c } else { -c });
+                                    let p = at(i + a, j + b);
+                                    for x in 0..4 {
+                                        diff[x] += f * p[x];
+                                    }
+                                }
+                            }
+                            out.push(diff);
+                        }
+                    }
+                }
+            }
+            out
+        })
     }
 
     /// The Cartesian control data `(x, y, z, w)` per control point: exactly as given to

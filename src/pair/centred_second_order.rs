@@ -52,8 +52,8 @@ impl CentredSecondOrder for RationalBezierPatch {
         let (ds, dr) = ((u - cu) / du, (v - cv) / dv);
         let (ku, kv) = (T::one() / du, T::one() / dv);
         let z = T::zero();
-        let net = self.homogeneous();
-        let at = |i: usize, j: usize| net[i * (n + 1) + j].map(T::from_interval);
+        // The net's forward differences, in the order of the loops below.
+        let mut differences = self.net_differences().iter();
         // Power coefficients at the centre: T_kl = C(m,k) C(n,l) Σ Δₛᵏ Δᵣˡ h_ij B_i^{m−k}(cs) B_j^{n−l}(cr).
         let mut t = vec![[z; 4]; (m + 1) * (n + 1)];
         for k in 0..=m {
@@ -63,17 +63,9 @@ impl CentredSecondOrder for RationalBezierPatch {
                 let mut acc = [z; 4];
                 for i in 0..=m - k {
                     for j in 0..=n - l {
-                        let mut diff = [z; 4];
-                        for a in 0..=k {
-                            for b in 0..=l {
-                                let c = binomial(k, a) * binomial(l, b);
-                                let f = T::from_f64(if (k - a + l - b) % 2 == 0 { c } else { -c });
-                                let p = at(i + a, j + b);
-                                for x in 0..4 {
-                                    diff[x] = diff[x] + f * p[x];
-                                }
-                            }
-                        }
+                        let diff = differences
+                            .next()
+                            .map_or([z; 4], |d| d.map(T::from_interval));
                         let w = bs[i] * br[j];
                         for x in 0..4 {
                             acc[x] = acc[x] + w * diff[x];
