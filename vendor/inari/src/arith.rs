@@ -56,6 +56,18 @@ impl Mul for Interval {
         //  Z |     {0}    |     {0}    |     {0}    | {0}
         // *1 [min{a*d, b*c}, max{a*c, b*d}]
 
+        // ssitrace's change (PATCHED.md): finite operands without AVX-512 take the branch-free
+        // corner product.
+        #[cfg(all(
+            target_arch = "x86_64",
+            not(target_feature = "avx512f"),
+            target_feature = "avx2",
+            target_feature = "fma"
+        ))]
+        if let Some(rep) = mul_corners(self.rep, rhs.rep) {
+            return Self { rep };
+        }
+
         use IntervalClass2::*;
         match self.classify2(rhs) {
             E_E | E_M | E_N0 | E_N1 | E_P0 | E_P1 | E_Z | M_E | N0_E | N1_E | P0_E | P1_E | Z_E => {

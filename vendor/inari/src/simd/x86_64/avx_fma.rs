@@ -115,3 +115,57 @@ pub(crate) fn mul_ru(x: super::F64X2, y: super::F64X2) -> super::F64X2 {
         up_from(p, e)
     }
 }
+
+/// The interval product `[−a; b]·[−c; d]` as `[−lo; hi]` for finite bounds, without branching
+/// on the operands' signs (inari's case analysis mispredicts in series products whose
+/// coefficients change sign from one product to the next): the four corner products `ac`,
+/// `bd`, `ad`, `bc` in one multiply, each rounded up and down from its exact error as in
+/// [`mul_ru`], then `hi` the largest rounded-up one and `lo` the least rounded-down one. Each
+/// corner is rounded as inari's own case would round it, so the result is the same interval.
+/// `None` where a corner is not finite, or below 2⁻⁹⁶⁰ without a zero operand.
+#[cfg(target_feature = "avx2")]
+pub(crate) fn mul_corners(x: super::F64X2, y: super::F64X2) -> Option<super::F64X2> {
+    unsafe {
+        // xs = [−a, b, −a, b], ys = [−c, d, −d, c]: the products are ac, bd, ad, bc.
+        let xs = _mm256_set_m128d(x, x);
+        let swapped = _mm_shuffle_pd::<0b01>(y, y); // [d; −c]
+        let ys = _mm256_xor_pd(
+            _mm256_set_m128d(swapped, y), // [−c, d, d, −c]
+            _mm256_set_pd(-0.0, -0.0, 0.0, 0.0),
+        );
+        let p = _mm256_mul_pd(xs, ys);
+        let e = _mm256_fmsub_pd(xs, ys, p);
+        let zero = _mm256_setzero_pd();
+        let m = _mm256_andnot_pd(_mm256_set1_pd(-0.0), p);
+        let in_range = _mm256_and_pd(
+            _mm256_cmp_pd::<_CMP_GE_OQ>(m, _mm256_set1_pd(f64::from_bits((1023 - 960) << 52))),
+            _mm256_cmp_pd::<_CMP_LE_OQ>(m, _mm256_set1_pd(f64::MAX)),
+        );
+        let zero_operand = _mm256_and_pd(
+            _mm256_cmp_pd::<_CMP_ORD_Q>(p, p),
+            _mm256_or_pd(
+                _mm256_cmp_pd::<_CMP_EQ_OQ>(xs, zero),
+                _mm256_cmp_pd::<_CMP_EQ_OQ>(ys, zero),
+            ),
+        );
+        if _mm256_movemask_pd(_mm256_or_pd(in_range, zero_operand)) != 0b1111 {
+            return None;
+        }
+        // One step of the bit pattern: up is +1 for p > 0 and −1 for p < 0, down the opposite.
+        let neg = _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_LT_OQ>(p, zero));
+        let step = _mm256_or_si256(neg, _mm256_set1_epi64x(1));
+        let above = _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_GT_OQ>(e, zero));
+        let below = _mm256_castpd_si256(_mm256_cmp_pd::<_CMP_LT_OQ>(e, zero));
+        let bits = _mm256_castpd_si256(p);
+        let up = _mm256_castsi256_pd(_mm256_add_epi64(bits, _mm256_and_si256(step, above)));
+        let down = _mm256_castsi256_pd(_mm256_sub_epi64(bits, _mm256_and_si256(step, below)));
+        // hi = max(up), −lo = max(−down).
+        let neg_down = _mm256_xor_pd(down, _mm256_set1_pd(-0.0));
+        let u2 = _mm_max_pd(_mm256_castpd256_pd128(up), _mm256_extractf128_pd::<1>(up));
+        let d2 = _mm_max_pd(
+            _mm256_castpd256_pd128(neg_down),
+            _mm256_extractf128_pd::<1>(neg_down),
+        );
+        Some(_mm_max_pd(_mm_unpacklo_pd(d2, u2), _mm_unpackhi_pd(d2, u2)))
+    }
+}
