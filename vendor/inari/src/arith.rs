@@ -18,6 +18,7 @@ forward_ref_unop!(impl Neg, neg for Interval);
 impl Add for Interval {
     type Output = Self;
 
+    #[inline] // ssitrace's change (PATCHED.md)
     fn add(self, rhs: Self) -> Self {
         // [a + c, b + d] = [-a - c; b + d] = [-a; b] .+ [-c; d]
         let x = self.rep; // [-a; b]
@@ -31,6 +32,7 @@ forward_ref_binop!(impl Add, add for Interval, Interval);
 impl Sub for Interval {
     type Output = Self;
 
+    #[inline] // ssitrace's change (PATCHED.md)
     fn sub(self, rhs: Self) -> Self {
         // [a - d, b - c] = [-a + d; b - c] = [-a; b] .+ [d; -c]
         let x = self.rep; // [-a; b]
@@ -45,6 +47,7 @@ impl Mul for Interval {
     type Output = Self;
 
     #[allow(clippy::many_single_char_names)]
+    #[inline] // ssitrace's change (PATCHED.md)
     fn mul(self, rhs: Self) -> Self {
         // [a, b] * [c, d] =
         //
@@ -57,7 +60,7 @@ impl Mul for Interval {
         // *1 [min{a*d, b*c}, max{a*c, b*d}]
 
         // ssitrace's change (PATCHED.md): finite operands without AVX-512 take the branch-free
-        // corner product.
+        // corner product, inlined; the case analysis below is out of line.
         #[cfg(all(
             target_arch = "x86_64",
             not(target_feature = "avx512f"),
@@ -67,7 +70,13 @@ impl Mul for Interval {
         if let Some(rep) = mul_corners(self.rep, rhs.rep) {
             return Self { rep };
         }
+        self.mul_by_cases(rhs)
+    }
+}
 
+impl Interval {
+    #[inline(never)]
+    fn mul_by_cases(self, rhs: Self) -> Self {
         use IntervalClass2::*;
         match self.classify2(rhs) {
             E_E | E_M | E_N0 | E_N1 | E_P0 | E_P1 | E_Z | M_E | N0_E | N1_E | P0_E | P1_E | Z_E => {
@@ -260,6 +269,7 @@ forward_ref_binop!(impl Div, div for DecInterval, DecInterval);
 macro_rules! impl_op_assign {
     ($OpAssign:ident, $op_assign:ident, $op:ident) => {
         impl $OpAssign for Interval {
+            #[inline] // ssitrace's change (PATCHED.md)
             fn $op_assign(&mut self, rhs: Self) {
                 *self = self.$op(rhs);
             }

@@ -124,6 +124,7 @@ pub(crate) fn mul_ru(x: super::F64X2, y: super::F64X2) -> super::F64X2 {
 /// corner is rounded as inari's own case would round it, so the result is the same interval.
 /// `None` where a corner is not finite, or below 2⁻⁹⁶⁰ without a zero operand.
 #[cfg(target_feature = "avx2")]
+#[inline]
 pub(crate) fn mul_corners(x: super::F64X2, y: super::F64X2) -> Option<super::F64X2> {
     unsafe {
         // xs = [−a, b, −a, b], ys = [−c, d, −d, c]: the products are ac, bd, ad, bc.
