@@ -102,6 +102,35 @@
 //! spans per link) had a true point 7.7e-5 from the curve by the test's search, not yet
 //! explained.
 //!
+//! **Stop 20: a machine without AVX-512** (AMD EPYC, Zen 3; certified ms / ratio, the build of
+//! the session's start against the final one, run alternately twice, both runs within 1 %).
+//! Here `inari` switched the rounding mode (two `ldmxcsr`) around every interval operation, and
+//! its product branched on the operands' signs; `numeric::imul`'s branch-free product needs
+//! AVX-512. A profile of Fig. 7 had 41 % of its samples in `inari`'s product. The vendored
+//! `inari` (`vendor/inari/PATCHED.md`) rounds `+`, `−` and `×` from their exact errors (two-sum,
+//! fused multiply-add) with the same results bit for bit, forms the four corner products
+//! without branches, and inlines the three.
+//!
+//! | scene | links | certified ms before → after | ratio before → after |
+//! |---|---|---|---|
+//! | sphere_patch_plane | 108 | 16.7 → 5.9 | 24.8 → 8.6 |
+//! | bicubic_transversal | 11 | 2.76 → 0.96 | 12.1 → 4.2 |
+//! | two_loops_s31_s32 | 249 | 23.6 → 8.6 | 11.5 → 4.2 |
+//! | Fig. 7, smallest loop | 119 | 62.1 → 17.4 | 110 → 31 |
+//! | small_loop | 40 | 4.07 → 1.67 | 6.8 → 2.8 |
+//! | Fig. 7, three loops | 364 | 191.6 → 53.4 | 111 → 31 |
+//! | cylinders | 84 | 19.7 → 6.4 | 51 → 16.6 |
+//! | cylinders_full | 190 | 73.1 → 22.7 | 123 → 38 |
+//! | viviani | 80 | 22.1 → 7.1 | 46 → 15 |
+//!
+//! The marched times are those of the AVX-512 machine; the certified link costs here are still
+//! about 2.4 times those (Fig. 7's loop: 146 µs a link against 72 µs), so the ratios are. The
+//! septic predictor was measured again here and again not landed: fewer links on long smooth
+//! branches (Fig. 7 364 → 303, S31/S32 249 → 118; certified time −12 % and −24 %) but each
+//! link costs about 20 % more (order 8), and near tangential points, where the links are held
+//! up by the conditioning, the third derivatives make the predictor worse (small loop 40 → 56
+//! links, +37 %; Viviani +17 %).
+//!
 //! The group `halves` times the open bicubic branch with its two halves one after the other and
 //! on two threads (`CertifyOptions::parallel_halves`).
 //!
