@@ -123,8 +123,9 @@
 //! | cylinders_full | 190 | 73.1 → 22.7 | 123 → 38 |
 //! | viviani | 80 | 22.1 → 7.1 | 46 → 15 |
 //!
-//! The marched times are those of the AVX-512 machine; the certified link costs here are still
-//! about 2.4 times those (Fig. 7's loop: 146 µs a link against 72 µs), so the ratios are. The
+//! The marched times match those measured on the AVX-512 machine before; a certified link here
+//! still costs about twice as much (Fig. 7's loop: 146 µs against 72 µs), and so the ratios
+//! are about twice those above. The
 //! septic predictor was measured again here and again not landed: fewer links on long smooth
 //! branches (Fig. 7 364 → 303, S31/S32 249 → 118; certified time −12 % and −24 %) but each
 //! link costs about 20 % more (order 8), and near tangential points, where the links are held
