@@ -149,7 +149,7 @@ mod tests {
     use super::*;
     use crate::numeric::scalar::{interval, point};
 
-    /// `x ∘ y` for `∘` in `+ − ×`, computed with the processor's rounding mode set to upward
+    /// `x ∘ y` for `∘` in `+ − × /`, computed with the processor's rounding mode set to upward
     /// for that one instruction (inline assembly, so that the compiler cannot move the
     /// operation out of the mode): the reference for what every interval bound must be.
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
@@ -179,6 +179,7 @@ mod tests {
             match op {
                 '+' => with_mode!("vaddsd {v}, {v}, {y}"),
                 '-' => with_mode!("vsubsd {v}, {v}, {y}"),
+                '/' => with_mode!("vdivsd {v}, {v}, {y}"),
                 _ => with_mode!("vmulsd {v}, {v}, {y}"),
             }
         }
@@ -188,12 +189,12 @@ mod tests {
     #[test]
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     fn inari_sums_and_products_round_as_the_mode_does() {
-        // inari's sums, differences and products (vendor/inari, patched to round from exact
+        // inari's sums, differences, products and quotients (vendor/inari, patched to round from exact
         // errors instead of switching the mode on machines without AVX-512) must be the
         // directed-rounded corner values, bound for bound: the lower bound −▲(−…), the upper
         // one ▲(…).
         let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut checked = 0;
+        let (mut checked, mut divided) = (0, 0);
         for k in 0..300_000 {
             let mut iv = || {
                 let (p, q) = (wide_bound(&mut state), wide_bound(&mut state));
@@ -231,9 +232,25 @@ mod tests {
                 let m = x * y;
                 assert_eq!((m.inf(), m.sup()), (lo, hi), "{a} {b} · {c} {d}");
                 checked += 1;
+                if c > 0.0 || d < 0.0 {
+                    let hi = corners
+                        .iter()
+                        .map(|&(u, v)| upward('/', u, v))
+                        .fold(f64::MIN, f64::max);
+                    let lo = corners
+                        .iter()
+                        .map(|&(u, v)| -upward('/', -u, v))
+                        .fold(f64::MAX, f64::min);
+                    let q = x / y;
+                    assert_eq!((q.inf(), q.sup()), (lo, hi), "{a} {b} / {c} {d}");
+                    divided += 1;
+                }
             }
         }
-        assert!(checked > 250_000);
+        assert!(
+            checked > 250_000 && divided > 100_000,
+            "{checked} {divided}"
+        );
     }
 
     #[test]

@@ -37,7 +37,7 @@ impl_op_round!(f64, sub1_ru(x, y), "vsubsd {x}, {x}, {y}", ru);
 impl_op_round!(super::F64X2, add_ru_csr(x, y), "vaddpd {x}, {x}, {y}", ru);
 impl_op_round!(super::F64X2, sub_ru_csr(x, y), "vsubpd {x}, {x}, {y}", ru);
 impl_op_round!(super::F64X2, mul_ru_csr(x, y), "vmulpd {x}, {x}, {y}", ru);
-impl_op_round!(super::F64X2, div_ru(x, y), "vdivpd {x}, {x}, {y}", ru);
+impl_op_round!(super::F64X2, div_ru_csr(x, y), "vdivpd {x}, {x}, {y}", ru);
 impl_op_round!(
     super::F64X2,
     mul_add_ru(x, y, z),
@@ -45,12 +45,13 @@ impl_op_round!(
     ru
 );
 
-// ssitrace's change (see PATCHED.md): `add_ru`, `sub_ru` and `mul_ru` no longer switch the
-// rounding mode. Each lane is computed rounded to nearest together with its exact error (by
-// Knuth's two-sum for `+` and `−`, by a fused multiply-add for `×`), and the result is moved one
-// float up where the error is positive: that is the upward-rounded result, bit for bit. Where
-// the error might not be exact (a non-finite lane; a product below 2⁻⁹⁶⁰ without a zero
-// operand) the original rounding-mode form `*_csr` runs instead.
+// ssitrace's change (see PATCHED.md): `add_ru`, `sub_ru`, `mul_ru` and `div_ru` no longer
+// switch the rounding mode. Each lane is computed rounded to nearest together with its exact
+// error (Knuth's two-sum for `+` and `−`, a fused multiply-add for `×` and for the remainder of
+// `/`), and the result is moved one float up where the error is positive: that is the
+// upward-rounded result, bit for bit. Where the error might not be exact (a non-finite lane; a
+// product below 2⁻⁹⁶⁰ without a zero operand; a quotient whose operands or result leave
+// [2⁻⁴⁰⁰, 2⁴⁰⁰]) the original rounding-mode form `*_csr` runs instead.
 
 use std::arch::x86_64::*;
 
@@ -90,6 +91,34 @@ pub(crate) fn add_ru(x: super::F64X2, y: super::F64X2) -> super::F64X2 {
 #[inline]
 pub(crate) fn sub_ru(x: super::F64X2, y: super::F64X2) -> super::F64X2 {
     unsafe { sum_ru(x, _mm_xor_pd(y, _mm_set1_pd(-0.0))) }.unwrap_or_else(|| sub_ru_csr(x, y))
+}
+
+/// `x / y` rounded upward, lane by lane: `q = ○(x/y)` and the remainder `r = x − q·y` by a fused
+/// multiply-add, exact when `|x|`, `|y|`, `|q|` lie in `[2⁻⁴⁰⁰, 2⁴⁰⁰]` (or `x = 0`, `q = ±0`);
+/// the exact quotient is `q + r/y`, above `q` where `r·y > 0`.
+#[inline]
+pub(crate) fn div_ru(x: super::F64X2, y: super::F64X2) -> super::F64X2 {
+    unsafe {
+        let q = _mm_div_pd(x, y);
+        let r = _mm_fnmadd_pd(q, y, x);
+        let sign = _mm_set1_pd(-0.0);
+        let within = |v: __m128d| {
+            let m = _mm_andnot_pd(sign, v);
+            _mm_and_pd(
+                _mm_cmpge_pd(m, _mm_set1_pd(f64::from_bits((1023 - 400) << 52))),
+                _mm_cmple_pd(m, _mm_set1_pd(f64::from_bits((1023 + 400) << 52))),
+            )
+        };
+        let numerator = _mm_or_pd(
+            _mm_and_pd(within(x), within(q)),
+            _mm_cmpeq_pd(x, _mm_setzero_pd()),
+        );
+        if _mm_movemask_pd(_mm_and_pd(within(y), numerator)) != 3 {
+            return div_ru_csr(x, y);
+        }
+        // r·sign(y): the sign of the quotient's error.
+        up_from(q, _mm_xor_pd(r, _mm_and_pd(y, sign)))
+    }
 }
 
 #[inline]
