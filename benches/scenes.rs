@@ -125,12 +125,11 @@
 //!
 //! The marched times match those measured on the AVX-512 machine before; a certified link here
 //! still costs about twice as much (Fig. 7's loop: 146 µs against 72 µs), and so the ratios
-//! are about twice those above. The
-//! septic predictor was measured again here and again not landed: fewer links on long smooth
-//! branches (Fig. 7 364 → 303, S31/S32 249 → 118; certified time −12 % and −24 %) but each
-//! link costs about 20 % more (order 8), and near tangential points, where the links are held
-//! up by the conditioning, the third derivatives make the predictor worse (small loop 40 → 56
-//! links, +37 %; Viviani +17 %).
+//! are about twice those above. The septic predictor was measured again here and again not
+//! landed: fewer links on long smooth branches (Fig. 7 364 → 303, S31/S32 249 → 118; certified
+//! time −12 % and −24 %) but each link costs about 20 % more (order 8), and near tangential
+//! points, where the links are held up by the conditioning, the third derivatives make the
+//! predictor worse (small loop 40 → 56 links, +37 %; Viviani +17 %).
 //!
 //! The group `halves` times the open bicubic branch with its two halves one after the other and
 //! on two threads (`CertifyOptions::parallel_halves`).

@@ -189,10 +189,10 @@ mod tests {
     #[test]
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     fn inari_sums_and_products_round_as_the_mode_does() {
-        // inari's sums, differences, products and quotients (vendor/inari, patched to round from exact
-        // errors instead of switching the mode on machines without AVX-512) must be the
-        // directed-rounded corner values, bound for bound: the lower bound −▲(−…), the upper
-        // one ▲(…).
+        // inari's sums, differences, products and quotients (vendor/inari, patched to round
+        // from exact errors instead of switching the mode on machines without AVX-512) must be
+        // the directed-rounded corner values, bound for bound: the lower bound −▲(−…), the
+        // upper one ▲(…).
         let mut state = 0x9e37_79b9_7f4a_7c15_u64;
         let (mut checked, mut divided) = (0, 0);
         for k in 0..300_000 {
