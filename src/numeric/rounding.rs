@@ -72,9 +72,21 @@ pub fn half_dir(x: f64, up: bool) -> f64 {
 /// `(a + b) / 2`, rounded outward.
 #[inline]
 pub fn average(a: Interval, b: Interval) -> Interval {
+    // inari's sum, then each bound halved: exact where both are zero or at least 2⁻¹⁰²¹ in
+    // magnitude and finite (the halves are normal numbers), the interval `(a + b)·½` rounded
+    // outward would give. This is de Casteljau's inner step: one sum, no product.
+    let sum = a + b;
+    let (lo, hi) = (sum.inf(), sum.sup());
+    let halves_exactly =
+        |x: f64| x == 0.0 || (x.abs() >= 2.0 * f64::MIN_POSITIVE && x.abs() <= f64::MAX);
+    if halves_exactly(lo) && halves_exactly(hi) {
+        if let Ok(h) = Interval::try_from((0.5 * lo, 0.5 * hi)) {
+            return h;
+        }
+    }
     if a.is_common_interval() && b.is_common_interval() {
         // Bounded operands: inari's sum and the branch-free product, the same interval.
-        return imul::mul(a + b, HALF);
+        return imul::mul(sum, HALF);
     }
     let lo = half_dir(add_dir(a.inf(), b.inf(), false), false);
     let hi = half_dir(add_dir(a.sup(), b.sup(), true), true);
