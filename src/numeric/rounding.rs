@@ -233,28 +233,20 @@ mod tests {
             );
             if a.is_finite() && d.is_finite() {
                 let corners = [(a, c), (a, d), (b, c), (b, d)];
-                let hi = corners
-                    .iter()
-                    .map(|&(u, v)| upward('*', u, v))
-                    .fold(f64::MIN, f64::max);
-                let lo = corners
-                    .iter()
-                    .map(|&(u, v)| lo('*', u, v))
-                    .fold(f64::MAX, f64::min);
+                // The directed-rounded range of `op` over the corners.
+                let range = |op| {
+                    corners
+                        .iter()
+                        .fold((f64::MAX, f64::MIN), |(l, h), &(u, v)| {
+                            (l.min(lo(op, u, v)), h.max(upward(op, u, v)))
+                        })
+                };
                 let m = x * y;
-                assert_eq!((m.inf(), m.sup()), (lo, hi), "{a} {b} · {c} {d}");
+                assert_eq!((m.inf(), m.sup()), range('*'), "{a} {b} · {c} {d}");
                 checked += 1;
                 if c > 0.0 || d < 0.0 {
-                    let hi = corners
-                        .iter()
-                        .map(|&(u, v)| upward('/', u, v))
-                        .fold(f64::MIN, f64::max);
-                    let lo = corners
-                        .iter()
-                        .map(|&(u, v)| -upward('/', -u, v))
-                        .fold(f64::MAX, f64::min);
                     let q = x / y;
-                    assert_eq!((q.inf(), q.sup()), (lo, hi), "{a} {b} / {c} {d}");
+                    assert_eq!((q.inf(), q.sup()), range('/'), "{a} {b} / {c} {d}");
                     divided += 1;
                 }
             }
