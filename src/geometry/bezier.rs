@@ -44,7 +44,7 @@ pub struct PatchDerivs<S> {
 /// Invariants (checked by every constructor): finite, non-empty control intervals; every weight
 /// interval strictly positive; a finite domain with `u0 < u1`, `v0 < v1`; control points that do
 /// not all coincide.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct RationalBezierPatch {
     degree: [usize; 2],
     /// `(w·x, w·y, w·z, w)` per control point, index `i*(n+1)+j`.
@@ -57,6 +57,19 @@ pub struct RationalBezierPatch {
     domain: Domain,
     /// [`RationalBezierPatch::net_differences`], formed on first use.
     differences: std::sync::OnceLock<Vec<[Interval; 4]>>,
+}
+
+/// Equal patches: the same degree, net, input data and domain (the cache of
+/// [`RationalBezierPatch::net_differences`] is derived from them and does not count: a patch
+/// whose differences were formed equals a copy whose differences were not).
+impl PartialEq for RationalBezierPatch {
+    fn eq(&self, other: &Self) -> bool {
+        self.degree == other.degree
+            && self.homogeneous == other.homogeneous
+            && self.mid == other.mid
+            && self.cartesian == other.cartesian
+            && self.domain == other.domain
+    }
 }
 
 /// Whether `x` is a non-empty interval with finite bounds; the typed problem otherwise.

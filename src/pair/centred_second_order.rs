@@ -147,6 +147,15 @@ mod tests {
     use inari::Interval;
 
     #[test]
+    fn the_cached_differences_do_not_change_equality() {
+        let p = crate::pair::fixtures::wavy_patch(true);
+        let fresh = p.clone();
+        let _ = p.second_order_centred(0.1, 0.6, 0.3, 1.1);
+        assert!(!p.net_differences().is_empty());
+        assert_eq!(p, fresh);
+    }
+
+    #[test]
     fn centred_derivatives_equal_the_bernstein_ones_and_are_tighter() {
         let p = crate::pair::fixtures::wavy_patch(true);
         for k in 0..30 {
