@@ -60,7 +60,7 @@ pub struct RationalBezierPatch {
 }
 
 /// Equal patches: the same degree, net, input data and domain (the cache of
-/// [`RationalBezierPatch::net_differences`] is derived from them and does not count: a patch
+/// the net's differences is derived from them and does not count: a patch
 /// whose differences were formed equals a copy whose differences were not).
 impl PartialEq for RationalBezierPatch {
     fn eq(&self, other: &Self) -> bool {
