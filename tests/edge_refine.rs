@@ -121,3 +121,66 @@ fn the_runs_own_request_is_met_without_a_shortfall() {
     assert_eq!(e.shortfall, None);
     assert!(edge_to_json(&e)["shortfall"].is_null());
 }
+
+#[test]
+fn a_request_at_the_certificate_ends_close_to_it() {
+    // Aimed at exactly the floor, the coarse curves' bounds had no room: every region stalled
+    // and the edge ended at 1.49x the request (6.35e-10 for 4.25e-10); aimed 2% above, it
+    // ends within a few per cent of the request.
+    let s = scene("sphere_patch_plane.json");
+    let r = run(&s);
+    let c = cert(&r);
+    for factor in [1.0, 1.02, 1.05] {
+        let requested = factor * c.certified_tolerance;
+        let e = edge(&s, c, requested);
+        eprintln!(
+            "at {factor} x the certificate: {} control points, tolerance {:.3e} ({:.3} x the \
+             request), {:?}",
+            e.curve.points.len(),
+            e.edge_tolerance,
+            e.edge_tolerance / requested,
+            e.shortfall
+        );
+        assert!(
+            e.edge_tolerance <= 1.1 * requested,
+            "{factor}: {:e}",
+            e.edge_tolerance
+        );
+        // A shortfall is stated exactly when the request is missed.
+        assert_eq!(e.shortfall.is_some(), e.edge_tolerance > requested);
+        for x in samples(&e.curve, 32).iter().map(|&t| e.curve.eval(t)) {
+            assert!(off_circle(&x) <= e.edge_tolerance + 1e-13);
+        }
+    }
+}
+
+#[test]
+fn a_request_five_per_cent_above_the_certificate_is_met() {
+    // Each branch of two scenes asked for 1.05x its own certificate: the stalls depend on the
+    // aim, and aimed at the request some regions stalled above it (Viviani's arcs at 1.09x,
+    // Fig. 7's third loop at 1.06x); a missed request is aimed again at 2% above the floor,
+    // and the closer edge kept.
+    for name in ["viviani.json", "two_loops_s31_s32.json"] {
+        let s = scene(name);
+        let [p, q] = &s.surfaces;
+        let r = run(&s);
+        assert!(!r.branches.is_empty(), "{name}");
+        for (i, b) in r.branches.iter().enumerate() {
+            let c = b.certified().expect("certified");
+            let requested = 1.05 * c.certified_tolerance;
+            let e = edge_from_certified_within(p, q, c, i, Some(requested)).expect("an edge");
+            eprintln!(
+                "{name} branch {i}: {} control points, tolerance {:.3e} ({:.3} x the request)",
+                e.curve.points.len(),
+                e.edge_tolerance,
+                e.edge_tolerance / requested
+            );
+            assert!(
+                e.edge_tolerance <= requested,
+                "{name} {i}: {:e} > {requested:e}",
+                e.edge_tolerance
+            );
+            assert_eq!(e.shortfall, None);
+        }
+    }
+}

@@ -37,14 +37,17 @@
 //!   with the same reported point at the same `s`, and the warp maps the span onto the link's
 //!   piece, so each bound holds both ways.
 //! - **Refinement.** The target is the requested tolerance (when the certificates' floor is
-//!   under it; else a quarter above the floor). Coarse spans whose fine spans' bounds exceed
+//!   under it, and never less than 2% above the floor: the fit's bounds add to it; else a
+//!   quarter above the floor). Coarse spans whose fine spans' bounds exceed
 //!   it are cut at fine knots (or their knots' multiplicity raised) and the part is fitted and
 //!   bounded again, a bounded number of rounds. A region refined three times in a row without
 //!   its worst bound falling stops being refined, and the other spans aim no lower than the
 //!   best bound it reached. Then, on parts of few coarse spans, the knots the refinement did
 //!   not need are removed one by one while the part's bounds stay within the goal. The bounds
-//!   reported are those of the final curves, whatever the target; an edge above the request
-//!   says why ([`Shortfall`]).
+//!   reported are those of the final curves, whatever the target. Where regions stall depends
+//!   on the aim, so a request missed with more room than 2% is aimed again at 2% above the
+//!   floor and the closer of the two edges kept; an edge still above the request says why
+//!   ([`Shortfall`]).
 //! - **Cuts.** A chain is cut where the edge must end: a closed loop where its last link meets
 //!   the start box again, a boundary end (the chain goes on a little past the domain's side, on
 //!   the patch extended beyond it) and a joined curve's piece side at the side. A range `T` of
