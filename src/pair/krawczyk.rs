@@ -20,6 +20,22 @@ use nalgebra::Matrix3;
 /// A box in `(σ, t, u, v)`.
 pub type ParamBox = [Interval; 4];
 
+/// A surface the Krawczyk test can use: `[S, S_u, S_v]` enclosed over a parameter box, for
+/// every point of the box. Every [`ScalarSurface`] is one (its interval evaluation); a surface
+/// stitched from pieces across a knot line or seam is another (continuous, with the pieces'
+/// enclosures hulled: the mean-value inclusion the test rests on holds for a continuous,
+/// piecewise continuously differentiable map with its derivatives enclosed on every piece).
+pub trait BoxSurface {
+    /// `[S, S_u, S_v]` enclosed over `u × v`.
+    fn box_first_order(&self, u: Interval, v: Interval) -> [[Interval; 3]; 3];
+}
+
+impl<S: ScalarSurface + ?Sized> BoxSurface for S {
+    fn box_first_order(&self, u: Interval, v: Interval) -> [[Interval; 3]; 3] {
+        self.first_order(u, v)
+    }
+}
+
 /// Outcome of [`krawczyk`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum KrawczykResult {
@@ -39,8 +55,8 @@ pub enum KrawczykResult {
 /// in its interval. At most `max_iter` iterations; stops early when the widths stop shrinking.
 pub fn krawczyk<P, Q>(p: &P, q: &Q, y: ParamBox, fixed: usize, max_iter: usize) -> KrawczykResult
 where
-    P: ScalarSurface + ?Sized,
-    Q: ScalarSurface + ?Sized,
+    P: BoxSurface + ?Sized,
+    Q: BoxSurface + ?Sized,
 {
     if fixed > 3 || y.iter().any(|c| c.is_empty()) {
         return KrawczykResult::NotProven("invalid box or fixed coordinate");
@@ -94,8 +110,8 @@ enum Image {
 /// `K(y) ∩ y` holding coordinate `fixed`; `None` if the midpoint Jacobian is singular.
 fn krawczyk_image<P, Q>(p: &P, q: &Q, y: &ParamBox, fixed: usize) -> Option<Image>
 where
-    P: ScalarSurface + ?Sized,
-    Q: ScalarSurface + ?Sized,
+    P: BoxSurface + ?Sized,
+    Q: BoxSurface + ?Sized,
 {
     let free: [usize; 3] = match fixed {
         0 => [1, 2, 3],
@@ -104,8 +120,8 @@ where
         _ => [0, 1, 2],
     };
     // Interval Jacobian over the whole box (columns: the free unknowns).
-    let [_, ps, pt] = p.first_order(y[0], y[1]);
-    let [_, qu, qv] = q.first_order(y[2], y[3]);
+    let [_, ps, pt] = p.box_first_order(y[0], y[1]);
+    let [_, qu, qv] = q.box_first_order(y[2], y[3]);
     let neg = |a: [Interval; 3]| a.map(|x| -x);
     let cols_all = [ps, pt, neg(qu), neg(qv)];
     let jac: [[Interval; 3]; 3] = free.map(|k| cols_all[k]); // jac[col][row]
@@ -118,15 +134,15 @@ where
     for &k in &free {
         ymid[k] = point(y[k].mid());
     }
-    let [pm, ..] = p.first_order(ymid[0], ymid[1]);
-    let [qm, ..] = q.first_order(ymid[2], ymid[3]);
+    let [pm, ..] = p.box_first_order(ymid[0], ymid[1]);
+    let [qm, ..] = q.box_first_order(ymid[2], ymid[3]);
     let mut f: [Interval; 3] = std::array::from_fn(|r| pm[r] - qm[r]);
     if y[fixed].wid() > 0.0 {
         let c = point(y[fixed].mid());
         let mut ycen = ymid;
         ycen[fixed] = c;
-        let [pc, ..] = p.first_order(ycen[0], ycen[1]);
-        let [qc, ..] = q.first_order(ycen[2], ycen[3]);
+        let [pc, ..] = p.box_first_order(ycen[0], ycen[1]);
+        let [qc, ..] = q.box_first_order(ycen[2], ycen[3]);
         let dk = y[fixed] - c;
         for r in 0..3 {
             let mv = pc[r] - qc[r] + cols_all[fixed][r] * dk;
