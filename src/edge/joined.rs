@@ -42,6 +42,17 @@ pub fn edge_from_joined(
     curve: &JoinedCurve,
 ) -> Result<Edge, EdgeError> {
     for (k, j) in curve.joins.iter().enumerate() {
+        if let (Some(_), JoinStatus::Proven) = (&j.corner, &j.status) {
+            // Each part would be cut at one side while its curve also crosses the other
+            // surface's side there: the cut is not proven for that.
+            let branch = j.ends[0].branch;
+            return Err(EdgeError::Trim {
+                branch,
+                reason: "a join across a corner of the piece pair (both pieces change): its \
+                         parts are not cut there yet"
+                    .into(),
+            });
+        }
         match &j.status {
             JoinStatus::Proven => {}
             JoinStatus::Unproven { reason } => {

@@ -291,8 +291,10 @@ pub fn shell_result(
 /// One entry of `"joined_curves"`: `parts` (objects with the shell-wide `branch` id and
 /// `reversed`), `closed`, `joins` (objects with the two branch ends `from` and `to`, each
 /// `{"branch", "end"}`, the `edge` kind, the `status` `"proven"`, `"unproven"` (with a
-/// `reason`) or `"marched"`, and the matched `gap`) and `certified_tolerance` (`null` unless
-/// every part is certified and every join proven).
+/// `reason`) or `"marched"`, the matched `gap`, and for a join across a corner of the piece
+/// pair `corner`: the other surface's `second_edge`, the model-space box `xyz` holding the
+/// curve between the two parts (`null` bounds unless proven) and the `absorbed` branches) and
+/// `certified_tolerance` (`null` unless every part is certified and every join proven).
 pub fn joined_curve_json(c: &JoinedCurve) -> Value {
     let end = |e: &crate::shell::BranchEnd| json!({"branch": e.branch, "end": e.end});
     let joins: Vec<Value> = c
@@ -314,6 +316,24 @@ pub fn joined_curve_json(c: &JoinedCurve) -> Value {
                 m.insert("status".into(), json!(status));
                 if let Some(r) = reason {
                     m.insert("reason".into(), json!(r));
+                }
+                if let Some(c) = &j.corner {
+                    let xyz: Vec<Value> = c
+                        .xyz
+                        .iter()
+                        .map(|x| {
+                            if x.is_empty() {
+                                Value::Null
+                            } else {
+                                json!([x.inf(), x.sup()])
+                            }
+                        })
+                        .collect();
+                    m.insert(
+                        "corner".into(),
+                        json!({"second_edge": c.second_edge.name(), "xyz": xyz,
+                               "absorbed": c.absorbed}),
+                    );
                 }
             }
             v

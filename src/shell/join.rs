@@ -35,34 +35,15 @@ use std::collections::HashMap;
 
 use inari::Interval;
 
-use super::edges::PieceSide;
-use super::edges::{along_range, shared_edges, side_coordinate, side_of, EdgeKind, EdgeLink};
+use super::corner::{self, CornerJoin};
+use super::edges::{along_range, shared_edges, side_coordinate, EdgeKind, EdgeLink, PieceSide};
+use super::sites::{certified_exit, end_site, patches, EndSite};
+pub use super::sites::{BranchEnd, MARCH_JOIN_TOLERANCE, SIDE_TOLERANCE};
 use super::{Face, PieceIntersection};
-use crate::certify::{CertifiedBranch, CertifiedEnd};
-use crate::geometry::bezier::RationalBezierPatch;
 use crate::geometry::surface::Domain;
-use crate::march::branch::{BranchStatus, CurvePoint, EndReason};
+use crate::march::branch::BranchStatus;
 use crate::numeric::scalar::point;
-use crate::pair::krawczyk::{krawczyk, KrawczykResult, ParamBox};
-use crate::solve::TracedBranch;
-
-/// Model-space tolerance for joining marched end points, relative to `1 + |x|∞` of the point:
-/// a hundred times the marcher's parameter tolerance on domain boundaries (1e-9).
-pub const MARCH_JOIN_TOLERANCE: f64 = 1e-7;
-
-/// Parameter tolerance for "on a side of the piece" and "the parameters agree", relative to the
-/// pieces' size (the marcher puts boundary ends within 1e-7 of the larger of the two).
-pub const SIDE_TOLERANCE: f64 = 1e-6;
-
-/// One end of one branch: the branch's index in the shell's branch sequence
-/// ([`super::ShellIntersection::branch`]) and `0` for its first point, `1` for its last.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct BranchEnd {
-    /// The branch (shell-wide index, the `"id"` of the result document).
-    pub branch: usize,
-    /// 0: the first marched point; 1: the last.
-    pub end: usize,
-}
+use crate::pair::krawczyk::ParamBox;
 
 /// Whether a join is proven.
 #[derive(Debug, Clone, PartialEq)]
@@ -99,6 +80,9 @@ pub struct Join {
     /// The model-space gap the ends were matched with (distance of the exit boxes, or of the
     /// marched points).
     pub gap: f64,
+    /// For a join across a corner of the piece pair (both pieces change: `edge` is the first
+    /// surface's edge), what it crosses and covers ([`super::corner`]); `None` otherwise.
+    pub corner: Option<CornerJoin>,
 }
 
 /// One part of a joined curve.
@@ -125,30 +109,6 @@ pub struct JoinedCurve {
     pub certified_tolerance: Option<f64>,
 }
 
-/// A boundary end of a branch, placed on a side of its piece.
-struct EndSite {
-    at: BranchEnd,
-    /// The pair the branch belongs to.
-    pair: usize,
-    /// The surface (0 or 1) whose piece boundary the end is on.
-    surface: usize,
-    side: PieceSide,
-    /// The marched end point.
-    point: CurvePoint,
-    /// The certified exit, when the branch is certified and its exit could be proven.
-    exit: Option<Exit>,
-    /// The branch's certified tolerance, when it is certified.
-    tolerance: Option<f64>,
-}
-
-/// A proven end of a certified branch on a side: the exact end point lies in `exit`, and it is
-/// the only curve point of the piece pair on the side inside `region`.
-struct Exit {
-    exit: ParamBox,
-    region: ParamBox,
-    xyz: [Interval; 3],
-}
-
 /// The branch sequence of `pairs`: `(pair, index in the pair)` per shell-wide branch.
 fn branch_index(pairs: &[PieceIntersection]) -> Vec<(usize, usize)> {
     pairs
@@ -156,18 +116,6 @@ fn branch_index(pairs: &[PieceIntersection]) -> Vec<(usize, usize)> {
         .enumerate()
         .flat_map(|(k, p)| (0..p.result.branches.len()).map(move |i| (k, i)))
         .collect()
-}
-
-/// The pieces of the pair: `[piece of A, piece of B]`.
-fn patches<'a>(
-    a: &'a [Face],
-    b: &'a [Face],
-    pi: &PieceIntersection,
-) -> [&'a RationalBezierPatch; 2] {
-    [
-        &a[pi.faces[0]].pieces()[pi.pieces[0]],
-        &b[pi.faces[1]].pieces()[pi.pieces[1]],
-    ]
 }
 
 /// Join the branches of all piece pairs (see the module documentation). `a` and `b` are the
@@ -181,7 +129,25 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
         let traced = &pi.result.branches[i];
         for end in 0..2 {
             if let Some(site) = end_site(a, b, pi, k, traced, BranchEnd { branch: g, end }) {
+                // An end on a side of both pieces (at or near a corner) is a site on each: the
+                // marcher names one surface, and its neighbour across the corner may name the
+                // other.
+                let other = site.corner.map(|c| {
+                    let pieces = patches(a, b, pi);
+                    let surface = 1 - site.surface;
+                    let exit = traced.certified().and_then(|cert| {
+                        certified_exit(pieces, surface, c.side, &site.point, cert)
+                    });
+                    EndSite {
+                        surface,
+                        side: c,
+                        corner: Some(site.side),
+                        exit,
+                        ..site.clone()
+                    }
+                });
                 sites.push(site);
+                sites.extend(other);
             }
         }
     }
@@ -214,10 +180,20 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
             };
             for &y in others.iter().filter(|&&y| y > x) {
                 if let Some(c) = candidate(a, b, pairs, s1, &sites[y], link) {
-                    candidates.push((c.0, x, y, c.1, link.kind));
+                    candidates.push((c.0, x, y, c.1, link.kind, None));
                 }
             }
         }
+    }
+    let corners = corner::candidates(a, b, pairs, &sites, &links, &by_pair);
+    for (n, c) in corners.iter().enumerate() {
+        let [x, y] = c.sites;
+        let status = match c.status {
+            _ if !pairs[sites[x].pair].result.options.method.certifies() => JoinStatus::Marched,
+            Ok(()) => JoinStatus::Proven,
+            Err(reason) => JoinStatus::Unproven { reason },
+        };
+        candidates.push((c.gap, x, y, status, c.edges[0], Some(n)));
     }
     // Proven joins first, then the nearest.
     candidates.sort_by(|p, q| {
@@ -225,17 +201,41 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
             .cmp(&!q.3.is_proven())
             .then(p.0.total_cmp(&q.0))
     });
-    let mut used = vec![false; sites.len()];
-    let mut joins: HashMap<BranchEnd, (BranchEnd, EdgeKind, JoinStatus, f64)> = HashMap::new();
-    for (gap, x, y, status, kind) in candidates {
-        if used[x] || used[y] {
+    let first_branch: Vec<usize> = pairs
+        .iter()
+        .scan(0, |n, p| {
+            let f = *n;
+            *n += p.result.branches.len();
+            Some(f)
+        })
+        .collect();
+    // Per branch end: an end with a site on each side is joined once.
+    let mut used: std::collections::HashSet<BranchEnd> = std::collections::HashSet::new();
+    let mut absorbed = vec![false; index.len()];
+    let mut joins: HashMap<BranchEnd, JoinValue> = HashMap::new();
+    for (gap, x, y, status, kind, corner_at) in candidates {
+        let (e1, e2) = (sites[x].at, sites[y].at);
+        if used.contains(&e1) || used.contains(&e2) || absorbed[e1.branch] || absorbed[e2.branch] {
             continue;
         }
-        used[x] = true;
-        used[y] = true;
-        let (e1, e2) = (sites[x].at, sites[y].at);
-        joins.insert(e1, (e2, kind, status.clone(), gap));
-        joins.insert(e2, (e1, kind, status, gap));
+        used.insert(e1);
+        used.insert(e2);
+        let corner = corner_at.map(|n| {
+            let c = &corners[n];
+            let covered = c.proof.as_ref().map_or(Vec::new(), |pr| {
+                corner::absorbed(pr, pairs, &by_pair, &first_branch)
+            });
+            for &g in &covered {
+                absorbed[g] = true;
+            }
+            CornerJoin {
+                second_edge: c.edges[1],
+                xyz: c.proof.as_ref().map_or([Interval::EMPTY; 3], |pr| pr.xyz),
+                absorbed: covered,
+            }
+        });
+        joins.insert(e1, (e2, kind, status.clone(), gap, corner.clone()));
+        joins.insert(e2, (e1, kind, status, gap, corner));
     }
     let tolerance = |g: usize| {
         let (k, i) = index[g];
@@ -245,242 +245,12 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
         let (k, i) = index[g];
         pairs[k].result.branches[i].marched.status == BranchStatus::Closed
     };
-    chain(index.len(), &joins, &tolerance, &closed_branch)
+    chain(index.len(), &joins, &tolerance, &closed_branch, &absorbed)
 }
 
-/// The [`EndSite`] of `at` when the marcher ended it on a piece boundary that is a side of the
-/// piece.
-fn end_site(
-    a: &[Face],
-    b: &[Face],
-    pi: &PieceIntersection,
-    pair: usize,
-    traced: &TracedBranch,
-    at: BranchEnd,
-) -> Option<EndSite> {
-    let m = &traced.marched;
-    let EndReason::Boundary { surface } = m.ends[at.end] else {
-        return None;
-    };
-    let point = *if at.end == 0 {
-        m.points.first()?
-    } else {
-        m.points.last()?
-    };
-    let pieces = patches(a, b, pi);
-    let dom = pieces[surface].domain();
-    let x = if surface == 0 { point.p } else { point.q };
-    let size = dom.size().max(pieces[1 - surface].domain().size());
-    let side = side_of(&dom, x, SIDE_TOLERANCE * size)?;
-    let side = PieceSide {
-        face: pi.faces[surface],
-        piece: pi.pieces[surface],
-        side,
-    };
-    let exit = traced
-        .certified()
-        .and_then(|c| certified_exit(pieces, surface, side.side, &point, c));
-    Some(EndSite {
-        at,
-        pair,
-        surface,
-        side,
-        point,
-        exit,
-        tolerance: traced.certified_tolerance(),
-    })
-}
-
-/// The proven exit of the certified branch `c` through `side` of `surface`'s piece, at the
-/// certified end nearest the marched end point `near`.
-///
-/// The end's last tube piece proves the true curve point at its outer end beyond the side (its
-/// reported point, evaluated in interval arithmetic, is farther beyond than the piece's
-/// parameter radius); walking the chain of enclosure boxes inwards from that end, the first box
-/// wholly on the inner side proves a curve point inside. The curve is continuous along the
-/// chain, so it meets the side in the boxes in between; their hull on the side, slightly
-/// widened, is the region where the parametric Krawczyk test (the side's coordinate held at
-/// its value) proves that the piece pair's curve meets the side exactly once.
-fn certified_exit(
-    pieces: [&RationalBezierPatch; 2],
-    surface: usize,
-    side: usize,
-    near: &CurvePoint,
-    c: &CertifiedBranch,
-) -> Option<Exit> {
-    let dom = pieces[surface].domain();
-    let (k, value) = side_coordinate(&dom, side);
-    let fixed = 2 * surface + k;
-    let lower = side.is_multiple_of(2);
-    let target = [near.p[0], near.p[1], near.q[0], near.q[1]];
-    let distance = |y: &ParamBox| {
-        (0..4)
-            .map(|i| {
-                let (lo, hi) = (y[i].inf(), y[i].sup());
-                (lo - target[i]).max(target[i] - hi).max(0.0)
-            })
-            .fold(0.0, f64::max)
-    };
-    let (first, last) = (c.boxes.first()?, c.boxes.last()?);
-    // The certified end at the marched end: 0 (smallest arc length) or 1.
-    let end = usize::from(distance(&last.params()) < distance(&first.params()));
-    if !matches!(c.ends[end], CertifiedEnd::Boundary { surface: s } if s == surface) {
-        return None;
-    }
-    let tube = if end == 0 {
-        c.tubes.first()?
-    } else {
-        c.tubes.last()?
-    };
-    // The outer end of the end piece is at τ = h on both halves.
-    if (tube.direction < 0.0) != (end == 0) {
-        return None;
-    }
-    let h = point(tube.h);
-    let reported = tube
-        .coeffs
-        .iter()
-        .rev()
-        .fold(point(0.0), |acc, c| acc * h + point(c[fixed]));
-    let radius = point(tube.radius_param);
-    let beyond = if lower {
-        (reported + radius).sup() < value
-    } else {
-        (reported - radius).inf() > value
-    };
-    if !beyond {
-        return None;
-    }
-    let inner = |y: &ParamBox| {
-        if lower {
-            y[fixed].inf() > value
-        } else {
-            y[fixed].sup() < value
-        }
-    };
-    let mut region: Option<ParamBox> = None;
-    let mut reached_inside = false;
-    let walk: Box<dyn Iterator<Item = _>> = if end == 0 {
-        Box::new(c.boxes.iter())
-    } else {
-        Box::new(c.boxes.iter().rev())
-    };
-    for bx in walk {
-        let y = bx.params();
-        if inner(&y) {
-            reached_inside = true;
-            break;
-        }
-        region = Some(match region {
-            None => y,
-            Some(r) => std::array::from_fn(|i| r[i].convex_hull(y[i])),
-        });
-    }
-    let mut region = region.filter(|_| reached_inside)?;
-    for (i, r) in region.iter_mut().enumerate() {
-        if i == fixed {
-            *r = point(value);
-        } else {
-            let pad = (point(0.125 * r.wid()) + point(1e-12 * (1.0 + r.mag()))).sup();
-            *r += Interval::try_from((-pad, pad)).ok()?;
-        }
-    }
-    let enclosure = unique_zero(pieces, region, fixed)?;
-    let xp = pieces[0].enclose(enclosure[0], enclosure[1]);
-    let xq = pieces[1].enclose(enclosure[2], enclosure[3]);
-    let mut xyz = xp;
-    for i in 0..3 {
-        let both = xp[i].intersection(xq[i]);
-        if both.is_empty() {
-            return None;
-        }
-        xyz[i] = both;
-    }
-    Some(Exit {
-        exit: enclosure,
-        region,
-        xyz,
-    })
-}
-
-/// Most boxes [`unique_zero`] looks at.
-const MAX_ZERO_BOXES: usize = 256;
-
-/// The enclosure of the only zero of `P − Q` in `region` with coordinate `fixed` held (a
-/// point), proven: `region` is cut into boxes (bisecting the free coordinate that is longest in
-/// model space) until each is proven empty (disjoint model-space enclosures, or a Krawczyk image
-/// disjoint from it) or proven to hold exactly one zero (the Krawczyk test); the answer is that
-/// zero's enclosure when exactly one box holds one. `None` when the cutting gives up, a box's
-/// model-space enclosure is unbounded (a weight may vanish there), or there are several (or no)
-/// such boxes.
-fn unique_zero(
-    pieces: [&RationalBezierPatch; 2],
-    region: ParamBox,
-    fixed: usize,
-) -> Option<ParamBox> {
-    let mut todo = vec![region];
-    let mut found: Option<ParamBox> = None;
-    let mut looked = 0;
-    while let Some(y) = todo.pop() {
-        looked += 1;
-        if looked > MAX_ZERO_BOXES {
-            return None;
-        }
-        let xp = pieces[0].enclose(y[0], y[1]);
-        let xq = pieces[1].enclose(y[2], y[3]);
-        // Bounded enclosures: both weight functions are nonzero on the box, so every interval
-        // evaluation below is of a well-defined function. Otherwise give up.
-        if xp.iter().chain(&xq).any(|x| !x.is_common_interval()) {
-            return None;
-        }
-        if xp.iter().zip(&xq).any(|(a, b)| a.disjoint(*b)) {
-            continue;
-        }
-        match krawczyk(pieces[0], pieces[1], y, fixed, 30) {
-            KrawczykResult::Proven { enclosure, .. } => {
-                if found.replace(enclosure).is_some() {
-                    return None;
-                }
-            }
-            KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
-            KrawczykResult::NotProven(_) => {
-                let k = widest(pieces, &y, fixed);
-                let m = y[k].mid();
-                let (lo, hi) = (y[k].inf(), y[k].sup());
-                if !(lo < m && m < hi) {
-                    return None;
-                }
-                let (mut a, mut b) = (y, y);
-                a[k] = Interval::try_from((lo, m)).ok()?;
-                b[k] = Interval::try_from((m, hi)).ok()?;
-                todo.push(a);
-                todo.push(b);
-            }
-        }
-    }
-    found
-}
-
-/// The free coordinate of `y` (not `fixed`) whose width is largest in model space (times the
-/// length of the surface's partial derivative at the box's midpoint).
-fn widest(pieces: [&RationalBezierPatch; 2], y: &ParamBox, fixed: usize) -> usize {
-    let mid = y.map(|c| c.mid());
-    let speed = |k: usize| {
-        let s = &pieces[k / 2];
-        let d = s.derivs_f64(mid[2 * (k / 2)], mid[2 * (k / 2) + 1]);
-        let col = if k.is_multiple_of(2) { d.su } else { d.sv };
-        let n = col.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if n.is_finite() {
-            n.max(1e-300)
-        } else {
-            1.0
-        }
-    };
-    (0..4)
-        .filter(|&k| k != fixed)
-        .max_by(|&a, &b| (y[a].wid() * speed(a)).total_cmp(&(y[b].wid() * speed(b))))
-        .unwrap_or((fixed + 1) % 4)
-}
+/// What [`chain`] knows of a join from one of its ends: the other end, the edge, the status, the
+/// gap and, across a corner, the corner.
+type JoinValue = (BranchEnd, EdgeKind, JoinStatus, f64, Option<CornerJoin>);
 
 /// Map a parameter box of the pair of `from` (its `surface` coordinates on side `link.from`)
 /// across the edge into the pair of `link.to`.
@@ -595,11 +365,13 @@ fn candidate(
 /// The joined curves of `count` branches under `joins` (see the module documentation).
 fn chain(
     count: usize,
-    joins: &HashMap<BranchEnd, (BranchEnd, EdgeKind, JoinStatus, f64)>,
+    joins: &HashMap<BranchEnd, JoinValue>,
     tolerance: &dyn Fn(usize) -> Option<f64>,
     closed_branch: &dyn Fn(usize) -> bool,
+    absorbed: &[bool],
 ) -> Vec<JoinedCurve> {
-    let mut seen = vec![false; count];
+    // Branches absorbed by a corner join are in no curve's parts.
+    let mut seen = absorbed.to_vec();
     let mut curves = Vec::new();
     for g in 0..count {
         if seen[g] {
@@ -641,7 +413,7 @@ fn chain(
                 branch: current.branch,
                 end: usize::from(!current.reversed),
             };
-            let Some((next, edge, status, gap)) = joins.get(&exit) else {
+            let Some((next, edge, status, gap, corner)) = joins.get(&exit) else {
                 break;
             };
             links.push(Join {
@@ -649,6 +421,7 @@ fn chain(
                 edge: *edge,
                 status: status.clone(),
                 gap: *gap,
+                corner: corner.clone(),
             });
             if next.branch == start.branch {
                 closed = true;
@@ -665,10 +438,17 @@ fn chain(
             closed = true;
         }
         let certified_tolerance = if links.iter().all(|j| j.status.is_proven()) {
+            // A corner's arc between two parts lies in its box: no farther from them than the
+            // box's diameter.
+            let corners = links
+                .iter()
+                .filter_map(|j| j.corner.as_ref())
+                .map(|c| corner::diameter(&c.xyz))
+                .fold(0.0f64, f64::max);
             parts
                 .iter()
                 .map(|p| tolerance(p.branch))
-                .try_fold(0.0f64, |m, t| t.map(|t| m.max(t)))
+                .try_fold(corners, |m, t| t.map(|t| m.max(t)))
         } else {
             None
         };

@@ -14,8 +14,10 @@
 //! to end across knot lines, periodic seams and edges shared by two faces ([`join`]): the
 //! result also lists one [`JoinedCurve`] per connected curve, each join proven or flagged.
 
+pub mod corner;
 pub mod edges;
 pub mod join;
+mod sites;
 
 use rayon::prelude::*;
 

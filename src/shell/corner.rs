@@ -1,0 +1,603 @@
+//! Joins across a corner of the piece pair: a curve that crosses a knot line or seam of one
+//! surface exactly where it crosses one of the other (both pieces change at once).
+//!
+//! The two branches that meet there belong to diagonally neighbouring pairs `(a₁, b₁)` and
+//! `(a₂, b₂)`; the two pairs beside the corner, `(a₁, b₂)` and `(a₂, b₁)`, hold at most a sliver
+//! of the curve (usually the corner point alone, which the marcher reports as a branch of one
+//! point). Neither branch's end lies on an edge its neighbour shares, so the proof
+//! of the join module does not apply. Instead:
+//!
+//! 1. **A chart round the corner.** Each surface's two pieces are written in the parameters of
+//!    the first, the second shifted across the shared side (a knot line needs no shift; a
+//!    periodic seam shifts by the period). On the union of the two domains the stitched map is
+//!    the surface itself: continuous, and continuously differentiable on each piece.
+//! 2. **The corner box.** For each branch, walking its chain of enclosure boxes inwards from its
+//!    certified end at the corner, the boxes up to the first one strictly inside both of its
+//!    pieces' domains hold the chain's curve from there on, so the point where the branch's
+//!    part of the true curve ends. The hull of both branches' boxes (in the chart), widened
+//!    a little, is the corner box `K`; it must lie in the union of the domains.
+//! 3. **One arc.** The parametric Krawczyk test on `K` with the stitched surfaces (their
+//!    enclosures hulled over the pieces a box meets: the mean-value inclusion holds for such a
+//!    map) proves, for some coordinate held over its whole range in `K`, exactly one curve point
+//!    in `K` for each of its values: the curve in `K` is one arc, the graph of a continuous
+//!    function. Both branches' exit points lie on it, so the curve between them stays in `K`.
+//!
+//! The branches of the two side pairs whose marched points all lie in `K` are pieces of that
+//! arc: the join absorbs them ([`CornerJoin::absorbed`]).
+
+use std::collections::HashMap;
+
+use inari::Interval;
+
+use super::edges::{along_range, side_coordinate, EdgeKind, EdgeLink};
+use super::sites::{patches, EndSite, MARCH_JOIN_TOLERANCE};
+use super::{Face, PieceIntersection};
+use crate::certify::{CertifiedBranch, CertifiedEnd};
+use crate::geometry::bezier::RationalBezierPatch;
+use crate::geometry::surface::Domain;
+use crate::march::branch::CurvePoint;
+use crate::numeric::scalar::point;
+use crate::pair::krawczyk::{krawczyk, BoxSurface, KrawczykResult, ParamBox};
+
+/// What a proven join across a corner of the piece pair adds to [`super::Join`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct CornerJoin {
+    /// The edge crossed on the second surface (the join's `edge` is the first surface's).
+    pub second_edge: EdgeKind,
+    /// Every point of the true curve between the two parts' ends lies in this model-space box
+    /// (the corner box's image; empty when the join is not proven).
+    pub xyz: [Interval; 3],
+    /// Branches of the two other piece pairs at the corner whose marched points all lie in the
+    /// corner box: slivers of the same arc, covered by the join and in no curve's parts.
+    pub absorbed: Vec<usize>,
+}
+
+/// Two neighbouring pieces of one surface written in the first one's parameters: the second's
+/// parameters are the chart's plus `shift`.
+pub(super) struct Stitched<'a> {
+    pieces: [(&'a RationalBezierPatch, [f64; 2]); 2],
+}
+
+impl Stitched<'_> {
+    /// The domain of piece `k` in the chart.
+    fn chart_domain(&self, k: usize) -> Option<[Interval; 2]> {
+        let (p, shift) = self.pieces[k];
+        let d = p.domain();
+        Some([interval_sub(d.u, shift[0])?, interval_sub(d.v, shift[1])?])
+    }
+
+    /// Whether the chart box `x` lies in the union of the two pieces' domains (which is a
+    /// rectangle: the pieces share a whole side).
+    fn covers(&self, x: [Interval; 2]) -> bool {
+        let (Some(a), Some(b)) = (self.chart_domain(0), self.chart_domain(1)) else {
+            return false;
+        };
+        (0..2).all(|i| {
+            let hull = a[i].convex_hull(b[i]);
+            x[i].subset(hull)
+        })
+    }
+}
+
+/// `[lo − s, hi − s]`, rounded outward.
+fn interval_sub(range: [f64; 2], s: f64) -> Option<Interval> {
+    let r = Interval::try_from((range[0], range[1])).ok()?;
+    Some(r - point(s))
+}
+
+impl BoxSurface for Stitched<'_> {
+    /// The hull of the pieces' enclosures over the parts of `u × v` in their domains (the whole
+    /// line if the box meets neither).
+    fn box_first_order(&self, u: Interval, v: Interval) -> [[Interval; 3]; 3] {
+        let mut out: Option<[[Interval; 3]; 3]> = None;
+        for k in 0..2 {
+            let Some(d) = self.chart_domain(k) else {
+                continue;
+            };
+            let (cu, cv) = (u.intersection(d[0]), v.intersection(d[1]));
+            if cu.is_empty() || cv.is_empty() {
+                continue;
+            }
+            let (p, shift) = self.pieces[k];
+            // Back in the piece's parameters, clipped to its domain (the shift is rounded
+            // outward; the domain is exact).
+            let pd = p.domain();
+            let (Ok(du), Ok(dv)) = (
+                Interval::try_from((pd.u[0], pd.u[1])),
+                Interval::try_from((pd.v[0], pd.v[1])),
+            ) else {
+                continue;
+            };
+            let (pu, pv) = (
+                (cu + point(shift[0])).intersection(du),
+                (cv + point(shift[1])).intersection(dv),
+            );
+            if pu.is_empty() || pv.is_empty() {
+                continue;
+            }
+            let e = p.first_derivs(pu, pv);
+            out = Some(match out {
+                None => e,
+                Some(o) => {
+                    std::array::from_fn(|r| std::array::from_fn(|c| o[r][c].convex_hull(e[r][c])))
+                }
+            });
+        }
+        out.unwrap_or([[Interval::ENTIRE; 3]; 3])
+    }
+}
+
+/// The shift taking the chart (the parameters of the piece on `link.from`) to those of the
+/// piece on `link.to`: a knot line or a seam of one face between opposite sides, the edge
+/// parameter running the same way over the same range. `None` for anything else (a face edge,
+/// a reversed or rescaled seam): no corner proof is tried there.
+pub(super) fn chart_shift(link: &EdgeLink, from: &Domain, to: &Domain) -> Option<[f64; 2]> {
+    if link.kind == EdgeKind::FaceEdge || link.reversed {
+        return None;
+    }
+    let (k1, v1) = side_coordinate(from, link.from.side);
+    let (k2, v2) = side_coordinate(to, link.to.side);
+    let opposite = link.from.side / 2 == link.to.side / 2 && link.from.side != link.to.side;
+    if k1 != k2 || !opposite {
+        return None;
+    }
+    if along_range(from, link.from.side) != along_range(to, link.to.side) {
+        return None;
+    }
+    let mut shift = [0.0; 2];
+    shift[k1] = v2 - v1;
+    Some(shift)
+}
+
+/// The parameter box of `y` (in a pair's own parameters) in the chart of the corner, the two
+/// surfaces' parameters shifted by `shift`.
+fn to_chart(y: &ParamBox, shift: [[f64; 2]; 2]) -> ParamBox {
+    std::array::from_fn(|i| y[i] - point(shift[i / 2][i % 2]))
+}
+
+/// Whether the box `y` lies strictly inside both domains.
+fn strictly_inside(y: &ParamBox, doms: [&Domain; 2]) -> bool {
+    (0..4).all(|i| {
+        let d = doms[i / 2];
+        let r = if i % 2 == 0 { d.u } else { d.v };
+        y[i].inf() > r[0] && y[i].sup() < r[1]
+    })
+}
+
+/// The hull of the certified branch `c`'s enclosure boxes at its end nearest `near` (a
+/// boundary end), from its outermost box inwards up to the first box strictly inside the
+/// pair's domains: the branch's curve from there to the chain's end lies in it, so wherever
+/// the branch's part of the true curve ends (leaving the domains, or at the chain's end) is
+/// in it.
+pub(super) fn exit_boxes(
+    c: &CertifiedBranch,
+    near: [f64; 4],
+    doms: [&Domain; 2],
+) -> Option<ParamBox> {
+    let distance = |y: &ParamBox| {
+        (0..4)
+            .map(|i| (y[i].inf() - near[i]).max(near[i] - y[i].sup()).max(0.0))
+            .fold(0.0, f64::max)
+    };
+    let (first, last) = (c.boxes.first()?, c.boxes.last()?);
+    let end = usize::from(distance(&last.params()) < distance(&first.params()));
+    if !matches!(c.ends[end], CertifiedEnd::Boundary { .. }) {
+        return None;
+    }
+    let walk: Box<dyn Iterator<Item = _>> = if end == 0 {
+        Box::new(c.boxes.iter())
+    } else {
+        Box::new(c.boxes.iter().rev())
+    };
+    let mut hull: Option<ParamBox> = None;
+    for bx in walk {
+        let y = bx.params();
+        if strictly_inside(&y, doms) {
+            return hull;
+        }
+        hull = Some(match hull {
+            None => y,
+            Some(h) => std::array::from_fn(|i| h[i].convex_hull(y[i])),
+        });
+    }
+    None
+}
+
+/// The proof of a corner join (see the module documentation): `x` and `y` are the two
+/// branches' exit boxes, `x` in the chart (the first pair's parameters), `y` in the second
+/// pair's own; `shift` takes the chart to the second pair's parameters; `a`, `b` are the
+/// stitched surfaces; `sides` are the coordinate (of `(σ, t, u, v)`) and chart value of the
+/// side crossed on each surface. Returns the box holding the curve between the two branches'
+/// parts, and its model-space image.
+pub(super) fn prove(
+    a: &Stitched<'_>,
+    b: &Stitched<'_>,
+    x: &ParamBox,
+    y: &ParamBox,
+    shift: [[f64; 2]; 2],
+    sides: [(usize, f64); 2],
+) -> Result<(ParamBox, [Interval; 3]), &'static str> {
+    let y = to_chart(y, shift);
+    let hull: ParamBox = std::array::from_fn(|i| x[i].convex_hull(y[i]));
+    // One arc in K0: a graph over coordinate j, proven slice by slice. K0 is the hull widened
+    // across j only (along j the exit boxes already reach past both crossings; widened there,
+    // the curve would leave K0 through its other faces).
+    let mut arc = None;
+    for j in 0..4 {
+        let mut k0 = hull;
+        for (i, r) in k0.iter_mut().enumerate() {
+            pad_one(r, if i == j { 0.0 } else { 0.125 })?;
+        }
+        if !a.covers([k0[0], k0[1]]) || !b.covers([k0[2], k0[3]]) {
+            return Err("the corner box reaches past the two pieces of a surface");
+        }
+        if let Some(slices) = one_arc(a, b, &k0, j) {
+            arc = Some((j, k0, slices));
+            break;
+        }
+    }
+    let (j, k0, slices) = arc.ok_or("the curve in the corner box is not proven to be one arc")?;
+    // Where the arc crosses each side (once each in K0).
+    let mut crossing = Vec::new();
+    for (c, value) in sides {
+        crossing.push(unique_crossing(a, b, &k0, c, value)?[j]);
+    }
+    // Between the crossings (the stretch in neither branch's pair): the arc over their range
+    // of j, enclosed on the slices it meets.
+    let mut range = crossing[0].convex_hull(crossing[1]);
+    pad_one(&mut range, 0.125)?;
+    let mut k2: Option<ParamBox> = None;
+    for sl in &slices {
+        let r = sl[j].intersection(range);
+        if r.is_empty() {
+            continue;
+        }
+        let mut bx = *sl;
+        bx[j] = r;
+        let KrawczykResult::Proven { enclosure, .. } = krawczyk(a, b, bx, j, 30) else {
+            return Err("the arc between the crossings is not enclosed");
+        };
+        k2 = Some(match k2 {
+            None => enclosure,
+            Some(h) => std::array::from_fn(|i| h[i].convex_hull(enclosure[i])),
+        });
+    }
+    let k2 = k2.ok_or("the crossings lie outside the corner box")?;
+    let [pa, ..] = a.box_first_order(k2[0], k2[1]);
+    let [qb, ..] = b.box_first_order(k2[2], k2[3]);
+    let mut xyz = pa;
+    for i in 0..3 {
+        let both = pa[i].intersection(qb[i]);
+        if both.is_empty() {
+            return Err("the corner box's images are disjoint");
+        }
+        xyz[i] = both;
+    }
+    Ok((k2, xyz))
+}
+
+/// Slices of `k` across coordinate `j` (each the whole of `k` in the others) on each of which
+/// the parametric Krawczyk test with `j` held over the slice is proven: then for every value of
+/// `j` in `k` there is exactly one curve point in `k`. `None` when some slice is not proven at
+/// 16 or at 128 slices.
+fn one_arc(a: &Stitched<'_>, b: &Stitched<'_>, k: &ParamBox, j: usize) -> Option<Vec<ParamBox>> {
+    'count: for n in [16usize, 128] {
+        let (lo, hi) = (k[j].inf(), k[j].sup());
+        let mut out = Vec::with_capacity(n);
+        for m in 0..n {
+            // Cut points in f64; consecutive slices share them, so the slices cover k[j].
+            let at = |i: usize| {
+                if i == 0 {
+                    lo
+                } else if i == n {
+                    hi
+                } else {
+                    lo + (hi - lo) * i as f64 / n as f64
+                }
+            };
+            let mut s = *k;
+            s[j] = Interval::try_from((at(m), at(m + 1))).ok()?;
+            // (Contracting iterations keep every curve point of the slice: a proof on a
+            // contracted box is one for the whole slice.)
+            if !matches!(krawczyk(a, b, s, j, 30), KrawczykResult::Proven { .. }) {
+                continue 'count;
+            }
+            out.push(s);
+        }
+        return Some(out);
+    }
+    None
+}
+
+/// Most boxes [`unique_crossing`] looks at.
+const MOST_CROSSING_BOXES: usize = 512;
+
+/// The enclosure of the only curve point of `k` with coordinate `c` at `value`: `k` (with `c`
+/// held at the value) is cut into boxes, each proven to hold no curve point (disjoint images,
+/// or a Krawczyk image disjoint from it) or exactly one (the Krawczyk test); exactly one box
+/// must hold one.
+fn unique_crossing(
+    a: &Stitched<'_>,
+    b: &Stitched<'_>,
+    k: &ParamBox,
+    c: usize,
+    value: f64,
+) -> Result<ParamBox, &'static str> {
+    let mut start = *k;
+    start[c] = point(value);
+    let mut todo = vec![start];
+    let mut found: Option<ParamBox> = None;
+    let mut looked = 0;
+    while let Some(y) = todo.pop() {
+        looked += 1;
+        if looked > MOST_CROSSING_BOXES {
+            return Err("a side's crossing is not proven (too many boxes)");
+        }
+        let [pa, ..] = a.box_first_order(y[0], y[1]);
+        let [qb, ..] = b.box_first_order(y[2], y[3]);
+        if pa.iter().chain(&qb).any(|x| !x.is_common_interval()) {
+            return Err("a side's crossing is not proven (unbounded enclosure)");
+        }
+        if pa.iter().zip(&qb).any(|(p, q)| p.disjoint(*q)) {
+            continue;
+        }
+        match krawczyk(a, b, y, c, 30) {
+            KrawczykResult::Proven { enclosure, .. } => {
+                if found.replace(enclosure).is_some() {
+                    return Err("a side is crossed twice in the corner box");
+                }
+            }
+            KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
+            KrawczykResult::NotProven(_) => {
+                // Bisect the free coordinate widest relative to the corner box.
+                let w = |i: usize| y[i].wid() / k[i].wid().max(f64::MIN_POSITIVE);
+                let i = (0..4)
+                    .filter(|&i| i != c)
+                    .max_by(|&p, &q| w(p).total_cmp(&w(q)))
+                    .unwrap_or((c + 1) % 4);
+                let m = y[i].mid();
+                let (lo, hi) = (y[i].inf(), y[i].sup());
+                if !(lo < m && m < hi) {
+                    return Err("a side's crossing is not proven (box too small to cut)");
+                }
+                let (mut p, mut q) = (y, y);
+                p[i] = Interval::try_from((lo, m)).map_err(|_| "a cut is not finite")?;
+                q[i] = Interval::try_from((m, hi)).map_err(|_| "a cut is not finite")?;
+                todo.push(p);
+                todo.push(q);
+            }
+        }
+    }
+    found.ok_or("a side is not crossed in the corner box")
+}
+
+/// Widens `r` by `fraction` of its width and `1e-12·(1 + |r|)`.
+fn pad_one(r: &mut Interval, fraction: f64) -> Result<(), &'static str> {
+    let w = (point(fraction * r.wid()) + point(1e-12 * (1.0 + r.mag()))).sup();
+    *r += Interval::try_from((-w, w)).map_err(|_| "a corner box is not finite")?;
+    Ok(())
+}
+
+/// Whether every point of `points` (a pair's own parameters) lies in the chart box `k` once
+/// shifted by `shift`.
+pub(super) fn all_inside(points: &[[f64; 4]], k: &ParamBox, shift: [[f64; 2]; 2]) -> bool {
+    points.iter().all(|p| {
+        (0..4).all(|i| {
+            let c = point(p[i]) - point(shift[i / 2][i % 2]);
+            c.subset(k[i])
+        })
+    })
+}
+
+/// The two stitched surfaces of a corner: surface `s`'s pieces `first` and `second`, the
+/// second shifted by `shift`.
+pub(super) fn stitched<'a>(
+    first: &'a RationalBezierPatch,
+    second: &'a RationalBezierPatch,
+    shift: [f64; 2],
+) -> Stitched<'a> {
+    Stitched {
+        pieces: [(first, [0.0, 0.0]), (second, shift)],
+    }
+}
+
+/// A candidate join across a corner, before matching.
+pub(super) struct CornerCandidate {
+    /// The two end sites (indices into the site list), the first below the second.
+    pub(super) sites: [usize; 2],
+    /// The marched end points' model-space distance.
+    pub(super) gap: f64,
+    /// Proven, or why not (the join's status where the method certifies).
+    pub(super) status: Result<(), &'static str>,
+    /// The edges crossed on the first and the second surface.
+    pub(super) edges: [EdgeKind; 2],
+    /// When proven: the corner box (in the first site's pair's parameters), its image, and the
+    /// pieces of the first and second site's pairs (`[[a₁, b₁], [a₂, b₂]]`, face and piece).
+    pub(super) proof: Option<CornerProof>,
+}
+
+/// A proven corner box and where it lies.
+pub(super) struct CornerProof {
+    pub(super) k: ParamBox,
+    pub(super) xyz: [Interval; 3],
+    /// Per surface, the shift from the chart to the second pair's piece.
+    pub(super) shift: [[f64; 2]; 2],
+    /// `[[face, piece] of A, [face, piece] of B]` of the first and of the second pair.
+    pub(super) pieces: [[[usize; 2]; 2]; 2],
+}
+
+/// Every candidate join across a corner: an end site on a side of both of its pieces, and one
+/// of the pair diagonally across both sides at the same corner, whose marched points agree to
+/// [`MARCH_JOIN_TOLERANCE`]; proven as the module documentation says when both are certified.
+pub(super) fn candidates(
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+    sites: &[EndSite],
+    links: &[Vec<EdgeLink>; 2],
+    by_pair: &HashMap<([usize; 2], [usize; 2]), usize>,
+) -> Vec<CornerCandidate> {
+    let mut out = Vec::new();
+    let mut at_pair: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (y, s) in sites.iter().enumerate() {
+        if s.corner.is_some() {
+            at_pair.entry(s.pair).or_default().push(y);
+        }
+    }
+    for (x, s1) in sites.iter().enumerate() {
+        let Some(sides1) = s1.sides() else { continue };
+        let from = |k: usize| {
+            let l = &links[k];
+            let first = l.partition_point(|e| e.from < sides1[k]);
+            l[first..].iter().take_while(move |e| e.from == sides1[k])
+        };
+        for la in from(0) {
+            for lb in from(1) {
+                let p1 = &pairs[s1.pair];
+                let faces = [la.to.face, lb.to.face];
+                let pieces = [la.to.piece, lb.to.piece];
+                let Some(&k2) = by_pair.get(&(faces, pieces)) else {
+                    continue;
+                };
+                for &y in at_pair.get(&k2).into_iter().flatten() {
+                    let s2 = &sites[y];
+                    if y <= x || s2.sides() != Some([la.to, lb.to]) {
+                        continue;
+                    }
+                    let Some(gap) = marched_gap(&s1.point, &s2.point) else {
+                        continue;
+                    };
+                    let (status, proof) = prove_pair(a, b, [p1, &pairs[k2]], [s1, s2], [la, lb]);
+                    out.push(CornerCandidate {
+                        sites: [x, y],
+                        gap,
+                        status,
+                        edges: [la.kind, lb.kind],
+                        proof,
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The model-space distance of two marched end points, when within [`MARCH_JOIN_TOLERANCE`].
+fn marched_gap(p1: &CurvePoint, p2: &CurvePoint) -> Option<f64> {
+    let scale = 1.0
+        + p1.xyz
+            .iter()
+            .chain(&p2.xyz)
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+    let gap = (0..3)
+        .map(|i| (p1.xyz[i] - p2.xyz[i]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    (gap <= MARCH_JOIN_TOLERANCE * scale).then_some(gap)
+}
+
+/// The status of the corner join of sites `s` of pairs `p` across the links `l` (of A's side,
+/// then B's), and its proof.
+fn prove_pair(
+    a: &[Face],
+    b: &[Face],
+    p: [&PieceIntersection; 2],
+    s: [&EndSite; 2],
+    l: [&EdgeLink; 2],
+) -> (Result<(), &'static str>, Option<CornerProof>) {
+    if !p[0].result.options.method.certifies() {
+        return (Err("the method does not certify"), None);
+    }
+    let unproven = |reason| (Err(reason), None);
+    let (q1, q2) = (patches(a, b, p[0]), patches(a, b, p[1]));
+    let (Some(sa), Some(sb)) = (
+        chart_shift(l[0], &q1[0].domain(), &q2[0].domain()),
+        chart_shift(l[1], &q1[1].domain(), &q2[1].domain()),
+    ) else {
+        return unproven("a corner across a face edge or a reversed seam is not proven");
+    };
+    let (Some(c1), Some(c2)) = (s[0].certificate, s[1].certificate) else {
+        return unproven("an end at the corner is not certified");
+    };
+    let near = |pt: &CurvePoint| [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+    let (d1, d2) = (
+        [q1[0].domain(), q1[1].domain()],
+        [q2[0].domain(), q2[1].domain()],
+    );
+    let (Some(x), Some(y)) = (
+        exit_boxes(c1, near(&s[0].point), [&d1[0], &d1[1]]),
+        exit_boxes(c2, near(&s[1].point), [&d2[0], &d2[1]]),
+    ) else {
+        return unproven("a certified end does not leave its pieces at the corner");
+    };
+    let sta = stitched(q1[0], q2[0], sa);
+    let stb = stitched(q1[1], q2[1], sb);
+    let (ka, va) = side_coordinate(&d1[0], l[0].from.side);
+    let (kb, vb) = side_coordinate(&d1[1], l[1].from.side);
+    match prove(&sta, &stb, &x, &y, [sa, sb], [(ka, va), (2 + kb, vb)]) {
+        Ok((k, xyz)) => (
+            Ok(()),
+            Some(CornerProof {
+                k,
+                xyz,
+                shift: [sa, sb],
+                pieces: [
+                    [
+                        [p[0].faces[0], p[0].pieces[0]],
+                        [p[0].faces[1], p[0].pieces[1]],
+                    ],
+                    [
+                        [p[1].faces[0], p[1].pieces[0]],
+                        [p[1].faces[1], p[1].pieces[1]],
+                    ],
+                ],
+            }),
+        ),
+        Err(reason) => unproven(reason),
+    }
+}
+
+/// The branches (shell-wide, numbered as the joins number them) of the two side pairs of a proven
+/// corner whose marched points all lie in its box.
+pub(super) fn absorbed(
+    proof: &CornerProof,
+    pairs: &[PieceIntersection],
+    by_pair: &HashMap<([usize; 2], [usize; 2]), usize>,
+    first_branch: &[usize],
+) -> Vec<usize> {
+    let [[a1, b1], [a2, b2]] = proof.pieces;
+    let mut out = Vec::new();
+    // (a₁, b₂): B shifted; (a₂, b₁): A shifted.
+    for (pa, pb, shift) in [
+        (a1, b2, [[0.0, 0.0], proof.shift[1]]),
+        (a2, b1, [proof.shift[0], [0.0, 0.0]]),
+    ] {
+        let Some(&k) = by_pair.get(&([pa[0], pb[0]], [pa[1], pb[1]])) else {
+            continue;
+        };
+        for (i, br) in pairs[k].result.branches.iter().enumerate() {
+            let pts: Vec<[f64; 4]> = br
+                .marched
+                .points
+                .iter()
+                .map(|c| [c.p[0], c.p[1], c.q[0], c.q[1]])
+                .collect();
+            if !pts.is_empty() && all_inside(&pts, &proof.k, shift) {
+                out.push(first_branch[k] + i);
+            }
+        }
+    }
+    out
+}
+
+/// The Euclidean diameter of a model-space box, rounded up.
+pub(super) fn diameter(x: &[Interval; 3]) -> f64 {
+    let s = x
+        .iter()
+        .map(|c| {
+            let w = point(c.sup()) - point(c.inf());
+            w * w
+        })
+        .fold(point(0.0), |a, b| a + b);
+    s.sqrt().sup()
+}

@@ -1,0 +1,330 @@
+//! Branch ends on the sides of their pieces, and their proven exits: what the joins
+//! matches (and the corner joins at corners of the piece pair).
+
+use inari::Interval;
+
+use super::edges::{side_coordinate, side_of, PieceSide};
+use super::{Face, PieceIntersection};
+use crate::certify::{CertifiedBranch, CertifiedEnd};
+use crate::geometry::bezier::RationalBezierPatch;
+use crate::march::branch::{CurvePoint, EndReason};
+use crate::numeric::scalar::point;
+use crate::pair::krawczyk::{krawczyk, KrawczykResult, ParamBox};
+use crate::solve::TracedBranch;
+
+/// Model-space tolerance for joining marched end points, relative to `1 + |x|∞` of the point:
+/// a hundred times the marcher's parameter tolerance on domain boundaries (1e-9).
+pub const MARCH_JOIN_TOLERANCE: f64 = 1e-7;
+
+/// Parameter tolerance for "on a side of the piece" and "the parameters agree", relative to the
+/// pieces' size (the marcher puts boundary ends within 1e-7 of the larger of the two).
+pub const SIDE_TOLERANCE: f64 = 1e-6;
+
+/// One end of one branch: the branch's index in the shell's branch sequence
+/// ([`super::ShellIntersection::branch`]) and `0` for its first point, `1` for its last.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BranchEnd {
+    /// The branch (shell-wide index, the `"id"` of the result document).
+    pub branch: usize,
+    /// 0: the first marched point; 1: the last.
+    pub end: usize,
+}
+
+/// A boundary end of a branch, placed on a side of its piece.
+#[derive(Clone)]
+pub(super) struct EndSite<'a> {
+    pub(super) at: BranchEnd,
+    /// The pair the branch belongs to.
+    pub(super) pair: usize,
+    /// The surface (0 or 1) whose piece boundary the end is on.
+    pub(super) surface: usize,
+    pub(super) side: PieceSide,
+    /// The side of the other surface's piece the end point is also on (a corner of the pair).
+    pub(super) corner: Option<PieceSide>,
+    /// The marched end point.
+    pub(super) point: CurvePoint,
+    /// The certified exit, when the branch is certified and its exit could be proven.
+    pub(super) exit: Option<Exit>,
+    /// The branch's certified tolerance, when it is certified.
+    pub(super) tolerance: Option<f64>,
+    /// The branch's certificate, when it is certified.
+    pub(super) certificate: Option<&'a CertifiedBranch>,
+}
+
+impl EndSite<'_> {
+    /// At a corner of the pair: its sides on surface 0 and on surface 1.
+    pub(super) fn sides(&self) -> Option<[PieceSide; 2]> {
+        let c = self.corner?;
+        Some(if self.surface == 0 {
+            [self.side, c]
+        } else {
+            [c, self.side]
+        })
+    }
+}
+
+/// A proven end of a certified branch on a side: the exact end point lies in `exit`, and it is
+/// the only curve point of the piece pair on the side inside `region`.
+#[derive(Clone)]
+pub(super) struct Exit {
+    pub(super) exit: ParamBox,
+    pub(super) region: ParamBox,
+    pub(super) xyz: [Interval; 3],
+}
+
+/// The pieces of the pair: `[piece of A, piece of B]`.
+pub(super) fn patches<'a>(
+    a: &'a [Face],
+    b: &'a [Face],
+    pi: &PieceIntersection,
+) -> [&'a RationalBezierPatch; 2] {
+    [
+        &a[pi.faces[0]].pieces()[pi.pieces[0]],
+        &b[pi.faces[1]].pieces()[pi.pieces[1]],
+    ]
+}
+
+/// The [`EndSite`] of `at` when the marcher ended it on a piece boundary that is a side of the
+/// piece.
+pub(super) fn end_site<'a>(
+    a: &[Face],
+    b: &[Face],
+    pi: &PieceIntersection,
+    pair: usize,
+    traced: &'a TracedBranch,
+    at: BranchEnd,
+) -> Option<EndSite<'a>> {
+    let m = &traced.marched;
+    let EndReason::Boundary { surface } = m.ends[at.end] else {
+        return None;
+    };
+    let point = *if at.end == 0 {
+        m.points.first()?
+    } else {
+        m.points.last()?
+    };
+    let pieces = patches(a, b, pi);
+    let dom = pieces[surface].domain();
+    let x = if surface == 0 { point.p } else { point.q };
+    let size = dom.size().max(pieces[1 - surface].domain().size());
+    let side = side_of(&dom, x, SIDE_TOLERANCE * size)?;
+    let side = PieceSide {
+        face: pi.faces[surface],
+        piece: pi.pieces[surface],
+        side,
+    };
+    let exit = traced
+        .certified()
+        .and_then(|c| certified_exit(pieces, surface, side.side, &point, c));
+    let other = 1 - surface;
+    let y = if other == 0 { point.p } else { point.q };
+    let corner = side_of(&pieces[other].domain(), y, SIDE_TOLERANCE * size).map(|s| PieceSide {
+        face: pi.faces[other],
+        piece: pi.pieces[other],
+        side: s,
+    });
+    Some(EndSite {
+        at,
+        pair,
+        surface,
+        side,
+        corner,
+        point,
+        exit,
+        tolerance: traced.certified_tolerance(),
+        certificate: traced.certified(),
+    })
+}
+
+/// The proven exit of the certified branch `c` through `side` of `surface`'s piece, at the
+/// certified end nearest the marched end point `near`.
+///
+/// The end's last tube piece proves the true curve point at its outer end beyond the side (its
+/// reported point, evaluated in interval arithmetic, is farther beyond than the piece's
+/// parameter radius); walking the chain of enclosure boxes inwards from that end, the first box
+/// wholly on the inner side proves a curve point inside. The curve is continuous along the
+/// chain, so it meets the side in the boxes in between; their hull on the side, slightly
+/// widened, is the region where the parametric Krawczyk test (the side's coordinate held at
+/// its value) proves that the piece pair's curve meets the side exactly once.
+pub(super) fn certified_exit(
+    pieces: [&RationalBezierPatch; 2],
+    surface: usize,
+    side: usize,
+    near: &CurvePoint,
+    c: &CertifiedBranch,
+) -> Option<Exit> {
+    let dom = pieces[surface].domain();
+    let (k, value) = side_coordinate(&dom, side);
+    let fixed = 2 * surface + k;
+    let lower = side.is_multiple_of(2);
+    let target = [near.p[0], near.p[1], near.q[0], near.q[1]];
+    let distance = |y: &ParamBox| {
+        (0..4)
+            .map(|i| {
+                let (lo, hi) = (y[i].inf(), y[i].sup());
+                (lo - target[i]).max(target[i] - hi).max(0.0)
+            })
+            .fold(0.0, f64::max)
+    };
+    let (first, last) = (c.boxes.first()?, c.boxes.last()?);
+    // The certified end at the marched end: 0 (smallest arc length) or 1.
+    let end = usize::from(distance(&last.params()) < distance(&first.params()));
+    // A boundary end, of either surface: near a corner the certifier names one side and the
+    // chain also leaves by the other; what follows proves the exit through `side` on its own.
+    if !matches!(c.ends[end], CertifiedEnd::Boundary { .. }) {
+        return None;
+    }
+    let tube = if end == 0 {
+        c.tubes.first()?
+    } else {
+        c.tubes.last()?
+    };
+    // The outer end of the end piece is at τ = h on both halves.
+    if (tube.direction < 0.0) != (end == 0) {
+        return None;
+    }
+    let h = point(tube.h);
+    let reported = tube
+        .coeffs
+        .iter()
+        .rev()
+        .fold(point(0.0), |acc, c| acc * h + point(c[fixed]));
+    let radius = point(tube.radius_param);
+    let beyond = if lower {
+        (reported + radius).sup() < value
+    } else {
+        (reported - radius).inf() > value
+    };
+    if !beyond {
+        return None;
+    }
+    let inner = |y: &ParamBox| {
+        if lower {
+            y[fixed].inf() > value
+        } else {
+            y[fixed].sup() < value
+        }
+    };
+    let mut region: Option<ParamBox> = None;
+    let mut reached_inside = false;
+    let walk: Box<dyn Iterator<Item = _>> = if end == 0 {
+        Box::new(c.boxes.iter())
+    } else {
+        Box::new(c.boxes.iter().rev())
+    };
+    for bx in walk {
+        let y = bx.params();
+        if inner(&y) {
+            reached_inside = true;
+            break;
+        }
+        region = Some(match region {
+            None => y,
+            Some(r) => std::array::from_fn(|i| r[i].convex_hull(y[i])),
+        });
+    }
+    let mut region = region.filter(|_| reached_inside)?;
+    for (i, r) in region.iter_mut().enumerate() {
+        if i == fixed {
+            *r = point(value);
+        } else {
+            let pad = (point(0.125 * r.wid()) + point(1e-12 * (1.0 + r.mag()))).sup();
+            *r += Interval::try_from((-pad, pad)).ok()?;
+        }
+    }
+    let enclosure = unique_zero(pieces, region, fixed)?;
+    let xp = pieces[0].enclose(enclosure[0], enclosure[1]);
+    let xq = pieces[1].enclose(enclosure[2], enclosure[3]);
+    let mut xyz = xp;
+    for i in 0..3 {
+        let both = xp[i].intersection(xq[i]);
+        if both.is_empty() {
+            return None;
+        }
+        xyz[i] = both;
+    }
+    Some(Exit {
+        exit: enclosure,
+        region,
+        xyz,
+    })
+}
+
+/// Most boxes [`unique_zero`] looks at.
+const MAX_ZERO_BOXES: usize = 256;
+
+/// The enclosure of the only zero of `P − Q` in `region` with coordinate `fixed` held (a
+/// point), proven: `region` is cut into boxes (bisecting the free coordinate that is longest in
+/// model space) until each is proven empty (disjoint model-space enclosures, or a Krawczyk image
+/// disjoint from it) or proven to hold exactly one zero (the Krawczyk test); the answer is that
+/// zero's enclosure when exactly one box holds one. `None` when the cutting gives up, a box's
+/// model-space enclosure is unbounded (a weight may vanish there), or there are several (or no)
+/// such boxes.
+fn unique_zero(
+    pieces: [&RationalBezierPatch; 2],
+    region: ParamBox,
+    fixed: usize,
+) -> Option<ParamBox> {
+    let mut todo = vec![region];
+    let mut found: Option<ParamBox> = None;
+    let mut looked = 0;
+    while let Some(y) = todo.pop() {
+        looked += 1;
+        if looked > MAX_ZERO_BOXES {
+            return None;
+        }
+        let xp = pieces[0].enclose(y[0], y[1]);
+        let xq = pieces[1].enclose(y[2], y[3]);
+        // Bounded enclosures: both weight functions are nonzero on the box, so every interval
+        // evaluation below is of a well-defined function. Otherwise give up.
+        if xp.iter().chain(&xq).any(|x| !x.is_common_interval()) {
+            return None;
+        }
+        if xp.iter().zip(&xq).any(|(a, b)| a.disjoint(*b)) {
+            continue;
+        }
+        match krawczyk(pieces[0], pieces[1], y, fixed, 30) {
+            KrawczykResult::Proven { enclosure, .. } => {
+                if found.replace(enclosure).is_some() {
+                    return None;
+                }
+            }
+            KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
+            KrawczykResult::NotProven(_) => {
+                let k = widest(pieces, &y, fixed);
+                let m = y[k].mid();
+                let (lo, hi) = (y[k].inf(), y[k].sup());
+                if !(lo < m && m < hi) {
+                    return None;
+                }
+                let (mut a, mut b) = (y, y);
+                a[k] = Interval::try_from((lo, m)).ok()?;
+                b[k] = Interval::try_from((m, hi)).ok()?;
+                todo.push(a);
+                todo.push(b);
+            }
+        }
+    }
+    found
+}
+
+/// The free coordinate of `y` (not `fixed`) whose width is largest in model space (times the
+/// length of the surface's partial derivative at the box's midpoint).
+fn widest(pieces: [&RationalBezierPatch; 2], y: &ParamBox, fixed: usize) -> usize {
+    let mid = y.map(|c| c.mid());
+    let speed = |k: usize| {
+        let s = &pieces[k / 2];
+        let d = s.derivs_f64(mid[2 * (k / 2)], mid[2 * (k / 2) + 1]);
+        let col = if k.is_multiple_of(2) { d.su } else { d.sv };
+        let n = col.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if n.is_finite() {
+            n.max(1e-300)
+        } else {
+            1.0
+        }
+    };
+    (0..4)
+        .filter(|&k| k != fixed)
+        .max_by(|&a, &b| (y[a].wid() * speed(a)).total_cmp(&(y[b].wid() * speed(b))))
+        .unwrap_or((fixed + 1) % 4)
+}
