@@ -222,8 +222,22 @@ pub(super) fn prove(
     // One arc in K0: a graph over coordinate j, proven slice by slice. K0 is the hull widened
     // across j only (along j the exit boxes already reach past both crossings; widened there,
     // the curve would leave K0 through its other faces).
+    // Along the curve the exit boxes are long and across it thin: try the coordinates in
+    // order of their extent (relative to the pieces' domains), the two longest only.
+    let extent = |i: usize| {
+        let s = if i < 2 { a } else { b };
+        let d = s.pieces[0].0.domain();
+        let size = if i.is_multiple_of(2) {
+            d.u[1] - d.u[0]
+        } else {
+            d.v[1] - d.v[0]
+        };
+        hull[i].wid() / size
+    };
+    let mut order = [0, 1, 2, 3];
+    order.sort_by(|&p, &q| extent(q).total_cmp(&extent(p)));
     let mut arc = None;
-    for j in 0..4 {
+    for j in order.into_iter().take(2) {
         let mut k0 = hull;
         for (i, r) in k0.iter_mut().enumerate() {
             pad_one(r, if i == j { 0.0 } else { 0.125 })?;
@@ -444,6 +458,8 @@ pub(super) fn candidates(
             at_pair.entry(s.pair).or_default().push(y);
         }
     }
+    // An end at a corner has a site on each side: one candidate per pair of branch ends.
+    let mut seen = std::collections::HashSet::new();
     for (x, s1) in sites.iter().enumerate() {
         let Some(sides1) = s1.sides() else { continue };
         let from = |k: usize| {
@@ -461,7 +477,8 @@ pub(super) fn candidates(
                 };
                 for &y in at_pair.get(&k2).into_iter().flatten() {
                     let s2 = &sites[y];
-                    if y <= x || s2.sides() != Some([la.to, lb.to]) {
+                    if y <= x || s2.sides() != Some([la.to, lb.to]) || !seen.insert((s1.at, s2.at))
+                    {
                         continue;
                     }
                     let Some(gap) = marched_gap(&s1.point, &s2.point) else {
