@@ -315,6 +315,37 @@ fn nearly_corner_crossings_are_joined_into_closed_curves() {
     }
 }
 
+/// Two equal cylinders, unturned: the ellipses (cos φ, sin φ, ±cos φ) cross the first's seam
+/// exactly where they cross knot lines of the second, at (±1, 0, ±1), and the singular points
+/// (0, ±1, 0) lie on knot lines of both. Each of the four arcs between the nodes is made of two
+/// branches joined across a corner of their piece pairs, and proven.
+#[test]
+fn unturned_equal_cylinders_give_four_arcs_each_joined_across_a_corner() {
+    let scene = json!({"surfaces": [cylinder(2, 1.0, 2.0, None), cylinder(0, 1.0, 2.0, None)],
+                       "options": {"method": "both"}});
+    let (_, report) = run(scene);
+    let r = &report.result;
+    assert_eq!(r.curves.len(), 4, "{:?}", r.curves);
+    let mut met = Vec::new();
+    for c in &r.curves {
+        assert!(!c.closed);
+        let tol = c.certified_tolerance.expect("certified, joins proven");
+        assert!(tol <= 1e-9, "{tol:e}");
+        let corners: Vec<_> = c.joins.iter().filter_map(|j| j.corner.as_ref()).collect();
+        assert_eq!(corners.len(), 1, "{c:?}");
+        let at = [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)]
+            .into_iter()
+            .position(|(x, z)| {
+                let p = [x, 0.0, z];
+                (0..3).all(|i| corners[0].xyz[i].contains(p[i]))
+            })
+            .expect("the corner box holds a crossing (±1, 0, ±1)");
+        met.push(at);
+    }
+    met.sort_unstable();
+    assert_eq!(met, [0, 1, 2, 3], "one arc through each crossing");
+}
+
 #[test]
 fn nurbs_cylinders_of_equal_radii_meet_in_four_arcs_between_two_nodes() {
     // x² + y² = 1 about z and y² + z² = 1 about x: the ellipses (cos φ, sin φ, ±cos φ), which
