@@ -30,7 +30,7 @@ use std::collections::HashMap;
 use inari::Interval;
 
 use super::edges::{along_range, side_coordinate, EdgeKind, EdgeLink};
-use super::sites::{patches, EndSite, MARCH_JOIN_TOLERANCE};
+use super::sites::{marched_gap, patches, EndSite, Zero};
 use super::{Face, PieceIntersection};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::geometry::bezier::RationalBezierPatch;
@@ -326,10 +326,9 @@ fn one_arc(a: &Stitched<'_>, b: &Stitched<'_>, k: &ParamBox, j: usize) -> Option
 /// Most boxes [`unique_crossing`] looks at.
 const MOST_CROSSING_BOXES: usize = 512;
 
-/// The enclosure of the only curve point of `k` with coordinate `c` at `value`: `k` (with `c`
-/// held at the value) is cut into boxes, each proven to hold no curve point (disjoint images,
-/// or a Krawczyk image disjoint from it) or exactly one (the Krawczyk test); exactly one box
-/// must hold one.
+/// The enclosure of the only curve point of `k` with coordinate `c` at `value` ([`Zero`]: the
+/// images are the stitched surfaces' enclosures, boxes are cut along the free coordinate
+/// widest relative to `k`).
 fn unique_crossing(
     a: &Stitched<'_>,
     b: &Stitched<'_>,
@@ -339,50 +338,24 @@ fn unique_crossing(
 ) -> Result<ParamBox, &'static str> {
     let mut start = *k;
     start[c] = point(value);
-    let mut todo = vec![start];
-    let mut found: Option<ParamBox> = None;
-    let mut looked = 0;
-    while let Some(y) = todo.pop() {
-        looked += 1;
-        if looked > MOST_CROSSING_BOXES {
-            return Err("a side's crossing is not proven (too many boxes)");
-        }
-        let [pa, ..] = a.box_first_order(y[0], y[1]);
-        let [qb, ..] = b.box_first_order(y[2], y[3]);
-        if pa.iter().chain(&qb).any(|x| !x.is_common_interval()) {
-            return Err("a side's crossing is not proven (unbounded enclosure)");
-        }
-        if pa.iter().zip(&qb).any(|(p, q)| p.disjoint(*q)) {
-            continue;
-        }
-        match krawczyk(a, b, y, c, 30) {
-            KrawczykResult::Proven { enclosure, .. } => {
-                if found.replace(enclosure).is_some() {
-                    return Err("a side is crossed twice in the corner box");
-                }
-            }
-            KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
-            KrawczykResult::NotProven(_) => {
-                // Bisect the free coordinate widest relative to the corner box.
-                let w = |i: usize| y[i].wid() / k[i].wid().max(f64::MIN_POSITIVE);
-                let i = (0..4)
-                    .filter(|&i| i != c)
-                    .max_by(|&p, &q| w(p).total_cmp(&w(q)))
-                    .unwrap_or((c + 1) % 4);
-                let m = y[i].mid();
-                let (lo, hi) = (y[i].inf(), y[i].sup());
-                if !(lo < m && m < hi) {
-                    return Err("a side's crossing is not proven (box too small to cut)");
-                }
-                let (mut p, mut q) = (y, y);
-                p[i] = Interval::try_from((lo, m)).map_err(|_| "a cut is not finite")?;
-                q[i] = Interval::try_from((m, hi)).map_err(|_| "a cut is not finite")?;
-                todo.push(p);
-                todo.push(q);
-            }
-        }
-    }
-    found.ok_or("a side is not crossed in the corner box")
+    let zero = Zero {
+        fixed: c,
+        most: MOST_CROSSING_BOXES,
+        images: |y: &ParamBox| {
+            let [pa, ..] = a.box_first_order(y[0], y[1]);
+            let [qb, ..] = b.box_first_order(y[2], y[3]);
+            (pa, qb)
+        },
+        cut: |y: &ParamBox| {
+            let w = |i: usize| y[i].wid() / k[i].wid().max(f64::MIN_POSITIVE);
+            (0..4)
+                .filter(|&i| i != c)
+                .max_by(|&p, &q| w(p).total_cmp(&w(q)))
+                .unwrap_or((c + 1) % 4)
+        },
+    };
+    zero.unique(a, b, start)
+        .map_err(|_| "a side's crossing in the corner box is not proven unique")
 }
 
 /// Widens `r` by `fraction` of its width and `1e-12·(1 + |r|)`.
@@ -497,20 +470,6 @@ pub(super) fn candidates(
         }
     }
     out
-}
-
-/// The model-space distance of two marched end points, when within [`MARCH_JOIN_TOLERANCE`].
-fn marched_gap(p1: &CurvePoint, p2: &CurvePoint) -> Option<f64> {
-    let scale = 1.0
-        + p1.xyz
-            .iter()
-            .chain(&p2.xyz)
-            .fold(0.0f64, |m, x| m.max(x.abs()));
-    let gap = (0..3)
-        .map(|i| (p1.xyz[i] - p2.xyz[i]).powi(2))
-        .sum::<f64>()
-        .sqrt();
-    (gap <= MARCH_JOIN_TOLERANCE * scale).then_some(gap)
 }
 
 /// The status of the corner join of sites `s` of pairs `p` across the links `l` (of A's side,

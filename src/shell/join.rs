@@ -37,7 +37,7 @@ use inari::Interval;
 
 use super::corner::{self, CornerJoin};
 use super::edges::{along_range, shared_edges, side_coordinate, EdgeKind, EdgeLink, PieceSide};
-use super::sites::{certified_exit, end_site, patches, EndSite};
+use super::sites::{certified_exit, end_site, marched_gap, patches, EndSite};
 pub use super::sites::{BranchEnd, MARCH_JOIN_TOLERANCE, SIDE_TOLERANCE};
 use super::{Face, PieceIntersection};
 use crate::geometry::surface::Domain;
@@ -322,18 +322,7 @@ fn candidate(
     }
     // The marched evidence.
     let (p1, p2) = (&s1.point, &s2.point);
-    let scale = 1.0
-        + p1.xyz
-            .iter()
-            .chain(&p2.xyz)
-            .fold(0.0f64, |m, x| m.max(x.abs()));
-    let gap = (0..3)
-        .map(|i| (p1.xyz[i] - p2.xyz[i]).powi(2))
-        .sum::<f64>()
-        .sqrt();
-    if gap > MARCH_JOIN_TOLERANCE * scale {
-        return None;
-    }
+    let gap = marched_gap(p1, p2)?;
     let x1 = if s == 0 { p1.p } else { p1.q };
     let x2 = if s == 0 { p2.p } else { p2.q };
     let (k1, _) = side_coordinate(&d1, link.from.side);

@@ -9,7 +9,7 @@ use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::geometry::bezier::RationalBezierPatch;
 use crate::march::branch::{CurvePoint, EndReason};
 use crate::numeric::scalar::point;
-use crate::pair::krawczyk::{krawczyk, KrawczykResult, ParamBox};
+use crate::pair::krawczyk::{krawczyk, BoxSurface, KrawczykResult, ParamBox};
 use crate::solve::TracedBranch;
 
 /// Model-space tolerance for joining marched end points, relative to `1 + |x|∞` of the point:
@@ -265,47 +265,99 @@ fn unique_zero(
     region: ParamBox,
     fixed: usize,
 ) -> Option<ParamBox> {
-    let mut todo = vec![region];
-    let mut found: Option<ParamBox> = None;
-    let mut looked = 0;
-    while let Some(y) = todo.pop() {
-        looked += 1;
-        if looked > MAX_ZERO_BOXES {
-            return None;
-        }
-        let xp = pieces[0].enclose(y[0], y[1]);
-        let xq = pieces[1].enclose(y[2], y[3]);
-        // Bounded enclosures: both weight functions are nonzero on the box, so every interval
-        // evaluation below is of a well-defined function. Otherwise give up.
-        if xp.iter().chain(&xq).any(|x| !x.is_common_interval()) {
-            return None;
-        }
-        if xp.iter().zip(&xq).any(|(a, b)| a.disjoint(*b)) {
-            continue;
-        }
-        match krawczyk(pieces[0], pieces[1], y, fixed, 30) {
-            KrawczykResult::Proven { enclosure, .. } => {
-                if found.replace(enclosure).is_some() {
-                    return None;
+    let zero = Zero {
+        fixed,
+        most: MAX_ZERO_BOXES,
+        images: |y: &ParamBox| (pieces[0].enclose(y[0], y[1]), pieces[1].enclose(y[2], y[3])),
+        cut: |y: &ParamBox| widest(pieces, y, fixed),
+    };
+    zero.unique(pieces[0], pieces[1], region).ok()
+}
+
+/// How [`Zero::unique`] looks for the only zero of `P − Q` in a region with one coordinate
+/// held: `images` encloses both surfaces' model-space images of a box, `cut` names the
+/// coordinate to bisect a box along, and at most `most` boxes are looked at.
+pub(super) struct Zero<I, C> {
+    pub(super) fixed: usize,
+    pub(super) most: usize,
+    pub(super) images: I,
+    pub(super) cut: C,
+}
+
+impl<I, C> Zero<I, C>
+where
+    I: Fn(&ParamBox) -> ([Interval; 3], [Interval; 3]),
+    C: Fn(&ParamBox) -> usize,
+{
+    /// The enclosure of the only zero in `region` (coordinate `fixed` a point there): `region`
+    /// is cut into boxes until each is proven empty (disjoint images, or a Krawczyk image
+    /// disjoint from it) or proven to hold exactly one zero; exactly one box must hold one.
+    pub(super) fn unique<P, Q>(
+        &self,
+        p: &P,
+        q: &Q,
+        region: ParamBox,
+    ) -> Result<ParamBox, &'static str>
+    where
+        P: BoxSurface + ?Sized,
+        Q: BoxSurface + ?Sized,
+    {
+        let mut todo = vec![region];
+        let mut found: Option<ParamBox> = None;
+        let mut looked = 0;
+        while let Some(y) = todo.pop() {
+            looked += 1;
+            if looked > self.most {
+                return Err("the search for the zero looked at too many boxes");
+            }
+            let (xp, xq) = (self.images)(&y);
+            // Bounded enclosures: both weight functions are nonzero on the box, so every
+            // interval evaluation below is of a well-defined function. Otherwise give up.
+            if xp.iter().chain(&xq).any(|x| !x.is_common_interval()) {
+                return Err("an image is unbounded");
+            }
+            if xp.iter().zip(&xq).any(|(a, b)| a.disjoint(*b)) {
+                continue;
+            }
+            match krawczyk(p, q, y, self.fixed, 30) {
+                KrawczykResult::Proven { enclosure, .. } => {
+                    if found.replace(enclosure).is_some() {
+                        return Err("two zeros");
+                    }
+                }
+                KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
+                KrawczykResult::NotProven(_) => {
+                    let k = (self.cut)(&y);
+                    let m = y[k].mid();
+                    let (lo, hi) = (y[k].inf(), y[k].sup());
+                    if !(lo < m && m < hi) {
+                        return Err("a box too small to cut");
+                    }
+                    let (mut a, mut b) = (y, y);
+                    a[k] = Interval::try_from((lo, m)).map_err(|_| "a cut is not finite")?;
+                    b[k] = Interval::try_from((m, hi)).map_err(|_| "a cut is not finite")?;
+                    todo.push(a);
+                    todo.push(b);
                 }
             }
-            KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
-            KrawczykResult::NotProven(_) => {
-                let k = widest(pieces, &y, fixed);
-                let m = y[k].mid();
-                let (lo, hi) = (y[k].inf(), y[k].sup());
-                if !(lo < m && m < hi) {
-                    return None;
-                }
-                let (mut a, mut b) = (y, y);
-                a[k] = Interval::try_from((lo, m)).ok()?;
-                b[k] = Interval::try_from((m, hi)).ok()?;
-                todo.push(a);
-                todo.push(b);
-            }
         }
+        found.ok_or("no zero")
     }
-    found
+}
+
+/// The model-space distance of two marched end points, when within [`MARCH_JOIN_TOLERANCE`]
+/// (relative to `1 + |x|∞` of the points).
+pub(super) fn marched_gap(p1: &CurvePoint, p2: &CurvePoint) -> Option<f64> {
+    let scale = 1.0
+        + p1.xyz
+            .iter()
+            .chain(&p2.xyz)
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+    let gap = (0..3)
+        .map(|i| (p1.xyz[i] - p2.xyz[i]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    (gap <= MARCH_JOIN_TOLERANCE * scale).then_some(gap)
 }
 
 /// The free coordinate of `y` (not `fixed`) whose width is largest in model space (times the
