@@ -174,6 +174,33 @@ fn edges(what: &str, scene: &ShellScene, report: &ShellRunReport) -> Vec<Edge> {
         .collect()
 }
 
+/// The edges of two unit cylinders about z and x: open, from near one node to near the other,
+/// within their tolerance of the ellipses (cos φ, sin φ, ±cos φ) both ways (the truth sampled
+/// away from the nodes, where the chains stop short).
+fn check_ellipse_arcs(what: &str, scene: &ShellScene, report: &ShellRunReport) {
+    let arc_point = |phi: f64, s: f64| [phi.cos(), phi.sin(), s * phi.cos()];
+    for (k, e) in edges(what, scene, report).iter().enumerate() {
+        assert!(!e.closed);
+        let mid = e
+            .curve
+            .eval(0.5 * (e.curve.range()[0] + e.curve.range()[1]));
+        let (xs, zs) = (mid[0].signum(), (mid[0] * mid[2]).signum());
+        let off = |p: &[f64; 3]| dist3(p, &arc_point(p[1].atan2(p[0]), zs));
+        let truth: Vec<[f64; 3]> = (0..=2000)
+            .map(|m| {
+                let phi = -0.5 * PI + 1e-3 + (PI - 2e-3) * m as f64 / 2000.0;
+                if xs > 0.0 {
+                    phi
+                } else {
+                    phi + PI
+                }
+            })
+            .map(|phi| arc_point(phi, zs))
+            .collect();
+        check_edge(&format!("{what}: arc {k}"), e, &scene.shells, &off, &truth);
+    }
+}
+
 /// Every joined curve is closed, its joins proven and its tolerance at most 1e-9.
 fn closed_and_proven(what: &str, report: &ShellRunReport) {
     let r = &report.result;
@@ -236,15 +263,37 @@ fn nurbs_cylinders_of_different_radii_meet_in_two_closed_curves() {
 /// pieces change). The two pairs beside the corner each report a branch of one point (the
 /// corner). The join across the corner is proven (`ssitrace::shell::corner`): its box holds
 /// the exact corner point, the one-point branches are absorbed, and each loop is one closed
-/// curve of four certified arcs.
+/// curve of four certified arcs, with its edge (each part cut where it first leaves its pieces)
+/// checked against the closed form.
 #[test]
 fn unturned_nurbs_cylinders_cross_seam_and_knot_line_at_once() {
     let scene = json!({"surfaces": [cylinder(2, 1.0, 2.0, None), cylinder(0, 0.5, 2.0, None)],
                        "options": {"method": "both"}});
-    let (_, report) = run(scene);
+    let (scene, report) = run(scene);
     closed_and_proven("unturned cylinders 1, 1/2", &report);
     let r = &report.result;
     assert_eq!(r.curves.len(), 2);
+    // The edges, across the corners too, against the closed form both ways.
+    let loop_point = |phi: f64, sign: f64| {
+        let (y, z) = (0.5 * phi.cos(), 0.5 * phi.sin());
+        [sign * (1.0 - y * y).sqrt(), y, z]
+    };
+    for (k, e) in edges("unturned cylinders", &scene, &report)
+        .iter()
+        .enumerate()
+    {
+        assert!(e.closed);
+        let sign = e.curve.points[0][0].signum();
+        let off = |p: &[f64; 3]| dist3(p, &loop_point(p[2].atan2(p[1]), sign));
+        let truth = around(|t| loop_point(t, sign));
+        check_edge(
+            &format!("unturned cylinders: loop {k}"),
+            e,
+            &scene.shells,
+            &off,
+            &truth,
+        );
+    }
     // The four corners (±1, 0, ±1/2), each in one corner join's box; every branch is a part of
     // a curve or absorbed by a corner.
     let corners: Vec<_> = r
@@ -323,7 +372,7 @@ fn nearly_corner_crossings_are_joined_into_closed_curves() {
 fn unturned_equal_cylinders_give_four_arcs_each_joined_across_a_corner() {
     let scene = json!({"surfaces": [cylinder(2, 1.0, 2.0, None), cylinder(0, 1.0, 2.0, None)],
                        "options": {"method": "both"}});
-    let (_, report) = run(scene);
+    let (scene, report) = run(scene);
     let r = &report.result;
     assert_eq!(r.curves.len(), 4, "{:?}", r.curves);
     let mut met = Vec::new();
@@ -344,6 +393,8 @@ fn unturned_equal_cylinders_give_four_arcs_each_joined_across_a_corner() {
     }
     met.sort_unstable();
     assert_eq!(met, [0, 1, 2, 3], "one arc through each crossing");
+    // The edges across the corners, against the closed form.
+    check_ellipse_arcs("unturned cylinders 1, 1", &scene, &report);
 }
 
 #[test]
@@ -410,36 +461,7 @@ fn nurbs_cylinders_of_equal_radii_meet_in_four_arcs_between_two_nodes() {
     arcs.sort();
     arcs.dedup();
     assert_eq!(arcs.len(), 4, "each arc once");
-    // The edges: open, from near one node to near the other, within their tolerance of the
-    // ellipse both ways (the truth sampled away from the nodes, where the chains stop short).
-    let arc_point = |phi: f64, s: f64| [phi.cos(), phi.sin(), s * phi.cos()];
-    let es = edges("cylinders 1, 1", &scene, &report);
-    for (k, e) in es.iter().enumerate() {
-        assert!(!e.closed);
-        let mid = e
-            .curve
-            .eval(0.5 * (e.curve.range()[0] + e.curve.range()[1]));
-        let (xs, zs) = (mid[0].signum(), (mid[0] * mid[2]).signum());
-        let off = |p: &[f64; 3]| dist3(p, &arc_point(p[1].atan2(p[0]), zs));
-        let truth: Vec<[f64; 3]> = (0..=2000)
-            .map(|m| {
-                let phi = -0.5 * PI + 1e-3 + (PI - 2e-3) * m as f64 / 2000.0;
-                if xs > 0.0 {
-                    phi
-                } else {
-                    phi + PI
-                }
-            })
-            .map(|phi| arc_point(phi, zs))
-            .collect();
-        check_edge(
-            &format!("cylinders 1, 1: arc {k}"),
-            e,
-            &scene.shells,
-            &off,
-            &truth,
-        );
-    }
+    check_ellipse_arcs("cylinders 1, 1", &scene, &report);
 }
 
 #[test]

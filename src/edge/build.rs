@@ -501,7 +501,10 @@ pub(crate) fn assemble(
                     m = std::array::from_fn(|i| m[i].convex_hull(mn[i]));
                     rad = rad.max(nt.radius_xyz);
                 }
-                (c.tube, poly::add_up(rad, box_diameter(&m)))
+                // (Across a corner, the true arc between the parts lies in the corner box, whose
+                // diameter adds to the share.)
+                let share = poly::add_up(rad, box_diameter(&m));
+                (c.tube, poly::add_up(share, c.corner))
             })
             .collect();
         floor = cuts.iter().map(|c| c.1).fold(floor, f64::max);

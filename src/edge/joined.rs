@@ -16,12 +16,17 @@
 //! coordinate is enclosed by its Taylor form at the centre of each checked range, on ranges
 //! growing geometrically away from the crossing, so `T` can be as narrow as the radius allows.
 //! The true arc over `T` is the cut's share of the tolerance (see [`super`]). Every join must be
-//! [`JoinStatus::Proven`]: the two parts' true end points are then one point on the side.
+//! [`JoinStatus::Proven`]: the two parts' true end points are then one point on the side. At a
+//! join across a corner of the piece pair (both pieces change) each part is cut where it first
+//! leaves its pieces' domains (the side, of either surface, whose proven crossing range starts
+//! first: before it the chain is inside both), and the true arc between the two parts lies in
+//! the join's corner box, whose diameter adds to the cut's share.
 
 use super::poly::{eval, eval_mid, reparametrised, taylor_shift, Poly};
 use super::{assemble, chain_segs, check_chain, Cut, Edge, EdgeError, Part, Seg};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::numeric::scalar::point;
+use crate::shell::corner::diameter;
 use crate::shell::{Face, JoinStatus, JoinedCurve, ShellIntersection};
 use inari::Interval;
 
@@ -42,17 +47,6 @@ pub fn edge_from_joined(
     curve: &JoinedCurve,
 ) -> Result<Edge, EdgeError> {
     for (k, j) in curve.joins.iter().enumerate() {
-        if let (Some(_), JoinStatus::Proven) = (&j.corner, &j.status) {
-            // Each part would be cut at one side while its curve also crosses the other
-            // surface's side there: the cut is not proven for that.
-            let branch = j.ends[0].branch;
-            return Err(EdgeError::Trim {
-                branch,
-                reason: "a join across a corner of the piece pair (both pieces change): its \
-                         parts are not cut there yet"
-                    .into(),
-            });
-        }
         match &j.status {
             JoinStatus::Proven => {}
             JoinStatus::Unproven { reason } => {
@@ -101,8 +95,27 @@ pub fn edge_from_joined(
             [&cert.ends[0], &cert.ends[1]]
         };
         let doms = [p.domain(), q.domain()];
-        let joined = [k > 0 || cyclic, k + 1 < n || cyclic];
-        let cuts = cut_ends(cert, &mut segs, ends, &doms, g, joined)?;
+        // The joins before and after this part, and whether each is across a corner.
+        let join_at = |i: Option<usize>| -> MustCut {
+            let j = &curve.joins[i?];
+            Some(j.corner.as_ref().map(|c| diameter(&c.xyz)))
+        };
+        let before = if k > 0 {
+            Some(k - 1)
+        } else if cyclic {
+            Some(curve.joins.len() - 1)
+        } else {
+            None
+        };
+        let after = (k + 1 < n || cyclic).then_some(k);
+        let cuts = cut_ends(
+            cert,
+            &mut segs,
+            ends,
+            &doms,
+            g,
+            [join_at(before), join_at(after)],
+        )?;
         if !cyclic && curve.closed {
             // One closed branch, no joins: closed by its own certificate.
             let tol = Some(shell.options.required_tolerance);
@@ -133,28 +146,91 @@ pub fn edge_from_joined(
     )
 }
 
+/// How an end of a part must be cut: at a join (`Some`), across a corner of the piece pair with
+/// its corner box's diameter (`Some(Some(d))`), or only if it is a boundary end (`None`).
+pub(super) type MustCut = Option<Option<f64>>;
+
 /// Cuts the chain `segs` (in the edge's direction, its certified ends `ends` in that order)
-/// at the piece side of each end that must be cut (`must`: a join) or is a boundary end.
+/// at the piece side of each end that must be cut (`must`: a join) or is a boundary end. At a
+/// join across a corner the chain is cut where it first leaves its pieces' domains: at the side
+/// of either surface whose proven crossing range starts first ([`cut_at_corner`]).
 pub(super) fn cut_ends(
     cert: &CertifiedBranch,
     segs: &mut Vec<Seg>,
     ends: [&CertifiedEnd; 2],
     doms: &[crate::geometry::Domain; 2],
     branch: usize,
-    must: [bool; 2],
+    must: [MustCut; 2],
 ) -> Result<Vec<Cut>, EdgeError> {
     let mut cuts = Vec::new();
     let boundary = |e: &CertifiedEnd| matches!(e, CertifiedEnd::Boundary { .. });
-    if must[0] || boundary(ends[0]) {
+    let cut = |segs: &mut Vec<Seg>, end: &CertifiedEnd, m: MustCut| match m {
+        Some(Some(corner)) => cut_at_corner(cert, segs, end, doms, branch, corner),
+        _ => cut_at_side(cert, segs, end, doms, branch).map(|(c, _)| c),
+    };
+    if must[0].is_some() || boundary(ends[0]) {
         flip(segs);
-        let c = cut_at_side(cert, segs, ends[0], doms, branch);
+        let c = cut(segs, ends[0], must[0]);
         flip(segs);
         cuts.push(c?);
     }
-    if must[1] || boundary(ends[1]) {
-        cuts.push(cut_at_side(cert, segs, ends[1], doms, branch)?);
+    if must[1].is_some() || boundary(ends[1]) {
+        cuts.push(cut(segs, ends[1], must[1])?);
     }
     Ok(cuts)
+}
+
+/// [`cut_at_side`] at a join across a corner of the piece pair: the chain's end (a boundary
+/// end, of either surface) is cut at the side of P and at the side of Q (on copies), and the cut
+/// whose proven range starts first along the chain is kept. Before that start the chain is
+/// strictly inside both domains (each cut proves its own side), so the part is the true curve
+/// up to its cut; the corner box's diameter `corner` is the cut's extra share.
+fn cut_at_corner(
+    cert: &CertifiedBranch,
+    segs: &mut Vec<Seg>,
+    end: &CertifiedEnd,
+    doms: &[crate::geometry::Domain; 2],
+    branch: usize,
+    corner: f64,
+) -> Result<Cut, EdgeError> {
+    if !matches!(end, CertifiedEnd::Boundary { .. }) {
+        return Err(EdgeError::Trim {
+            branch,
+            reason: "the part's end at the corner is not a proven boundary end".into(),
+        });
+    }
+    let mut best: Option<(Vec<Seg>, Cut, (usize, f64))> = None;
+    let mut why = None;
+    for surface in 0..2 {
+        let mut mine = segs.clone();
+        match cut_at_side(
+            cert,
+            &mut mine,
+            &CertifiedEnd::Boundary { surface },
+            doms,
+            branch,
+        ) {
+            Ok((c, at)) => {
+                let earlier = best
+                    .as_ref()
+                    .is_none_or(|b| (at.0, at.1) < (b.2 .0, b.2 .1));
+                if earlier {
+                    best = Some((mine, c, at));
+                }
+            }
+            Err(e) => why = Some(e),
+        }
+    }
+    match best {
+        Some((mine, c, _)) => {
+            *segs = mine;
+            Ok(Cut { corner, ..c })
+        }
+        None => Err(why.unwrap_or(EdgeError::Trim {
+            branch,
+            reason: "no side of the corner could be cut".into(),
+        })),
+    }
 }
 
 /// The segments run the other way.
@@ -171,14 +247,15 @@ fn inside(x: &[f64; 4], coords: [usize; 2], lo: [f64; 2], hi: [f64; 2]) -> bool 
 }
 
 /// Cuts the last segments of `segs` at the side of the piece that the chain's end `end` (a
-/// boundary end) leaves through; the cut's `τ` range.
+/// boundary end) leaves through; the cut's `τ` range, and where along the chain its proven
+/// range starts (the cut link's index and fraction).
 fn cut_at_side(
     cert: &CertifiedBranch,
     segs: &mut Vec<Seg>,
     end: &CertifiedEnd,
     doms: &[crate::geometry::Domain; 2],
     branch: usize,
-) -> Result<Cut, EdgeError> {
+) -> Result<(Cut, (usize, f64)), EdgeError> {
     let fail = |reason: &str| EdgeError::Trim {
         branch,
         reason: reason.into(),
@@ -304,11 +381,13 @@ fn cut_at_side(
     if let Some(s) = segs.last_mut() {
         s.tb = at;
     }
-    Ok(Cut {
+    let cut = Cut {
         tube: seg.tube,
         gap,
         next: beyond.map(|(ns, e)| (ns.tube, range(&ns, 0.0, e))),
-    })
+        corner: 0.0,
+    };
+    Ok((cut, (k, u0)))
 }
 
 /// The side a chain is cut at: coordinate `b` of the four parameters at the value `bound`,

@@ -283,12 +283,15 @@ pub(crate) struct Seg {
 
 /// A cut of the chain on `tube` at the end of the range `gap` of its `τ` (or inside it): the
 /// true end point lies on the true arc over `gap`, or (`next`) over the range of the next
-/// link's `τ` where the cut range straddles the junction of the two links.
+/// link's `τ` where the cut range straddles the junction of the two links. At a join across a
+/// corner of the piece pair, `corner` is the diameter of the corner box holding the true arc
+/// between this part's end and the next part's start (0 elsewhere): a share of its own.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Cut {
     pub(crate) tube: usize,
     pub(crate) gap: Interval,
     pub(crate) next: Option<(usize, Interval)>,
+    pub(crate) corner: f64,
 }
 
 /// One branch's share of an edge.
@@ -377,7 +380,7 @@ pub fn edge_from_certified_within(
         // extended beyond it); it is cut at the side.
         let doms = [p.domain(), q.domain()];
         let ends = [&cert.ends[0], &cert.ends[1]];
-        cuts = joined::cut_ends(cert, &mut segs, ends, &doms, branch, [false; 2])?;
+        cuts = joined::cut_ends(cert, &mut segs, ends, &doms, branch, [None; 2])?;
     }
     let part = Part {
         p,
@@ -484,6 +487,7 @@ fn close_loop(cert: &CertifiedBranch, segs: &mut [Seg], branch: usize) -> Result
         tube: last.tube,
         gap: if gap.is_empty() { point(at) } else { gap },
         next: None,
+        corner: 0.0,
     })
 }
 

@@ -566,8 +566,9 @@ pub(super) fn absorbed(
     out
 }
 
-/// The Euclidean diameter of a model-space box, rounded up.
-pub(super) fn diameter(x: &[Interval; 3]) -> f64 {
+/// The Euclidean diameter of a model-space box, rounded up (infinite for an empty or unbounded
+/// box).
+pub(crate) fn diameter(x: &[Interval; 3]) -> f64 {
     let s = x
         .iter()
         .map(|c| {
