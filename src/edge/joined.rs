@@ -199,38 +199,19 @@ fn cut_at_corner(
             reason: "the part's end at the corner is not a proven boundary end".into(),
         });
     }
-    let mut best: Option<(Vec<Seg>, Cut, (usize, f64))> = None;
-    let mut why = None;
+    // Both sides must be cut: the earlier cut's claim (inside both domains before it) rests
+    // on the other side's cut proving the chain inside its domain up to its own range.
+    let mut cuts = Vec::with_capacity(2);
     for surface in 0..2 {
         let mut mine = segs.clone();
-        match cut_at_side(
-            cert,
-            &mut mine,
-            &CertifiedEnd::Boundary { surface },
-            doms,
-            branch,
-        ) {
-            Ok((c, at)) => {
-                let earlier = best
-                    .as_ref()
-                    .is_none_or(|b| (at.0, at.1) < (b.2 .0, b.2 .1));
-                if earlier {
-                    best = Some((mine, c, at));
-                }
-            }
-            Err(e) => why = Some(e),
-        }
+        let boundary = CertifiedEnd::Boundary { surface };
+        let (c, at) = cut_at_side(cert, &mut mine, &boundary, doms, branch)?;
+        cuts.push((mine, c, at));
     }
-    match best {
-        Some((mine, c, _)) => {
-            *segs = mine;
-            Ok(Cut { corner, ..c })
-        }
-        None => Err(why.unwrap_or(EdgeError::Trim {
-            branch,
-            reason: "no side of the corner could be cut".into(),
-        })),
-    }
+    let first = usize::from((cuts[1].2 .0, cuts[1].2 .1) < (cuts[0].2 .0, cuts[0].2 .1));
+    let (mine, c, _) = cuts.swap_remove(first);
+    *segs = mine;
+    Ok(Cut { corner, ..c })
 }
 
 /// The segments run the other way.
