@@ -102,7 +102,11 @@ impl Walker<'_> {
             }
         };
         let (from, to) = (link.from, link.to);
-        let cut = (1..=DIP_SLICES)
+        // Only slices before the last: a curve first beyond the bound at the marched end itself
+        // leaves there (it does not dip out and come back), and the exit past the boundary
+        // ([`Walker::exit`]) proves that end with room beyond the side, where a cut at the
+        // node would end the chain a rounding error past it.
+        let cut = (1..DIP_SLICES)
             .map(|k| from + (to - from) * k as f64 / DIP_SLICES as f64)
             .find(|&x| beyond(&link.proof.box_over(x, x)))?;
         link.to = cut;
