@@ -129,8 +129,9 @@ impl BoxSurface for Stitched<'_> {
 
 /// The shift taking the chart (the parameters of the piece on `link.from`) to those of the
 /// piece on `link.to`: a knot line or a seam of one face between opposite sides, the edge
-/// parameter running the same way over the same range. `None` for anything else (a face edge,
-/// a reversed or rescaled seam): no corner proof is tried there.
+/// parameter running the same way over the same range, the shift exact in `f64`. `None` for
+/// anything else (a face edge, a reversed or rescaled seam, an inexact shift): no corner proof
+/// is tried there.
 pub(super) fn chart_shift(link: &EdgeLink, from: &Domain, to: &Domain) -> Option<[f64; 2]> {
     if link.kind == EdgeKind::FaceEdge || link.reversed {
         return None;
@@ -144,8 +145,14 @@ pub(super) fn chart_shift(link: &EdgeLink, from: &Domain, to: &Domain) -> Option
     if along_range(from, link.from.side) != along_range(to, link.to.side) {
         return None;
     }
+    // The shift must be exact: rounded, the two pieces' domains would overlap or leave a gap
+    // in the chart, and the stitched map would not be one continuous function there.
+    let d = v2 - v1;
+    if v1 + d != v2 || v2 - d != v1 {
+        return None;
+    }
     let mut shift = [0.0; 2];
-    shift[k1] = v2 - v1;
+    shift[k1] = d;
     Some(shift)
 }
 
