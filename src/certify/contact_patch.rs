@@ -23,7 +23,6 @@
 //! outward-rounded enclosure.
 
 use crate::geometry::RationalBezierPatch;
-use crate::numeric::scalar::point;
 use crate::pair::centred_second_order::CentredSecondOrder;
 use crate::pair::field::ScalarSurface;
 use crate::Scalar;
@@ -48,18 +47,21 @@ pub(crate) fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
         .collect()
 }
 
-/// The forward differences of a polynomial patch's Cartesian net.
+/// The forward differences of a patch's net: of its Cartesian net when it is polynomial
+/// ([`PowerNet::of`]), of its homogeneous net otherwise ([`PowerNet::homogeneous`]).
 #[derive(Debug, Clone)]
 pub(crate) struct PowerNet {
     pub(crate) m: usize,
     pub(crate) n: usize,
-    /// Per `(k, l)` (index `k·(n+1) + l`) and coordinate: the differences `Δ^{k,l}p_ij` for
-    /// `i ≤ m − k`, `j ≤ n − l` (index `i·(n−l+1) + j`), or `None` where all are exactly zero.
-    pub(crate) diffs: Vec<[Option<Vec<Interval>>; 3]>,
+    /// Per `(k, l)` (index `k·(n+1) + l`) and coordinate (`x, y, z`, and the weight `w` for a
+    /// homogeneous net): the differences `Δ^{k,l}p_ij` for `i ≤ m − k`, `j ≤ n − l` (index
+    /// `i·(n−l+1) + j`), or `None` where all are exactly zero.
+    pub(crate) diffs: Vec<Vec<Option<Vec<Interval>>>>,
 }
 
 impl PowerNet {
-    /// The differences of `patch` if all its weights are the same exact (thin) number.
+    /// The differences of the Cartesian net of `patch` if all its weights are the same exact
+    /// (thin) number.
     pub(crate) fn of(patch: &RationalBezierPatch) -> Option<PowerNet> {
         let net = patch.homogeneous();
         let w = net.first()?[3];
@@ -71,35 +73,69 @@ impl PowerNet {
         {
             return None;
         }
-        let [m, n] = patch.degree();
         // Cartesian points: the homogeneous entries divided by the common weight (exact for
         // weight 1, an enclosure otherwise).
-        let at = |i: usize, j: usize, x: usize| net[i * (n + 1) + j][x] / w;
-        let mut diffs = Vec::with_capacity((m + 1) * (n + 1));
+        let points: Vec<Vec<Interval>> = net
+            .iter()
+            .map(|h| (0..3).map(|x| h[x] / w).collect())
+            .collect();
+        Some(Self::differences(patch.degree(), &points))
+    }
+
+    /// The differences of the homogeneous net `(w·x, w·y, w·z, w)` of any patch.
+    pub(crate) fn homogeneous(patch: &RationalBezierPatch) -> PowerNet {
+        let points: Vec<Vec<Interval>> = patch.homogeneous().iter().map(|h| h.to_vec()).collect();
+        Self::differences(patch.degree(), &points)
+    }
+
+    /// The forward differences of `points` (`(m+1)·(n+1)` entries, point `(i, j)` at
+    /// `i·(n+1) + j`, each with the same number of coordinates), level by level:
+    /// `Δ^{k,l}p_ij = Δ^{k−1,l}p_{i+1,j} − Δ^{k−1,l}p_ij` (and in `j` for `k = 0`), each
+    /// difference outward rounded, so each level costs one subtraction per entry.
+    fn differences([m, n]: [usize; 2], points: &[Vec<Interval>]) -> PowerNet {
+        let coords = points.first().map_or(0, |p| p.len());
+        // levels[k·(n+1) + l][x]: the differences of coordinate x.
+        let mut levels: Vec<Vec<Vec<Interval>>> = Vec::with_capacity((m + 1) * (n + 1));
         for k in 0..=m {
             for l in 0..=n {
-                let per_coord: [Option<Vec<Interval>>; 3] = std::array::from_fn(|x| {
-                    let mut out = Vec::with_capacity((m - k + 1) * (n - l + 1));
-                    for i in 0..=m - k {
-                        for j in 0..=n - l {
-                            let mut d = point(0.0);
-                            for a in 0..=k {
-                                for b in 0..=l {
-                                    let c = binomial(k, a) * binomial(l, b);
-                                    let sign = if (k - a + l - b) % 2 == 0 { c } else { -c };
-                                    d += point(sign) * at(i + a, j + b, x);
-                                }
+                let (rows, cols) = (m - k + 1, n - l + 1);
+                let level: Vec<Vec<Interval>> = (0..coords)
+                    .map(|x| {
+                        let mut out = Vec::with_capacity(rows * cols);
+                        for i in 0..rows {
+                            for j in 0..cols {
+                                out.push(match (k, l) {
+                                    (0, 0) => points[i * (n + 1) + j][x],
+                                    (0, _) => {
+                                        let prev = &levels[l - 1][x];
+                                        prev[i * (cols + 1) + j + 1] - prev[i * (cols + 1) + j]
+                                    }
+                                    _ => {
+                                        let prev = &levels[(k - 1) * (n + 1) + l][x];
+                                        prev[(i + 1) * cols + j] - prev[i * cols + j]
+                                    }
+                                });
                             }
-                            out.push(d);
                         }
-                    }
-                    let zero = out.iter().all(|d| d.inf() == 0.0 && d.sup() == 0.0);
-                    (!zero).then_some(out)
-                });
-                diffs.push(per_coord);
+                        out
+                    })
+                    .collect();
+                levels.push(level);
             }
         }
-        Some(PowerNet { m, n, diffs })
+        let diffs = levels
+            .into_iter()
+            .map(|level| {
+                level
+                    .into_iter()
+                    .map(|d| {
+                        let zero = d.iter().all(|v| v.inf() == 0.0 && v.sup() == 0.0);
+                        (!zero).then_some(d)
+                    })
+                    .collect()
+            })
+            .collect();
+        PowerNet { m, n, diffs }
     }
 }
 
@@ -271,7 +307,7 @@ impl ContactPatch<'_> {
 mod tests {
     use super::*;
     use crate::geometry::{Domain, PowerSurface};
-    use crate::numeric::scalar::interval;
+    use crate::numeric::scalar::{interval, point};
     use crate::pair::fixtures::TANGENTIAL_CUBIC;
 
     fn cubic() -> RationalBezierPatch {
