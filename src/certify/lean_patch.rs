@@ -222,7 +222,7 @@ impl Taylor {
             if f == 1.0 {
                 c
             } else {
-                c * point(f)
+                imul(c, point(f))
             }
         };
         let mut d = Self::horner(m - a, n - b, coeff, ds, dr);

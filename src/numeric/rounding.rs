@@ -257,6 +257,45 @@ mod tests {
         );
     }
 
+    /// `√x` rounded down (`up == false`) or up, with the mode set for the one instruction.
+    fn directed_sqrt(x: f64, up: bool) -> f64 {
+        let mut v = x;
+        let mode: u32 = if up { 0x5f80 } else { 0x3f80 };
+        let mut saved: u32 = 0;
+        // SAFETY: as in `upward`: save MXCSR, set it, one scalar square root, restore it.
+        unsafe {
+            std::arch::asm!(
+                "vstmxcsr [{saved}]",
+                "vldmxcsr [{mode}]",
+                "vsqrtsd {v}, {v}, {v}",
+                "vldmxcsr [{saved}]",
+                saved = in(reg) &mut saved,
+                mode = in(reg) &mode,
+                v = inout(xmm_reg) v,
+                options(nostack),
+            )
+        }
+        v
+    }
+
+    #[test]
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    fn inari_square_roots_round_as_the_mode_does() {
+        // The bounds of inari's interval square root (its AVX-512 form embeds the rounding in
+        // the instruction, vendor/inari) are the directed square roots of the bounds.
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        for _ in 0..100_000 {
+            let (p, q) = (wide_bound(&mut state).abs(), wide_bound(&mut state).abs());
+            let (a, b) = (p.min(q), p.max(q));
+            let r = interval(a, b).unwrap().sqrt();
+            assert_eq!(
+                (r.inf(), r.sup()),
+                (directed_sqrt(a, false), directed_sqrt(b, true)),
+                "√[{a}, {b}]"
+            );
+        }
+    }
+
     #[test]
     fn float_directed_helpers_match_inari() {
         // The helpers round each bound in its direction exactly as inari does (normal range):
