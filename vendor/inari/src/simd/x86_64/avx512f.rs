@@ -1,72 +1,72 @@
-// ssitrace: upstream writes these operations as inline assembly with the rounding mode
-// embedded in the instruction ("vaddpd {x:z}, {x:z}, {y:z}, {ru-sae}" on a zmm register class
-// holding a 128-bit value). rustc 1.95's LLVM can allocate that operand to a register it then
-// prints as an invalid name ("R20BH"), and the crate fails to assemble depending on how the
-// callers inline (seen in ssitrace's lib-test build). The same instructions through the
-// AVX-512 intrinsics with an embedded rounding mode: the 128-bit operands widened to 512 bits
-// (upper lanes zero, exceptions suppressed), the low 128 bits of the result returned.
-use std::arch::x86_64::*;
+// ssitrace: upstream puts the 128-bit lane pairs below in the `zmm_reg` class (zmm0–zmm31) and
+// names the 512-bit register with the `:z` modifier. With rustc 1.95 LLVM then sometimes
+// allocates one of the EVEX-only registers 16–31 and prints it under an invalid name
+// (`vaddpd R20BH, R20BH, zmm1, {ru-sae}`), and the crate fails to assemble depending on how
+// callers inline (ssitrace's lib-test build, after an unrelated change). The `xmm_reg` class
+// (xmm0–xmm15) keeps the same instructions on registers whose 512-bit names print correctly.
+// (Intrinsics with an embedded rounding mode, or 512-bit operands, also assemble, but measured
+// 5–7 % slower on a certified chain.)
+use std::arch::asm;
 
-use super::F64X2;
+macro_rules! impl_op_round {
+    ($t:ty, $reg:ident, $f:ident ($x:ident $(,$y:ident)*), $inst:literal, rd) => {
+        impl_op_round!($t, $reg, $f ($x $(,$y)*), $inst, "{{rd-sae}}");
+    };
 
-const RD: i32 = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
-const RU: i32 = _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC;
+    ($t:ty, $reg:ident, $f:ident ($x:ident $(,$y:ident)*), $inst:literal, ru) => {
+        impl_op_round!($t, $reg, $f ($x $(,$y)*), $inst, "{{ru-sae}}");
+    };
 
-#[inline]
-fn wide(x: F64X2) -> __m512d {
-    // SAFETY: AVX-512F is enabled at compile time (this module's cfg).
-    unsafe { _mm512_zextpd128_pd512(x) }
+    ($t:ty, $reg:ident, $f:ident ($x:ident $(,$y:ident)*), $inst:literal, $er:literal) => {
+        pub(crate) fn $f(mut $x: $t, $($y: $t,)*) -> $t {
+            unsafe {
+                asm!(
+                    concat!($inst, ", ", $er),
+                    $x = inout($reg) $x,
+                    $($y = in($reg) $y,)*
+                    options(pure, nomem, nostack, preserves_flags)
+                );
+                $x
+            }
+        }
+    };
 }
 
-#[inline]
-fn narrow(x: __m512d) -> F64X2 {
-    // SAFETY: as above.
-    unsafe { _mm512_castpd512_pd128(x) }
-}
-
-pub(crate) fn sqrt1_rd(x: f64) -> f64 {
-    // SAFETY: as above.
-    unsafe {
-        let a = _mm_set_sd(x);
-        _mm_cvtsd_f64(_mm_sqrt_round_sd::<RD>(a, a))
-    }
-}
-
-pub(crate) fn sqrt1_ru(x: f64) -> f64 {
-    // SAFETY: as above.
-    unsafe {
-        let a = _mm_set_sd(x);
-        _mm_cvtsd_f64(_mm_sqrt_round_sd::<RU>(a, a))
-    }
-}
-
-pub(crate) fn sub1_ru(x: f64, y: f64) -> f64 {
-    // SAFETY: as above.
-    unsafe { _mm_cvtsd_f64(_mm_sub_round_sd::<RU>(_mm_set_sd(x), _mm_set_sd(y))) }
-}
-
-pub(crate) fn add_ru(x: F64X2, y: F64X2) -> F64X2 {
-    // SAFETY: as above.
-    narrow(unsafe { _mm512_add_round_pd::<RU>(wide(x), wide(y)) })
-}
-
-pub(crate) fn sub_ru(x: F64X2, y: F64X2) -> F64X2 {
-    // SAFETY: as above.
-    narrow(unsafe { _mm512_sub_round_pd::<RU>(wide(x), wide(y)) })
-}
-
-pub(crate) fn mul_ru(x: F64X2, y: F64X2) -> F64X2 {
-    // SAFETY: as above.
-    narrow(unsafe { _mm512_mul_round_pd::<RU>(wide(x), wide(y)) })
-}
-
-pub(crate) fn div_ru(x: F64X2, y: F64X2) -> F64X2 {
-    // SAFETY: as above.
-    narrow(unsafe { _mm512_div_round_pd::<RU>(wide(x), wide(y)) })
-}
-
-/// `x·y + z` rounded upward once.
-pub(crate) fn mul_add_ru(x: F64X2, y: F64X2, z: F64X2) -> F64X2 {
-    // SAFETY: as above.
-    narrow(unsafe { _mm512_fmadd_round_pd::<RU>(wide(x), wide(y), wide(z)) })
-}
+impl_op_round!(f64, xmm_reg, sqrt1_rd(x), "vsqrtsd {x}, {x}, {x}", rd);
+impl_op_round!(f64, xmm_reg, sqrt1_ru(x), "vsqrtsd {x}, {x}, {x}", ru);
+impl_op_round!(f64, xmm_reg, sub1_ru(x, y), "vsubsd {x}, {x}, {y}", ru);
+impl_op_round!(
+    super::F64X2,
+    xmm_reg,
+    add_ru(x, y),
+    "vaddpd {x:z}, {x:z}, {y:z}",
+    ru
+);
+impl_op_round!(
+    super::F64X2,
+    xmm_reg,
+    sub_ru(x, y),
+    "vsubpd {x:z}, {x:z}, {y:z}",
+    ru
+);
+impl_op_round!(
+    super::F64X2,
+    xmm_reg,
+    mul_ru(x, y),
+    "vmulpd {x:z}, {x:z}, {y:z}",
+    ru
+);
+impl_op_round!(
+    super::F64X2,
+    xmm_reg,
+    div_ru(x, y),
+    "vdivpd {x:z}, {x:z}, {y:z}",
+    ru
+);
+impl_op_round!(
+    super::F64X2,
+    xmm_reg,
+    mul_add_ru(x, y, z),
+    "vfmadd213pd {x:z}, {y:z}, {z:z}",
+    ru
+);
