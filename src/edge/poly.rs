@@ -35,9 +35,9 @@ pub(crate) fn taylor_shift<const N: usize, const D: usize>(
     // Repeated synthetic division: after pass k, out[k] is final.
     for k in 0..deg {
         for i in (k..deg).rev() {
-            let next = out[i + 1];
-            for (v, n) in out[i].iter_mut().zip(next) {
-                *v += shift * n;
+            let (here, next) = out.split_at_mut(i + 1);
+            for (v, n) in here[i].iter_mut().zip(&next[0]) {
+                *v += shift * *n;
             }
         }
     }

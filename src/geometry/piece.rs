@@ -190,10 +190,12 @@ impl Piece {
             hi[idx(count - 1, l)] = work[count - 1];
             for level in 1..count {
                 for k in 0..count - level {
-                    let next = work[k + 1];
                     // A polynomial piece's weights stay exactly 1: only x, y, z are averaged.
-                    for (w, x) in work[k][..coords].iter_mut().zip(next) {
-                        *w = average(*w, x);
+                    // (The next point by reference: copied by value, it went through
+                    // overlapping stack stores, a store-forwarding stall per step.)
+                    let (here, next) = work.split_at_mut(k + 1);
+                    for (w, x) in here[k][..coords].iter_mut().zip(&next[0]) {
+                        *w = average(*w, *x);
                     }
                 }
                 lo[idx(level, l)] = work[0];
@@ -225,12 +227,15 @@ impl Piece {
     /// outward).
     pub fn centre(&self, d: &Domain) -> ([Interval; 2], [Interval; 3]) {
         let [m, n] = self.degree;
+        let coords = if self.polynomial { 3 } else { 4 };
         let collapse = |pts: &mut Vec<[Interval; 4]>| {
             while pts.len() > 1 {
                 for k in 0..pts.len() - 1 {
-                    let next = pts[k + 1];
-                    for (w, x) in pts[k].iter_mut().zip(next) {
-                        *w = average(*w, x);
+                    // The next point by reference, as in `split`; a polynomial piece's
+                    // weights stay 1.
+                    let (here, next) = pts.split_at_mut(k + 1);
+                    for (w, x) in here[k][..coords].iter_mut().zip(&next[0]) {
+                        *w = average(*w, *x);
                     }
                 }
                 pts.pop();

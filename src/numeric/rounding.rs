@@ -76,6 +76,10 @@ pub fn average(a: Interval, b: Interval) -> Interval {
     // magnitude and finite (the halves are normal numbers), the interval `(a + b)·½` rounded
     // outward would give. This is de Casteljau's inner step: one sum, no product.
     let sum = a + b;
+    #[cfg(target_arch = "x86_64")]
+    if let Some(h) = halved_exactly(sum) {
+        return h;
+    }
     let (lo, hi) = (sum.inf(), sum.sup());
     let halves_exactly =
         |x: f64| x == 0.0 || (x.abs() >= 2.0 * f64::MIN_POSITIVE && x.abs() <= f64::MAX);
@@ -91,6 +95,29 @@ pub fn average(a: Interval, b: Interval) -> Interval {
     let lo = half_dir(add_dir(a.inf(), b.inf(), false), false);
     let hi = half_dir(add_dir(a.sup(), b.sup(), true), true);
     Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
+}
+
+/// `x·½` when both bounds halve exactly (finite or infinite, zero or at least 2⁻¹⁰²¹ in
+/// magnitude): both lanes of `inari`'s register form `[−a; b]` scaled at once, checked by
+/// doubling back. `None` otherwise (a bound would round, or `x` is empty).
+#[cfg(target_arch = "x86_64")]
+#[inline]
+fn halved_exactly(x: Interval) -> Option<Interval> {
+    use std::arch::x86_64::*;
+    const _: () = assert!(std::mem::size_of::<Interval>() == std::mem::size_of::<__m128d>());
+    // SAFETY: `Interval` is inari's `#[repr(C)]` wrapper of one `__m128d` holding `[−a; b]`
+    // (its documented representation; the size is asserted above, and `numeric::imul` reads
+    // it the same way). SSE2 is part of x86-64. The register built is `[−a/2; b/2]`, returned
+    // only when doubling it gives the operand back bit for bit in both lanes: then each half is
+    // exact (no bit was lost), `−a/2 ≤ b/2` holds as `−a ≤ b` did, and no lane is NaN (NaN never
+    // compares equal), so it is a valid interval, the exact `x·½`.
+    unsafe {
+        let r: __m128d = std::mem::transmute::<Interval, __m128d>(x);
+        let h = _mm_mul_pd(r, _mm_set1_pd(0.5));
+        let back = _mm_add_pd(h, h);
+        (_mm_movemask_pd(_mm_cmpeq_pd(back, r)) == 3)
+            .then(|| std::mem::transmute::<__m128d, Interval>(h))
+    }
 }
 
 /// `b − a`, rounded outward.
