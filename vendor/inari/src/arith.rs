@@ -59,13 +59,15 @@ impl Mul for Interval {
         //  Z |     {0}    |     {0}    |     {0}    | {0}
         // *1 [min{a*d, b*c}, max{a*c, b*d}]
 
-        // ssitrace's change (PATCHED.md): finite operands without AVX-512 take the branch-free
-        // corner product, inlined; the case analysis below is out of line.
+        // ssitrace's change (PATCHED.md): finite operands take the branch-free corner product
+        // (from the exact errors without AVX-512, with the rounding embedded with it),
+        // inlined; the case analysis below is out of line.
         #[cfg(all(
             target_arch = "x86_64",
-            not(target_feature = "avx512f"),
-            target_feature = "avx2",
-            target_feature = "fma"
+            any(
+                target_feature = "avx512f",
+                all(target_feature = "avx2", target_feature = "fma")
+            )
         ))]
         if let Some(rep) = mul_corners(self.rep, rhs.rep) {
             return Self { rep };

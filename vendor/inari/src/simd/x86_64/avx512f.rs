@@ -70,3 +70,43 @@ impl_op_round!(
     "vfmadd213pd {x:z}, {y:z}, {z:z}",
     ru
 );
+
+/// ssitrace (PATCHED.md): the interval product `[−a; b]·[−c; d]` as `[−lo; hi]` for finite
+/// operands without branching on their signs: all eight directed corner products in one
+/// multiply rounded upward (a lower bound is the negated upward product of a negated operand),
+/// the largest of each four. Upward rounding is monotone, so this is inari's interval bound for
+/// bound. `None` when an operand is not finite (empty or unbounded).
+#[inline]
+pub(crate) fn mul_corners(x: super::F64X2, y: super::F64X2) -> Option<super::F64X2> {
+    use std::arch::x86_64::*;
+    // SAFETY: AVX-512F is enabled at compile time (this module's cfg).
+    unsafe {
+        // v − v is 0 for finite v and NaN for an infinite or NaN one.
+        let t = _mm_add_pd(_mm_sub_pd(x, x), _mm_sub_pd(y, y));
+        if _mm_movemask_pd(_mm_cmpunord_pd(t, t)) != 0 {
+            return None;
+        }
+        // xs = [−a, b, −a, b, −a, b, −a, b]; ys = [−c, d, −d, c, c, −c, d, −d]: products 0..3
+        // are ac, bd, ad, bc (the upper bound's candidates), 4..7 are −ac, −bc, −ad, −bd.
+        let xs = _mm512_broadcast_f64x2(x);
+        let y8 = _mm512_castpd128_pd512(y);
+        let perm = _mm512_permutexvar_pd(_mm512_set_epi64(1, 1, 0, 0, 0, 1, 1, 0), y8);
+        let sign = _mm512_castsi512_pd(_mm512_set_epi64(
+            i64::MIN,
+            0,
+            0,
+            i64::MIN,
+            i64::MIN,
+            i64::MIN,
+            0,
+            0,
+        ));
+        let ys = _mm512_xor_pd(perm, sign);
+        let z = _mm512_mul_round_pd::<{ _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC }>(xs, ys);
+        let z = _mm512_max_pd(z, _mm512_permute_pd::<0b0101_0101>(z));
+        let z = _mm512_max_pd(z, _mm512_shuffle_f64x2::<0b1011_0001>(z, z));
+        // Lane 4 holds −lo, lane 0 holds hi.
+        let out = _mm512_permutexvar_pd(_mm512_set_epi64(0, 0, 0, 0, 0, 0, 0, 4), z);
+        Some(_mm512_castpd512_pd128(out))
+    }
+}
