@@ -45,7 +45,6 @@ use inari::Interval;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-mod advance;
 mod leave;
 mod output;
 mod walker;

@@ -5,10 +5,6 @@ use super::*;
 use crate::certify::lean_patch::LeanPatch;
 use crate::pair::branch_point::locate_singular_point_within;
 
-/// The part of the chain's tolerance the links into a marched boundary end must meet
-/// ([`Walker::end_tolerance`]).
-const END_TOLERANCE: f64 = 0.125;
-
 /// A guide point on the curve and its parameter velocity, oriented along the walk.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Node {
@@ -106,12 +102,6 @@ pub(super) struct Walker<'a> {
     pub(super) l_pred: Option<f64>,
     /// Scaled length and model width of the last link added.
     prev: Option<(f64, f64)>,
-    /// The tolerance of the links into the last marched node, when the walk ends there on a
-    /// boundary: the B-rep edges cut the chain at the side it crosses, and the cut's share of
-    /// an edge's tolerance is about twice the width of the links at the crossing.
-    pub(super) end_tolerance: Option<f64>,
-    /// Whether the links now tried end at the last marched node.
-    pub(super) at_end: bool,
     /// Both patches in the form the link proofs evaluate.
     lean: [LeanPatch<'a>; 2],
 }
@@ -146,8 +136,6 @@ impl<'a> Walker<'a> {
             wants_closure: false,
             l_pred: None,
             prev: None,
-            end_tolerance: None,
-            at_end: false,
             lean: [LeanPatch::new(p), LeanPatch::new(q)],
         }
     }
@@ -203,7 +191,7 @@ impl<'a> Walker<'a> {
     /// Tries one link from `a` to `b`; `must_end` must also lie in its tube (the closing join).
     pub(super) fn link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Attempt {
         match self.try_link(a, b, must_end) {
-            Some(l) if l.radius_xyz > self.tolerance() => Attempt::TooWide(l),
+            Some(l) if l.radius_xyz > self.opts.required_tolerance => Attempt::TooWide(l),
             Some(l) => Attempt::Proven(l),
             None => Attempt::Failed,
         }
@@ -294,7 +282,7 @@ impl<'a> Walker<'a> {
     }
 
     /// A new node halfway (in the along coordinate of largest scaled change) from `a` to `b`.
-    pub(super) fn midpoint(&self, a: &Node, b: &Node, frac: f64) -> Option<Node> {
+    fn midpoint(&self, a: &Node, b: &Node, frac: f64) -> Option<Node> {
         let j = (0..4)
             .max_by(|&x, &y| {
                 let dx = (b.x[x] - a.x[x]).abs() / self.scales[x];
@@ -346,8 +334,8 @@ impl<'a> Walker<'a> {
     /// half the tolerance (`r ∝ L⁶`; the tube is the predictor's own deviation since the
     /// residual is ranged by its Bernstein form, so half leaves room enough), at most doubling
     /// after a success, at least halving after a failure without a width.
-    pub(super) fn learn(&mut self, len: f64, attempt: &Attempt) {
-        let tol = self.tolerance();
+    fn learn(&mut self, len: f64, attempt: &Attempt) {
+        let tol = self.opts.required_tolerance;
         let aim = |r: f64| {
             if r > 0.0 {
                 (tol / (2.0 * r)).powf(1.0 / 6.0)
@@ -374,7 +362,7 @@ impl<'a> Walker<'a> {
     /// singular point is near ([`Self::conditioning_end`]; nearly tangent surfaces are not
     /// enough: on Fig. 7 the normals' cross product over boxes 1e-4 round ordinary links
     /// contains zero).
-    pub(super) fn conditioning_limited(&self, len: f64, width: f64) -> bool {
+    fn conditioning_limited(&self, len: f64, width: f64) -> bool {
         width > 0.5 * self.opts.required_tolerance
             && self
                 .prev
@@ -384,7 +372,7 @@ impl<'a> Walker<'a> {
     /// The end of a half after a kept link from `a` to `b` of scaled length `len` that was
     /// [`Self::conditioning_limited`]: singular, when the link is shorter than [`FLOOR_LINK`],
     /// a singular point is found near `b` and a singular box within four lengths.
-    pub(super) fn conditioning_end(
+    fn conditioning_end(
         &self,
         limited: bool,
         len: f64,
@@ -410,7 +398,7 @@ impl<'a> Walker<'a> {
     }
 
     /// Adds a proven link of scaled length `len`; on a loop, whether it closes the loop (then the walk stops).
-    pub(super) fn push(&mut self, mut link: Link, len: f64) -> bool {
+    fn push(&mut self, mut link: Link, len: f64) -> bool {
         self.prev = Some((len, link.radius_xyz));
         if let Some(c) = self.shared {
             c.fetch_add(1, Ordering::Relaxed);
@@ -433,7 +421,7 @@ impl<'a> Walker<'a> {
 
     /// Why the link or time budget is spent, if it is (never before the first link of a half:
     /// the start is always proven).
-    pub(super) fn out_of_budget(&self) -> Option<String> {
+    fn out_of_budget(&self) -> Option<String> {
         if self.links.is_empty() {
             return None;
         }
@@ -445,15 +433,6 @@ impl<'a> Walker<'a> {
             .map_or(self.links.len(), |c| c.load(Ordering::Relaxed));
         (made + self.used >= self.opts.max_links)
             .then(|| format!("budget spent ({} links)", self.opts.max_links))
-    }
-
-    /// The tolerance the links now tried must meet: [`Self::end_tolerance`] for the links
-    /// into the last marched node, else the chain's.
-    fn tolerance(&self) -> f64 {
-        match self.end_tolerance {
-            Some(t) if self.at_end => t,
-            _ => self.opts.required_tolerance,
-        }
     }
 
     /// Links from `a` to `b`, splitting where needed; on failure the end to report there.
@@ -484,10 +463,6 @@ impl<'a> Walker<'a> {
                 Attempt::TooWide(link)
                     if wider.is_some_and(|w| link.radius_xyz > 0.5 * w)
                         && (link.radius_xyz <= self.rounding_floor(&cur)
-                            // Into a boundary end: within the chain's tolerance is enough
-                            // when halving does not narrow the link.
-                            || (self.at_end
-                                && link.radius_xyz <= self.opts.required_tolerance)
                             || (scaled_dist(&cur.x, &tgt.x, &self.scales) < FLOOR_LINK
                                 && self.singular_box(&cur.x, &tgt.x, 1e-4).is_none())) =>
                 {
@@ -672,12 +647,96 @@ impl<'a> Walker<'a> {
             .collect()
     }
 
+    /// Links from the first node to the last, skipping marched points while links hold (the
+    /// stride doubles after a success and halves after a failure; a single marched interval
+    /// that fails is split). The last link must also hold `closing` if given.
+    pub(super) fn advance(
+        &mut self,
+        nodes: &[Node],
+        closing: Option<&[Interval; 4]>,
+    ) -> std::result::Result<(), CertifiedEnd> {
+        let n = nodes.len();
+        let mut i = 0;
+        // After a stride to a marched point fails (not merely too wide), the points up to it are linked one interval
+        // at a time: a stride that fails there has usually met a point where the links must
+        // shorten, as the marched points do (towards a singular point they halve their
+        // distance to it, every stride reaching the last one fails, and each success would
+        // otherwise lengthen the next stride back to it).
+        let mut single_until = 0;
+        // In that stretch, two intervals at a time while that holds: towards a singular point
+        // a link from distance `r` to `r/4` holds where one to `r/8` fails (the cylinders:
+        // widths far below the tolerance down to `r ≈ 1e-5`), so this halves the links there.
+        // After a pair fails, the next two intervals are single.
+        let mut singles_before_pair = 0;
+        while i + 1 < n {
+            // As many marched points ahead as the predicted length reaches (at least one).
+            let mut k = 1;
+            if i < single_until && i + 2 < n {
+                if singles_before_pair == 0 {
+                    k = 2;
+                } else {
+                    singles_before_pair -= 1;
+                }
+            }
+            if let (true, Some(l)) = (i >= single_until, self.l_pred) {
+                while i + k + 1 < n
+                    && scaled_dist(&nodes[i].x, &nodes[i + k + 1].x, &self.scales) <= l
+                {
+                    k += 1;
+                }
+            }
+            let must = (i + k == n - 1).then_some(closing).flatten();
+            if k > 1 {
+                if let Some(reason) = self.out_of_budget() {
+                    return Err(CertifiedEnd::Unproven {
+                        reason,
+                        near: point_box(&nodes[i].x),
+                    });
+                }
+                let len = scaled_dist(&nodes[i].x, &nodes[i + k].x, &self.scales);
+                let attempt = self.link(&nodes[i], &nodes[i + k], must);
+                self.learn(len, &attempt);
+                if let Attempt::Proven(link) = attempt {
+                    let limited = self.conditioning_limited(len, link.radius_xyz);
+                    if self.push(link, len) {
+                        return Ok(());
+                    }
+                    if let Some(end) = self.stopped_outside(&nodes[i + k], false) {
+                        return Err(end);
+                    }
+                    if let Some(end) =
+                        self.conditioning_end(limited, len, &nodes[i].x, &nodes[i + k].x)
+                    {
+                        return Err(end);
+                    }
+                    i += k;
+                } else {
+                    if i < single_until {
+                        singles_before_pair = 2;
+                    } else if matches!(attempt, Attempt::Failed) {
+                        single_until = i + k;
+                    }
+                    if self.l_pred.is_some_and(|l| l >= len) {
+                        // Not learnt anything that shortens the stride: take one interval.
+                        self.l_pred = Some(0.5 * len);
+                    }
+                }
+                continue;
+            }
+            if let Stop::Failed(e) = self.span(nodes[i], nodes[i + 1], must) {
+                return Err(e);
+            }
+            if self.closed {
+                return Ok(());
+            }
+            i += 1;
+        }
+        Ok(())
+    }
+
     /// Walks the marched points `xs` (the first one is the start) and handles the marched
     /// `end`.
     pub(super) fn walk(&mut self, xs: &[[f64; 4]], end: EndReason) -> CertifiedEnd {
-        if matches!(end, EndReason::Boundary { .. }) {
-            self.end_tolerance = Some(END_TOLERANCE * self.opts.required_tolerance);
-        }
         let nodes = self.nodes(xs);
         if let Err(e) = self.advance(&nodes, None) {
             return e;
