@@ -132,46 +132,51 @@
 //! predictor worse (small loop 40 → 56 links, +37 %; Viviani +17 %).
 //!
 //! **Stop 22: an AVX-512 machine** (Intel Xeon, 2 cores; certified ms / ratio, the build of the
-//! session's start against the final one, run alternately twice, the range of both runs):
+//! session's start against the final one, run alternately twice, the range of both runs; the
+//! machine ran about 10 % slower in the second pair):
 //!
 //! | scene | links before → after | certified ms before → after | ratio before → after |
 //! |---|---|---|---|
-//! | sphere_patch_plane | 108 → 94 | 2.25 → 1.92–1.97 | 5.4 → 4.6 |
-//! | bicubic_transversal | 11 → 11 | 0.43 → 0.31–0.54 | 3.0 → 2.1–3.7 |
-//! | two_loops_s31_s32 | 249 → 216 | 3.55–3.61 → 3.17–3.20 | 2.8–2.9 → 2.5 |
-//! | Fig. 7, smallest loop | 119 → 108 | 6.77–6.80 → 5.76–5.88 | 17.5 → 14.6 |
-//! | small_loop | 40 → 40 | 0.80–0.98 → 0.80–0.81 | 2.1–2.6 → 2.1 |
-//! | Fig. 7, three loops | 364 → 326 | 20.6 → 17.6–17.8 | 17.5 → 14.7–15.0 |
-//! | cylinders | 84 → 74 | 2.77–2.79 → 1.89–2.12 | 11.2–11.5 → 7.7–7.9 |
-//! | cylinders_full | 190 → 155 | 9.0 → 5.5–6.3 | 23.7–23.8 → 10.8–14.6 |
-//! | viviani | 80 → 76 | 3.02–3.08 → 2.42–2.61 | 10.3–10.4 → 6.4–6.9 |
+//! | sphere_patch_plane | 108 → 108 | 2.45–2.54 → 2.17–2.20 | 5.3–5.4 → 4.6–4.7 |
+//! | bicubic_transversal | 11 → 11 | 0.48–0.50 → 0.34–0.37 | 3.0 → 2.0–2.4 |
+//! | two_loops_s31_s32 | 249 → 249 | 3.92–4.03 → 3.62–3.89 | 2.8 → 2.6–2.7 |
+//! | Fig. 7, smallest loop | 119 → 119 | 7.58–7.59 → 6.38–6.81 | 17.0–17.2 → 15.1–15.3 |
+//! | small_loop | 40 → 40 | 0.89 → 0.80–0.95 | 2.1 → 1.9–2.1 |
+//! | Fig. 7, three loops | 364 → 365 | 22.7–23.5 → 19.9–23.6 | 17.4–17.5 → 15.3–17.5 |
+//! | cylinders | 84 → 82 | 3.02–3.10 → 2.43–2.67 | 11.1–11.2 → 9.0–9.3 |
+//! | cylinders_full | 190 → 173 | 9.76–9.91 → 6.46–7.63 | 23.3–23.7 → 15.7–17.1 |
+//! | viviani | 80 → 76 | 3.31–3.32 → 2.16–2.42 | 10.2 → 6.3–7.5 |
 //!
-//! What changed: (1) rational patches (every quadric here: the sphere, the cylinders, Viviani's
+//! What changed: rational patches (every quadric here: the sphere, the cylinders, Viviani's
 //! pair) get the centred power form of `certify::lean_patch` too, in homogeneous coordinates
 //! with one division; their Bernstein form had been 40 % of a chain on the cylinders (`perf`,
-//! `RationalBezierPatch::eval` along the predictor). (2) A link may end between two marched
-//! nodes (`chain/advance.rs`), where the learnt length reaches at least a fifth past one: the
-//! links had been a whole number of marched intervals (on Fig. 7 about one each), now 10–18 %
-//! fewer; the links into a marched boundary end aim at an eighth of the tolerance, since a B-rep
-//! edge's cut there takes about twice their width. Measured and not landed: the Jacobian's
-//! Taylor form one order lower (cylinders_full 155 → 181 links), the residual's form at orders
-//! 5–11 (order 7 is where Fig. 7's links stop being limited by the remainder: 717, 484, 365,
-//! 365 links at orders 5, 6, 7, 8), aiming the links at 0.7 of the tolerance instead of 0.5
-//! (more wide links than saved), series products skipping known zero coefficients (no
-//! measurable change), and the tight end slice on the lean forms (slower: the centred form is
-//! rebuilt for it).
+//! `RationalBezierPatch::eval` along the predictor).
+//!
+//! Measured and not landed: links that end between two marched nodes where the learnt length
+//! reaches past one (10–18 % fewer links, 5–8 % less chain time), because the links then all
+//! come out near the aim (half the tolerance) and leave the B-rep edges less room for their fit:
+//! Fig. 7's edges at 1e-9 grew from 233, 283, 242 to 426, 369, 427 control points, the bicubic
+//! edge at 1e-7 from 26 to 40 (`scripts/edge_size_table.py`). Also measured and not landed: the
+//! Jacobian's Taylor form one order lower (cylinders_full 155 → 181 links), the residual's form
+//! at other orders (order 7 is where Fig. 7's links stop being limited by the remainder: 717,
+//! 484, 365, 365 links at orders 5, 6, 7, 8; higher orders only cost), aiming the links at 0.7
+//! of the tolerance instead of 0.5 (more wide links than saved), series products skipping known
+//! zero coefficients (no measurable change), two partial sums in a series product (none), and
+//! the tight end slice on the lean forms (slower: the centred form is rebuilt for it).
 //!
 //! Fig. 7 stays above 10: its links are limited by the quintic predictor's error (`∝ L⁶`) at
-//! the tolerance, about 55 µs each (a degree-6 patch: the residual series costs two Horner
-//! evaluations of 49 coefficients, at the centre and over the link, and the Jacobian two
-//! more). A predictor of higher order would need a residual form of higher order with it.
+//! the tolerance, one marched interval each, about 55 µs each (a degree-6 patch: the residual
+//! series costs two Horner evaluations of 49 coefficients, at the centre and over the link, and
+//! the Jacobian two more). Longer links need a predictor of higher order with a residual form
+//! of higher order, and room left for the edges' fit.
 //!
-//! Whole runs (`scripts/speed_table.py`, the same machine): Fig. 7 88 → 58 ms, the tangential
-//! pair 106 → 88 ms, concentric circles 133 → 118 ms. Besides the chain: a de Casteljau step
-//! that copied the next control point by value compiled to overlapping stack stores, a
-//! store-forwarding stall per step (`Piece::split` was 22 % of Fig. 7's run, now 3 %; the same
-//! in the contact cover's `restrict_curve`), and on AVX-512 every interval product skips inari's
-//! sign cases (`vendor/inari/PATCHED.md`).
+//! Whole runs (`scripts/speed_table.py`, the same machine, median of five): Fig. 7 82 → 62 ms,
+//! the tangential pair 106 → 85 ms, concentric circles 135 → 116 ms, cylinders_full 20 → 15 ms,
+//! Viviani 19 → 15 ms. Besides the chain: a de Casteljau step that copied the next control
+//! point by value compiled to overlapping stack stores, a store-forwarding stall per step
+//! (`Piece::split` was 22 % of Fig. 7's run, now 3 %; the same in the contact cover's
+//! `restrict_curve`), and on AVX-512 every interval product skips inari's sign cases
+//! (`vendor/inari/PATCHED.md`).
 //!
 //! The group `halves` times the open bicubic branch with its two halves one after the other and
 //! on two threads (`CertifyOptions::parallel_halves`).
