@@ -30,11 +30,12 @@ use inari::Interval;
 use std::cell::RefCell;
 use std::rc::Rc;
 
-/// A patch with its forward differences prepared when it is polynomial.
+/// A patch with its forward differences prepared: of its Cartesian net when it is polynomial,
+/// of its homogeneous net otherwise.
 #[derive(Debug, Clone)]
 pub(crate) struct LeanPatch<'a> {
     patch: &'a RationalBezierPatch,
-    power: Option<PowerNet>,
+    power: PowerNet,
     /// The last centred form, reused for centres near its own ([`REUSE`]).
     last: RefCell<Option<Rc<Taylor>>>,
 }
@@ -45,11 +46,12 @@ pub(crate) struct LeanPatch<'a> {
 const REUSE: f64 = 0.05;
 
 impl<'a> LeanPatch<'a> {
-    /// The patch, with the lean form if all its weights are equal and exact.
+    /// The patch with its differences: Cartesian if all its weights are equal and exact,
+    /// homogeneous otherwise.
     pub(crate) fn new(patch: &'a RationalBezierPatch) -> Self {
         LeanPatch {
             patch,
-            power: Some(PowerNet::of(patch).unwrap_or_else(|| PowerNet::homogeneous(patch))),
+            power: PowerNet::of(patch).unwrap_or_else(|| PowerNet::homogeneous(patch)),
             last: RefCell::new(None),
         }
     }
@@ -57,26 +59,23 @@ impl<'a> LeanPatch<'a> {
     /// The patch written around `(cu, cv)` (any finite point; the lean form is tightest near
     /// it).
     pub(crate) fn centred(&self, cu: f64, cv: f64) -> Centred<'_> {
-        let taylor = self
-            .power
-            .as_ref()
-            .filter(|_| cu.is_finite() && cv.is_finite())
-            .map(|net| {
-                let d = self.patch.domain();
-                let near = |t: &Taylor| {
-                    (t.centre[0] - cu).abs() <= REUSE * (d.u[1] - d.u[0])
-                        && (t.centre[1] - cv).abs() <= REUSE * (d.v[1] - d.v[0])
-                };
-                let mut last = self.last.borrow_mut();
-                match last.as_ref().filter(|t| near(t)) {
-                    Some(t) => Rc::clone(t),
-                    None => {
-                        let t = Rc::new(Taylor::at(self.patch, net, cu, cv));
-                        *last = Some(Rc::clone(&t));
-                        t
-                    }
+        let net = &self.power;
+        let taylor = (cu.is_finite() && cv.is_finite()).then(|| {
+            let d = self.patch.domain();
+            let near = |t: &Taylor| {
+                (t.centre[0] - cu).abs() <= REUSE * (d.u[1] - d.u[0])
+                    && (t.centre[1] - cv).abs() <= REUSE * (d.v[1] - d.v[0])
+            };
+            let mut last = self.last.borrow_mut();
+            match last.as_ref().filter(|t| near(t)) {
+                Some(t) => Rc::clone(t),
+                None => {
+                    let t = Rc::new(Taylor::at(self.patch, net, cu, cv));
+                    *last = Some(Rc::clone(&t));
+                    t
                 }
-            });
+            }
+        });
         Centred {
             patch: self.patch,
             taylor,
@@ -320,7 +319,6 @@ mod tests {
     /// at 20 points across the domain (centres a little off them).
     fn check_lean_form(p: &RationalBezierPatch) {
         let lean = LeanPatch::new(p);
-        assert!(lean.power.is_some());
         let d = p.domain();
         let (wu, wv) = (d.u[1] - d.u[0], d.v[1] - d.v[0]);
         for k in 0..20 {

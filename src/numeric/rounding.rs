@@ -358,6 +358,61 @@ mod tests {
     }
 
     #[test]
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    fn averages_are_the_directed_half_sums() {
+        // The average (its fast path halves both bounds at once when that is exact) against
+        // the sums under a rounding mode set directly, over magnitudes from 2⁻¹⁰⁷⁴ to 2¹⁰⁰⁰
+        // (subnormal halves included) and unbounded sides.
+        let mut state = 0x853c_49e6_748f_ea9b_u64;
+        // Bounds whose halves (or sums' halves) are subnormal or round.
+        let tiny = [
+            5e-324,
+            1e-310,
+            2.2250738585072014e-308,
+            4.450147717014403e-308,
+            3e-308,
+        ];
+        for k in 0..200_000 {
+            let mut iv = || {
+                let mut bound = || match xorshift(&mut state) % 5 {
+                    0 => {
+                        let t = tiny[(xorshift(&mut state) % 5) as usize];
+                        if xorshift(&mut state).is_multiple_of(2) {
+                            t
+                        } else {
+                            -t
+                        }
+                    }
+                    _ => wide_bound(&mut state),
+                };
+                let (p, q) = (bound(), bound());
+                (p.min(q), p.max(q))
+            };
+            let ((a, b), (c, d)) = (iv(), iv());
+            let (a, d) = match k % 19 {
+                0 => (f64::NEG_INFINITY, d),
+                1 => (a, f64::INFINITY),
+                _ => (a, d),
+            };
+            let h = average(interval(a, b).unwrap(), interval(c, d).unwrap());
+            // The sums rounded down and up with the mode set: twice each bound must lie
+            // beyond them (doubling is exact), and equal them where halving them is exact.
+            let (s_lo, s_hi) = (-upward('+', -a, -c), upward('+', b, d));
+            let (lo, hi) = (h.inf(), h.sup());
+            assert!(
+                lo + lo <= s_lo && hi + hi >= s_hi,
+                "[{a}, {b}] ⊕ [{c}, {d}]: {h:?}"
+            );
+            if 2.0 * (0.5 * s_lo) == s_lo {
+                assert_eq!(lo, 0.5 * s_lo, "[{a}, {b}] ⊕ [{c}, {d}]");
+            }
+            if 2.0 * (0.5 * s_hi) == s_hi {
+                assert_eq!(hi, 0.5 * s_hi, "[{a}, {b}] ⊕ [{c}, {d}]");
+            }
+        }
+    }
+
+    #[test]
     fn halving_is_exact_or_outward() {
         // An average with a zero is a halving: exact in the normal range, outward below it.
         let x = interval(-3.0, 1e-310).unwrap();

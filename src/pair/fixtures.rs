@@ -42,7 +42,7 @@ impl ScalarSurface for Bowl {
 }
 
 /// A bilinear patch over the unit square with one uneven weight: the smallest rational patch,
-/// which the lean polynomial forms of the layers above must leave in the patch's own form.
+/// which the contact patch's lean polynomial form must leave in the patch's own form.
 #[cfg(test)]
 pub(crate) fn rational_bilinear() -> crate::geometry::RationalBezierPatch {
     let pts = [
