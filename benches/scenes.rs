@@ -162,7 +162,8 @@
 //! 484, 365, 365 links at orders 5, 6, 7, 8; higher orders only cost), aiming the links at 0.7
 //! of the tolerance instead of 0.5 (more wide links than saved), series products skipping known
 //! zero coefficients (no measurable change), two partial sums in a series product (none), and
-//! the tight end slice on the lean forms (slower: the centred form is rebuilt for it).
+//! the tight end slice on the lean forms (3–14 % slower: for Krawczyk's few evaluations over a
+//! box the power form's partials cost more than the patch's own).
 //!
 //! Fig. 7 stays above 10: its links are limited by the quintic predictor's error (`∝ L⁶`) at
 //! the tolerance, one marched interval each, about 55 µs each (a degree-6 patch: the residual
