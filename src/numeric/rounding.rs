@@ -76,10 +76,6 @@ pub fn average(a: Interval, b: Interval) -> Interval {
     // magnitude and finite (the halves are normal numbers), the interval `(a + b)·½` rounded
     // outward would give. This is de Casteljau's inner step: one sum, no product.
     let sum = a + b;
-    #[cfg(target_arch = "x86_64")]
-    if let Some(h) = halved_exactly(sum) {
-        return h;
-    }
     let (lo, hi) = (sum.inf(), sum.sup());
     let halves_exactly =
         |x: f64| x == 0.0 || (x.abs() >= 2.0 * f64::MIN_POSITIVE && x.abs() <= f64::MAX);
@@ -95,29 +91,6 @@ pub fn average(a: Interval, b: Interval) -> Interval {
     let lo = half_dir(add_dir(a.inf(), b.inf(), false), false);
     let hi = half_dir(add_dir(a.sup(), b.sup(), true), true);
     Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE)
-}
-
-/// `x·½` when both bounds halve exactly (finite or infinite, zero or at least 2⁻¹⁰²¹ in
-/// magnitude): both lanes of `inari`'s register form `[−a; b]` scaled at once, checked by
-/// doubling back. `None` otherwise (a bound would round, or `x` is empty).
-#[cfg(target_arch = "x86_64")]
-#[inline]
-fn halved_exactly(x: Interval) -> Option<Interval> {
-    use std::arch::x86_64::*;
-    const _: () = assert!(std::mem::size_of::<Interval>() == std::mem::size_of::<__m128d>());
-    // SAFETY: `Interval` is inari's `#[repr(C)]` wrapper of one `__m128d` holding `[−a; b]`
-    // (its documented representation; the size is asserted above, and `numeric::imul` reads
-    // it the same way). SSE2 is part of x86-64. The register built is `[−a/2; b/2]`, returned
-    // only when doubling it gives the operand back bit for bit in both lanes: then each half is
-    // exact (no bit was lost), `−a/2 ≤ b/2` holds as `−a ≤ b` did, and no lane is NaN (NaN never
-    // compares equal), so it is a valid interval, the exact `x·½`.
-    unsafe {
-        let r: __m128d = std::mem::transmute::<Interval, __m128d>(x);
-        let h = _mm_mul_pd(r, _mm_set1_pd(0.5));
-        let back = _mm_add_pd(h, h);
-        (_mm_movemask_pd(_mm_cmpeq_pd(back, r)) == 3)
-            .then(|| std::mem::transmute::<__m128d, Interval>(h))
-    }
 }
 
 /// `b − a`, rounded outward.
@@ -225,6 +198,16 @@ mod tests {
         v
     }
 
+    /// The lower bound `a` of the first operand at −∞ in the `k`-th of every `every` draws, the
+    /// upper bound `d` of the second at +∞ in the next, both as drawn otherwise.
+    fn unbounded_now_and_then(k: usize, every: usize, a: f64, d: f64) -> (f64, f64) {
+        match k % every {
+            0 => (f64::NEG_INFINITY, d),
+            1 => (a, f64::INFINITY),
+            _ => (a, d),
+        }
+    }
+
     #[test]
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     fn inari_sums_and_products_round_as_the_mode_does() {
@@ -241,11 +224,7 @@ mod tests {
             };
             let ((a, b), (c, d)) = (iv(), iv());
             // Now and then an unbounded side (sums only: 0·∞ is a special case of products).
-            let (a, d) = match k % 23 {
-                0 => (f64::NEG_INFINITY, d),
-                1 => (a, f64::INFINITY),
-                _ => (a, d),
-            };
+            let (a, d) = unbounded_now_and_then(k, 23, a, d);
             let (x, y) = (interval(a, b).unwrap(), interval(c, d).unwrap());
             let lo = |op, u: f64, v: f64| -upward(op, -u, v);
             let s = x + y;
@@ -360,8 +339,8 @@ mod tests {
     #[test]
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     fn averages_are_the_directed_half_sums() {
-        // The average (its fast path halves both bounds at once when that is exact) against
-        // the sums under a rounding mode set directly, over magnitudes from 2⁻¹⁰⁷⁴ to 2¹⁰⁰⁰
+        // The average (each bound halved exactly where it can be) against the sums under a
+        // rounding mode set directly, over magnitudes from 2⁻¹⁰⁷⁴ to 2¹⁰⁰⁰
         // (subnormal halves included) and unbounded sides.
         let mut state = 0x853c_49e6_748f_ea9b_u64;
         // Bounds whose halves (or sums' halves) are subnormal or round.
@@ -389,11 +368,7 @@ mod tests {
                 (p.min(q), p.max(q))
             };
             let ((a, b), (c, d)) = (iv(), iv());
-            let (a, d) = match k % 19 {
-                0 => (f64::NEG_INFINITY, d),
-                1 => (a, f64::INFINITY),
-                _ => (a, d),
-            };
+            let (a, d) = unbounded_now_and_then(k, 19, a, d);
             let h = average(interval(a, b).unwrap(), interval(c, d).unwrap());
             // The sums rounded down and up with the mode set: twice each bound must lie
             // beyond them (doubling is exact), and equal them where halving them is exact.
