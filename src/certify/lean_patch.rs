@@ -56,6 +56,14 @@ impl<'a> LeanPatch<'a> {
         }
     }
 
+    /// The relative cost of an evaluation: coefficients per coordinate times the coordinates
+    /// (four for the homogeneous form of a rational patch).
+    pub(crate) fn eval_cost(&self) -> usize {
+        let [m, n] = self.patch.degree();
+        let coords = self.power.diffs.first().map_or(3, |d| d.len());
+        (m + 1) * (n + 1) * coords
+    }
+
     /// The patch written around `(cu, cv)` (any finite point; the lean form is tightest near
     /// it).
     pub(crate) fn centred(&self, cu: f64, cv: f64) -> Centred<'_> {
@@ -185,24 +193,32 @@ impl Taylor {
         ds: S,
         dr: S,
     ) -> S {
+        // The accumulators stay unset (`*_set` false) until their first nonzero term, which
+        // saves the products of zero with the argument.
         let nonzero = |x: Interval| !(x.inf() == 0.0 && x.sup() == 0.0);
-        let mut outer: Option<S> = None;
+        let (mut outer, mut outer_set) = (S::zero(), false);
         for k in (0..=km).rev() {
-            let mut inner: Option<S> = None;
+            let (mut inner, mut inner_set) = (S::zero(), false);
             for l in (0..=ln).rev() {
                 let a = c(k, l);
-                inner = inner.map(|s| s * dr);
+                if inner_set {
+                    inner = inner * dr;
+                }
                 if nonzero(a) {
                     let a = S::from_interval(a);
-                    inner = Some(inner.map_or(a, |s| s + a));
+                    inner = if inner_set { inner + a } else { a };
+                    inner_set = true;
                 }
             }
-            outer = outer.map(|s| s * ds);
-            if let Some(i) = inner {
-                outer = Some(outer.map_or(i, |s| s + i));
+            if outer_set {
+                outer = outer * ds;
+            }
+            if inner_set {
+                outer = if outer_set { outer + inner } else { inner };
+                outer_set = true;
             }
         }
-        outer.unwrap_or_else(S::zero)
+        outer
     }
 
     /// The partial derivative `∂^(a+b) / ∂uᵃ ∂vᵇ` of coordinate `x` (the point for `(0, 0)`):

@@ -40,9 +40,10 @@ pub trait Scalar:
     fn one() -> Self {
         Self::from_f64(1.0)
     }
-    /// How many stored terms a product with this value runs over: 1 for a number, the stored
-    /// length of a truncated series (an affine series costs 2 per coefficient of a product,
-    /// a full one up to its length). Evaluation orders may use it; values never depend on it.
+    /// How many stored terms a product with this value runs over: 1 for a number; for a
+    /// truncated series, its coefficients up to the last one that is not exactly zero (an
+    /// affine series costs 2 per coefficient of a product, a full one up to its length).
+    /// Evaluation orders may use it; values never depend on it.
     fn terms(&self) -> usize {
         1
     }

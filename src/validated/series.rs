@@ -34,7 +34,7 @@ pub type Series = SeriesN<MAX_TERMS>;
 #[derive(Clone, Copy, Debug)]
 pub struct SeriesN<const N: usize> {
     c: [Interval; N],
-    len: u8,
+    len: usize,
 }
 
 impl<const N: usize> SeriesN<N> {
@@ -43,7 +43,7 @@ impl<const N: usize> SeriesN<N> {
         let mut c = [ZERO; N];
         let len = coeffs.len().clamp(1, N);
         c[..coeffs.len().min(N)].copy_from_slice(&coeffs[..coeffs.len().min(N)]);
-        SeriesN { c, len: len as u8 }
+        SeriesN { c, len: len }
     }
     /// The constant `x` (length 1).
     pub fn constant(x: Interval) -> Self {
@@ -51,11 +51,11 @@ impl<const N: usize> SeriesN<N> {
     }
     /// The coefficients.
     pub fn coeffs(&self) -> &[Interval] {
-        &self.c[..self.len as usize]
+        &self.c[..self.len]
     }
     /// Coefficient `i` (zero beyond the length).
     pub fn coeff(&self, i: usize) -> Interval {
-        if i < self.len as usize {
+        if i < self.len {
             self.c[i]
         } else {
             ZERO
@@ -64,11 +64,19 @@ impl<const N: usize> SeriesN<N> {
     fn undefined(len: usize) -> Self {
         let mut s = Self::new(&[Interval::ENTIRE]);
         s.c[..len].fill(Interval::ENTIRE);
-        s.len = len as u8;
+        s.len = len;
         s
     }
+    /// One past the last coefficient that is not exactly zero (at least 1).
+    fn support(&self) -> usize {
+        let mut l = self.len;
+        while l > 1 && self.c[l - 1].inf() == 0.0 && self.c[l - 1].sup() == 0.0 {
+            l -= 1;
+        }
+        l
+    }
     fn len2(a: &Self, b: &Self) -> usize {
-        a.len.max(b.len) as usize
+        a.len.max(b.len)
     }
 }
 
@@ -80,7 +88,7 @@ impl<const N: usize> Add for SeriesN<N> {
         for i in 0..n {
             r.c[i] = self.coeff(i) + rhs.coeff(i);
         }
-        r.len = n as u8;
+        r.len = n;
         r
     }
 }
@@ -94,7 +102,7 @@ impl<const N: usize> Neg for SeriesN<N> {
     type Output = Self;
     fn neg(self) -> Self {
         let mut r = self;
-        for v in &mut r.c[..self.len as usize] {
+        for v in &mut r.c[..self.len] {
             *v = -*v;
         }
         r
@@ -104,7 +112,7 @@ impl<const N: usize> Mul for SeriesN<N> {
     type Output = Self;
     fn mul(self, rhs: Self) -> Self {
         let n = Self::len2(&self, &rhs);
-        let (la, lb) = (self.len as usize, rhs.len as usize);
+        let (la, lb) = (self.len, rhs.len);
         let mut r = Self::constant(ZERO);
         if la == 1 || lb == 1 {
             // A constant times a series: one product per coefficient, no sums.
@@ -117,9 +125,14 @@ impl<const N: usize> Mul for SeriesN<N> {
                 r.c[i] = imul::mul(k, s.c[i]);
             }
         } else {
+            // Trailing coefficients that are exactly zero contribute nothing.
+            let (la, lb) = (self.support(), rhs.support());
             for i in 0..n {
                 // Terms m with m < la and i − m < lb.
-                let (from, to) = ((i + 1).saturating_sub(lb), i.min(la - 1));
+                let (from, to) = ((i + 1).saturating_sub(lb), i.min(la.max(1) - 1));
+                if from > to {
+                    continue;
+                }
                 let mut acc = ZERO;
                 for m in from..=to {
                     acc += imul::mul(self.c[m], rhs.c[i - m]);
@@ -127,7 +140,7 @@ impl<const N: usize> Mul for SeriesN<N> {
                 r.c[i] = acc;
             }
         }
-        r.len = n as u8;
+        r.len = n;
         r
     }
 }
@@ -139,22 +152,25 @@ impl<const N: usize> Div for SeriesN<N> {
         if b0.contains(0.0) || b0.is_empty() {
             return Self::undefined(n);
         }
+        // One division: each coefficient is multiplied by an enclosure of `1/b0` (a superset of
+        // the quotient, one rounding wider, and several times cheaper than a division).
+        let inv0 = point(1.0) / b0;
         let mut r = Self::constant(ZERO);
         for i in 0..n {
             let mut acc = self.coeff(i);
-            for m in 1..=i.min(rhs.len as usize - 1) {
+            for m in 1..=i.min(rhs.len - 1) {
                 acc -= imul::mul(rhs.c[m], r.c[i - m]);
             }
-            r.c[i] = acc / b0;
+            r.c[i] = imul::mul(acc, inv0);
         }
-        r.len = n as u8;
+        r.len = n;
         r
     }
 }
 
 impl<const N: usize> Scalar for SeriesN<N> {
     fn terms(&self) -> usize {
-        self.len as usize
+        self.support()
     }
     fn from_f64(x: f64) -> Self {
         Self::constant(point(x))
@@ -163,7 +179,7 @@ impl<const N: usize> Scalar for SeriesN<N> {
         Self::constant(x)
     }
     fn sqr(self) -> Self {
-        let n = self.len as usize;
+        let n = self.len;
         let mut r = Self::constant(ZERO);
         for i in 0..n {
             let mut acc = ZERO;
@@ -176,11 +192,11 @@ impl<const N: usize> Scalar for SeriesN<N> {
             }
             r.c[i] = acc;
         }
-        r.len = n as u8;
+        r.len = n;
         r
     }
     fn sqrt(self) -> Self {
-        let n = self.len as usize;
+        let n = self.len;
         let a0 = self.c[0];
         if a0.is_empty() || a0.inf() <= 0.0 {
             return Self::undefined(n);
@@ -198,7 +214,7 @@ impl<const N: usize> Scalar for SeriesN<N> {
             }
             r.c[i] = (self.c[i] - acc) / two_c0;
         }
-        r.len = n as u8;
+        r.len = n;
         r
     }
     fn powi(self, n: i32) -> Self {
@@ -249,7 +265,7 @@ pub fn naive_expand<F: OdeSystem>(
                 return None;
             }
             y.c[i + 1] = next;
-            y.len = (i + 2) as u8;
+            y.len = i + 2;
         }
     }
     Some(

@@ -104,10 +104,25 @@ pub(super) struct Walker<'a> {
     prev: Option<(f64, f64)>,
     /// Both patches in the form the link proofs evaluate.
     lean: [LeanPatch<'a>; 2],
+    /// The first coordinate (0 for `P`, 2 for `Q`) of the patch that costs at least four times the
+    /// other to evaluate, if one does (see [`Self::along`]).
+    costly_side: Option<usize>,
 }
 
 pub(super) fn velocity(p: &RationalBezierPatch, q: &RationalBezierPatch, x: &[f64; 4]) -> [f64; 4] {
     transversal_velocity::<f64, _, _>(p, q, x, 1.0)
+}
+
+/// The first coordinate of the patch whose evaluation costs at least four times the other's.
+fn costly_side(lean: &[LeanPatch<'_>; 2]) -> Option<usize> {
+    let (cp, cq) = (lean[0].eval_cost(), lean[1].eval_cost());
+    if cp >= 4 * cq {
+        Some(0)
+    } else if cq >= 4 * cp {
+        Some(2)
+    } else {
+        None
+    }
 }
 
 pub(super) fn scaled_dist(a: &[f64; 4], b: &[f64; 4], scales: &[f64; 4]) -> f64 {
@@ -122,6 +137,7 @@ impl<'a> Walker<'a> {
         q: &'a RationalBezierPatch,
         opts: &'a ChainOptions,
     ) -> Self {
+        let lean = [LeanPatch::new(p), LeanPatch::new(q)];
         Walker {
             p,
             q,
@@ -136,7 +152,8 @@ impl<'a> Walker<'a> {
             wants_closure: false,
             l_pred: None,
             prev: None,
-            lean: [LeanPatch::new(p), LeanPatch::new(q)],
+            costly_side: costly_side(&lean),
+            lean,
         }
     }
 
@@ -157,7 +174,9 @@ impl<'a> Walker<'a> {
     }
 
     /// The along coordinate for a link from `a` to `b`: monotone between them with both
-    /// velocities agreeing, the largest scaled speed; the previous link's if nearly as good.
+    /// velocities agreeing, the largest scaled speed (on the costlier patch, see
+    /// [`Self::costly_side`], if that is at least half of it); the previous link's if nearly as
+    /// good.
     fn along(&self, a: &Node, b: &Node) -> Option<usize> {
         let score = |i: usize| {
             let d = b.x[i] - a.x[i];
@@ -172,6 +191,21 @@ impl<'a> Walker<'a> {
             .max_by(|x, y| x.1.total_cmp(&y.1))?;
         if best.1 < 0.25 * top {
             return None;
+        }
+        // On the costlier patch an along coordinate is an affine series, which makes its
+        // evaluation along the predictor several times cheaper (Horner's rule puts the affine
+        // argument inside): take the best coordinate there if it is at least half as fast.
+        if let Some(side) = self.costly_side {
+            let on_side = (side..side + 2)
+                .filter_map(|i| score(i).map(|s| (i, s)))
+                .max_by(|x, y| x.1.total_cmp(&y.1));
+            if let Some((i, s)) = on_side.filter(|(_, s)| *s >= 0.5 * best.1) {
+                let prev = self.links.last().map(|l| l.proof.pred.along);
+                return Some(match prev {
+                    Some(k) if k / 2 == side / 2 && score(k).is_some_and(|v| v >= 0.9 * s) => k,
+                    _ => i,
+                });
+            }
         }
         if let Some(prev) = self.links.last().map(|l| l.proof.pred.along) {
             if score(prev).is_some_and(|s| s >= 0.9 * best.1) {
