@@ -37,7 +37,7 @@ impl Walker<'_> {
     /// The surface (0 for P, 1 for Q) whose domain the last link's end slice lies wholly
     /// outside of, in some parameter: the chain's curve leaves that domain inside the link.
     pub(super) fn outside_domain(&self) -> Option<usize> {
-        let e = &self.links.last()?.end_slice;
+        let e = &self.last_end_slice()?;
         let (dp, dq) = (self.p.domain(), self.q.domain());
         (0..4)
             .find(|&i| {
@@ -53,7 +53,7 @@ impl Walker<'_> {
     /// both domains (the half has left the marched points; see the module documentation);
     /// none if `target` lies outside (the walk past a marched end heads outside on purpose).
     pub(super) fn left_marched_path(&self, target: &Node) -> Option<CertifiedEnd> {
-        let e = &self.links.last()?.end_slice;
+        let e = &self.last_end_slice()?;
         let (dp, dq) = (self.p.domain(), self.q.domain());
         let out = (0..4).find_map(|i| {
             let [lo, hi] = pair_bounds(&dp, &dq, i);
@@ -111,6 +111,7 @@ impl Walker<'_> {
             .find(|&x| beyond(&link.proof.box_over(x, x)))?;
         link.to = cut;
         link.end_slice = link.proof.box_over(cut, cut);
+        link.tightened = false;
         Some(CertifiedEnd::Boundary { surface: i / 2 })
     }
 
