@@ -43,7 +43,7 @@ impl<const N: usize> SeriesN<N> {
         let mut c = [ZERO; N];
         let len = coeffs.len().clamp(1, N);
         c[..coeffs.len().min(N)].copy_from_slice(&coeffs[..coeffs.len().min(N)]);
-        SeriesN { c, len: len }
+        SeriesN { c, len }
     }
     /// The constant `x` (length 1).
     pub fn constant(x: Interval) -> Self {

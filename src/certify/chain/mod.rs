@@ -47,10 +47,12 @@ use std::time::Instant;
 
 mod leave;
 mod output;
+mod slice;
 mod walker;
 
 use output::assemble;
-use walker::{newton, point_box, scaled_dist, tight_slice, velocity, Walker};
+use slice::tight_slice;
+use walker::{newton, point_box, scaled_dist, velocity, Walker};
 
 /// Parameters of [`certify_chain`].
 #[derive(Debug, Clone, Copy, PartialEq)]

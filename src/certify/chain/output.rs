@@ -1,7 +1,8 @@
 //! What a cover chain reports: its links as boxes and tube pieces, in order along the curve.
 
+use super::slice::tight_slice;
 use super::*;
-use walker::{tight_slice, Link};
+use walker::Link;
 
 /// The certificate from the backward half's links (walked outwards from the start) and the
 /// forward half's.

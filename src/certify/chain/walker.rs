@@ -1,6 +1,7 @@
 //! The walk of one half of a cover chain: links between guide points, split where needed,
 //! joined without gaps, and the end where the half stops.
 
+use super::slice::TIGHTEN_ABOVE;
 use super::*;
 use crate::certify::lean_patch::LeanPatch;
 use crate::pair::branch_point::locate_singular_point_within;
@@ -33,30 +34,6 @@ pub(super) struct Link {
 impl Link {
     fn end_slice(&self) -> [Interval; 4] {
         self.end_slice
-    }
-}
-
-/// The slice `x_j = x` of a proven segment, enclosed tightly: the segment's enclosure there,
-/// narrowed by Krawczyk on the slice of its uniqueness tube (the curve point of the slice is the
-/// one zero of that box, so any enclosure of it from the narrowing is valid).
-pub(super) fn tight_slice(
-    p: &RationalBezierPatch,
-    q: &RationalBezierPatch,
-    proof: &SegmentProof,
-    x: f64,
-) -> [Interval; 4] {
-    let loose = proof.box_over(x, x);
-    let tube = proof.tube_over(x, x);
-    match krawczyk(p, q, tube, proof.pred.along, 4) {
-        KrawczykResult::Proven { enclosure, .. } => {
-            let both: [Interval; 4] = std::array::from_fn(|i| enclosure[i].intersection(loose[i]));
-            if both.iter().any(|v| v.is_empty()) {
-                loose
-            } else {
-                both
-            }
-        }
-        KrawczykResult::NotProven(_) => loose,
     }
 }
 
@@ -114,14 +91,6 @@ pub(super) struct Walker<'a> {
 pub(super) fn velocity(p: &RationalBezierPatch, q: &RationalBezierPatch, x: &[f64; 4]) -> [f64; 4] {
     transversal_velocity::<f64, _, _>(p, q, x, 1.0)
 }
-
-/// A kept link's end slice is narrowed by Krawczyk ([`tight_slice`], about a tenth of a link's
-/// cost) only when the link's model-space tube is wider than this part of the tolerance. A
-/// narrower link's own enclosure of the slice is as narrow as the link, and the next link's
-/// uniqueness box, which takes it in, then barely widens (Fig. 7, the cylinders, Viviani and the
-/// sphere: the same links, 10 % less time). Near-tangent pairs, whose tubes are wide, still
-/// narrow every slice, and the domain tests narrow on demand ([`Walker::last_end_slice`]).
-const TIGHTEN_ABOVE: f64 = 0.25;
 
 /// The first coordinate of the patch whose evaluation costs at least four times the other's.
 fn costly_side(lean: &[LeanPatch<'_>; 2]) -> Option<usize> {
@@ -233,12 +202,31 @@ impl<'a> Walker<'a> {
     }
 
     /// Tries one link from `a` to `b`; `must_end` must also lie in its tube (the closing join).
-    pub(super) fn link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Attempt {
-        match self.try_link(a, b, must_end) {
+    ///
+    /// After an attempt that is not proven within the tolerance, the join it started from is
+    /// narrowed if it was not (a wide join widens every link from it, however short: the links
+    /// after it would be split without narrowing).
+    pub(super) fn link(&mut self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Attempt {
+        let attempt = match self.try_link(a, b, must_end) {
             Some(l) if l.radius_xyz > self.opts.required_tolerance => Attempt::TooWide(l),
             Some(l) => Attempt::Proven(l),
             None => Attempt::Failed,
+        };
+        if !matches!(attempt, Attempt::Proven(_)) {
+            self.tighten_join();
         }
+        attempt
+    }
+
+    /// Narrows the last link's end slice, and the join, by [`tight_slice`] if it was not.
+    fn tighten_join(&mut self) {
+        let (p, q) = (self.p, self.q);
+        let Some(last) = self.links.last_mut().filter(|l| !l.tightened) else {
+            return;
+        };
+        last.end_slice = tight_slice(p, q, &last.proof, last.to);
+        last.tightened = true;
+        self.join = Some(last.end_slice);
     }
 
     fn try_link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Option<Link> {
@@ -669,24 +657,6 @@ impl<'a> Walker<'a> {
             Some(e) if e[b].sup() < lo || e[b].inf() > hi => CertifiedEnd::Boundary { surface },
             _ => unproven("the last slice past the boundary is not wholly outside the domain"),
         }
-    }
-
-    /// The last link's end slice for a test against the domains' bounds: narrowed by
-    /// [`tight_slice`] now if it was not and it holds a bound of either domain (a slice clear
-    /// of every bound decides the test as well as the narrowed one would).
-    pub(super) fn last_end_slice(&self) -> Option<[Interval; 4]> {
-        let link = self.links.last()?;
-        let e = link.end_slice;
-        let (dp, dq) = (self.p.domain(), self.q.domain());
-        let straddles = (0..4).any(|i| {
-            let [lo, hi] = pair_bounds(&dp, &dq, i);
-            e[i].contains(lo) || e[i].contains(hi)
-        });
-        Some(if straddles && !link.tightened {
-            tight_slice(self.p, self.q, &link.proof, link.to)
-        } else {
-            e
-        })
     }
 
     /// Largest half-width of the current join box (0 without one).
