@@ -58,7 +58,7 @@ impl<'a> LeanPatch<'a> {
 
     /// The relative cost of an evaluation: coefficients per coordinate times the coordinates
     /// (four for the homogeneous form of a rational patch).
-    pub(crate) fn eval_cost(&self) -> usize {
+    fn eval_cost(&self) -> usize {
         let [m, n] = self.patch.degree();
         let coords = self.power.diffs.first().map_or(3, |d| d.len());
         (m + 1) * (n + 1) * coords
@@ -88,6 +88,19 @@ impl<'a> LeanPatch<'a> {
             patch: self.patch,
             taylor,
         }
+    }
+}
+
+/// The first coordinate (0 for the first patch, 2 for the second) of the patch whose
+/// evaluation costs at least four times the other's ([`LeanPatch::eval_cost`]), if one does.
+pub(crate) fn costlier_side(lean: &[LeanPatch<'_>; 2]) -> Option<usize> {
+    let (cp, cq) = (lean[0].eval_cost(), lean[1].eval_cost());
+    if cp >= 4 * cq {
+        Some(0)
+    } else if cq >= 4 * cp {
+        Some(2)
+    } else {
+        None
     }
 }
 

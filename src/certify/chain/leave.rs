@@ -25,7 +25,6 @@
 //! itself dips out and back (its end slices inside), the first of its slices wholly beyond the
 //! bound proves the boundary end, and the link is cut there.
 
-use super::slice::tight_slice;
 use super::walker::{Node, Walker};
 use crate::certify::curve::CertifiedEnd;
 use crate::geometry::surface::pair_bounds;
@@ -35,24 +34,6 @@ use inari::Interval;
 const DIP_SLICES: usize = 32;
 
 impl Walker<'_> {
-    /// The last link's end slice for a test against the domains' bounds: narrowed by
-    /// [`tight_slice`] now if it was not and it holds a bound of either domain (a slice clear
-    /// of every bound decides the test as well as the narrowed one would).
-    pub(super) fn last_end_slice(&self) -> Option<[Interval; 4]> {
-        let link = self.links.last()?;
-        let e = link.end_slice;
-        let (dp, dq) = (self.p.domain(), self.q.domain());
-        let straddles = (0..4).any(|i| {
-            let [lo, hi] = pair_bounds(&dp, &dq, i);
-            e[i].contains(lo) || e[i].contains(hi)
-        });
-        Some(if straddles && !link.tightened {
-            tight_slice(self.p, self.q, &link.proof, link.to)
-        } else {
-            e
-        })
-    }
-
     /// The surface (0 for P, 1 for Q) whose domain the last link's end slice lies wholly
     /// outside of, in some parameter: the chain's curve leaves that domain inside the link.
     pub(super) fn outside_domain(&self) -> Option<usize> {

@@ -1,9 +1,8 @@
 //! The walk of one half of a cover chain: links between guide points, split where needed,
 //! joined without gaps, and the end where the half stops.
 
-use super::slice::TIGHTEN_ABOVE;
 use super::*;
-use crate::certify::lean_patch::LeanPatch;
+use crate::certify::lean_patch::{costlier_side, LeanPatch};
 use crate::pair::branch_point::locate_singular_point_within;
 
 /// A guide point on the curve and its parameter velocity, oriented along the walk.
@@ -27,7 +26,7 @@ pub(super) struct Link {
     pub(super) radius_xyz: f64,
     /// The enclosed slice at `x_j = to`: where the next link must take over.
     pub(super) end_slice: [Interval; 4],
-    /// Whether `end_slice` was narrowed by [`tight_slice`] (see [`TIGHTEN_ABOVE`]).
+    /// Whether `end_slice` was narrowed by [`tight_slice`] (see `Walker::settle_end_slice`).
     pub(super) tightened: bool,
 }
 
@@ -92,18 +91,6 @@ pub(super) fn velocity(p: &RationalBezierPatch, q: &RationalBezierPatch, x: &[f6
     transversal_velocity::<f64, _, _>(p, q, x, 1.0)
 }
 
-/// The first coordinate of the patch whose evaluation costs at least four times the other's.
-fn costly_side(lean: &[LeanPatch<'_>; 2]) -> Option<usize> {
-    let (cp, cq) = (lean[0].eval_cost(), lean[1].eval_cost());
-    if cp >= 4 * cq {
-        Some(0)
-    } else if cq >= 4 * cp {
-        Some(2)
-    } else {
-        None
-    }
-}
-
 pub(super) fn scaled_dist(a: &[f64; 4], b: &[f64; 4], scales: &[f64; 4]) -> f64 {
     (0..4)
         .map(|i| (a[i] - b[i]).abs() / scales[i])
@@ -131,7 +118,7 @@ impl<'a> Walker<'a> {
             wants_closure: false,
             l_pred: None,
             prev: None,
-            costly_side: costly_side(&lean),
+            costly_side: costlier_side(&lean),
             lean,
         }
     }
@@ -216,17 +203,6 @@ impl<'a> Walker<'a> {
             self.tighten_join();
         }
         attempt
-    }
-
-    /// Narrows the last link's end slice, and the join, by [`tight_slice`] if it was not.
-    fn tighten_join(&mut self) {
-        let (p, q) = (self.p, self.q);
-        let Some(last) = self.links.last_mut().filter(|l| !l.tightened) else {
-            return;
-        };
-        last.end_slice = tight_slice(p, q, &last.proof, last.to);
-        last.tightened = true;
-        self.join = Some(last.end_slice);
     }
 
     fn try_link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Option<Link> {
@@ -436,10 +412,7 @@ impl<'a> Walker<'a> {
         if let Some(c) = self.shared {
             c.fetch_add(1, Ordering::Relaxed);
         }
-        if link.radius_xyz > TIGHTEN_ABOVE * self.opts.required_tolerance {
-            link.end_slice = tight_slice(self.p, self.q, &link.proof, link.to);
-            link.tightened = true;
-        }
+        self.settle_end_slice(&mut link);
         self.join = Some(link.end_slice());
         self.links.push(link);
         if self.links.len() == 1 {
