@@ -91,6 +91,7 @@ pub mod ad;
 pub mod enclosure;
 pub mod integrator;
 pub mod lohner;
+pub mod midrad;
 pub mod record;
 pub mod reference;
 pub mod series;
@@ -102,6 +103,7 @@ pub use enclosure::EnclosureMethod;
 pub use integrator::{
     Integrator, IntegratorOptions, IntegratorState, IntegratorWork, StepFailure, Trajectory,
 };
+pub use midrad::MidRadSeries;
 pub use record::StepRecord;
 pub use series::{Series, SeriesN};
 pub use system::OdeSystem;
