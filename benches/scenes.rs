@@ -206,12 +206,13 @@
 //! that, a torus crossing of the random oracle certified at 1.12e-9 for 1e-9: short links from
 //! a loose join were split without narrowing).
 //!
-//! Measured and not landed: series arithmetic in midpoint–radius form (round-to-nearest `f64`
-//! with every rounding error bounded into the radius, three fused multiply-adds per product
-//! term). On this AVX-512 machine it is 0–8 % slower than inari's intervals, whose AVX-512
-//! products round in the instruction; built for AVX2 (`-Ctarget-cpu=haswell`, where inari
-//! switches the rounding mode around each operation) it takes 20 % off Fig. 7's and the
-//! cylinders' chains and 14 % off Viviani's.
+//! Series arithmetic in midpoint–radius form (`validated::midrad`: round-to-nearest `f64` with
+//! every rounding error bounded into the radius, three fused multiply-adds per product term) is
+//! used by the link proofs only without AVX-512. On this machine it is 0–4 % slower than
+//! inari's intervals, whose AVX-512 products round in the instruction; built for AVX2
+//! (`-Ctarget-cpu=haswell`, where inari switches the rounding mode around each operation) it
+//! takes 27 % off Fig. 7's chain, 20 % off cylinders_full's, 17 % off Viviani's and 12 % off
+//! the sphere's (the probe's single-thread chains, 10 runs each, two alternations).
 //!
 //! The group `halves` times the open bicubic branch with its two halves one after the other and
 //! on two threads (`CertifyOptions::parallel_halves`).
