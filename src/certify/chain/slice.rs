@@ -1,9 +1,9 @@
 //! Where one link hands over to the next: the enclosed slice at a link's end.
 //!
 //! The join box a link leaves for the next one is its own enclosure of the end slice, narrowed
-//! by Krawczyk on that slice ([`tight_slice`]) when the link is wide ([`TIGHTEN_ABOVE`]); a
-//! test against the domains' bounds narrows it on demand ([`Walker::last_end_slice`]); a failed link narrows the join it
-//! started from ([`Walker::tighten_join`]).
+//! by Krawczyk on that slice ([`tight_slice`]) when the link is wide ([`TIGHTEN_ABOVE`]) or
+//! when a link from it fails ([`Walker::tighten_join`]); a test against the domains' bounds
+//! narrows it on demand ([`Walker::last_end_slice`]).
 
 use super::walker::{Link, Walker};
 use crate::certify::segment::SegmentProof;
@@ -16,7 +16,7 @@ use inari::Interval;
 /// cost) only when the link's model-space tube is wider than this part of the tolerance. A
 /// narrower link's own enclosure of the slice is as narrow as the link, and the next link's
 /// uniqueness box, which takes it in, then barely widens (Fig. 7, the cylinders, Viviani and the
-/// sphere: the same links, 10 % less time). Near-tangent pairs, whose tubes are wide, still
+/// sphere: the same links, 5–8 % less chain time). Near-tangent pairs, whose tubes are wide, still
 /// narrow every slice, and the domain tests narrow on demand ([`Walker::last_end_slice`]).
 const TIGHTEN_ABOVE: f64 = 0.25;
 

@@ -237,8 +237,9 @@ impl<'a> Walker<'a> {
             radius_param,
             radius_xyz,
             // The proof's own enclosure there; narrowed by Krawczyk (`tight_slice`, a seventh
-            // of a link's cost) only once the link is kept, in `push`. Near-tangent pairs need
-            // it: a wide slice widens the next link's uniqueness box and with it the tube.
+            // of a link's cost) only once the link is kept and only if it is wide
+            // (`settle_end_slice`), or when a link from it fails (`tighten_join`). Near-tangent
+            // pairs need it: a wide slice widens the next link's uniqueness box and the tube.
             end_slice: proof.box_over(to, to),
             tightened: false,
         })
