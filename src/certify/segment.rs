@@ -223,9 +223,9 @@ type Short = SeriesN<4>;
 /// The series arithmetic of the patches along the predictor ([`both_along`], [`jacobian`]):
 /// without AVX-512, the midpoint–radius form in round-to-nearest, since inari then switches the
 /// rounding mode around every interval operation (built for AVX2, a chain takes 12–27 % less
-/// time on the sphere, Viviani, the cylinders and Fig. 7); with AVX-512, inari's intervals, whose products
-/// round in the instruction (the midpoint–radius form measured 0–4 % slower there). Both
-/// enclose the exact series.
+/// time on the sphere, Viviani, the cylinders and Fig. 7); with AVX-512, inari's intervals,
+/// whose products round in the instruction (the midpoint–radius form measured 0–4 % slower
+/// there). Both enclose the exact series.
 #[cfg(not(target_feature = "avx512f"))]
 fn fast<const N: usize>(s: &SeriesN<N>) -> MidRadSeries<N> {
     MidRadSeries::from_series(s)
