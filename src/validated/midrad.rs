@@ -24,10 +24,11 @@
 //!
 //! The terms of each radius:
 //! - **product** `Σⱼ aⱼ·b_{i−j}`: for `x ∈ aⱼ`, `y ∈ b_{i−j}`,
-//!   `|x·y − mₐ·m_b| ≤ |mₐ|·r_b + rₐ·(|m_b| + r_b)`; the midpoint is a chain of `n ≤ N` fused
-//!   multiply-adds, each rounding once, so its error is at most `U·Σₖ|sₖ| + n·η` over its
-//!   partial sums `sₖ`, and `|sₖ| ≤ (1 + U)ⁿ·Σⱼ|mₐ·m_b|`; the radius carries `N·U·|m_b|` into
-//!   the factor of `|mₐ|` for that (`(1 + U)ⁿ ≤ 1 + 2⁻⁴⁷` is covered by `inflate`'s margin);
+//!   `|x·y − mₐ·m_b| ≤ |mₐ|·r_b + rₐ·(|m_b| + r_b)`; the midpoint is a chain of `n` fused
+//!   multiply-adds, each rounding once by at most `u = 2⁻⁵³` of its exact result (or `η/2`), so
+//!   with `|sₖ| ≤ (1 + u)ᵏ·Σ_{l≤k}|mₐ·m_b|` for its partial sums its error is at most
+//!   `n·u·(1 + u)ⁿ·Σⱼ|mₐ·m_b| + n·η`; the radius adds `n·u·Σⱼ|mₐ·m_b|` (the factor `(1 + u)ⁿ`
+//!   and the `η`s are covered by `inflate`'s margin and least radius);
 //! - **sum** `a + b`: `rₐ + r_b + U·|m|` for the rounded midpoint `m`;
 //! - **from an interval** `[lo, hi]`: the midpoint `m` (finite for a bounded interval) and the
 //!   larger of `hi − m` and `m − lo`; a point interval is exact (radius 0);
@@ -47,6 +48,9 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// `2⁻⁵²`: bounds the relative rounding error of a nearest result, relative to that result.
 const U: f64 = f64::EPSILON;
+/// `2⁻⁵³`, the unit roundoff: bounds the relative rounding error of a nearest result, relative
+/// to the exact value (normal range).
+const HALF_U: f64 = f64::EPSILON / 2.0;
 /// Most nearest-rounded operations in one radius's evaluation tree (products of series of up
 /// to 32 terms: three per term plus the operands' preparation).
 const MAX_OPS: usize = 200;
@@ -232,33 +236,33 @@ impl<const N: usize> Mul for MidRadSeries<N> {
         }
         const {
             assert!(
-                2 * N + 2 <= MAX_OPS,
-                "a product's radius takes 2N + 2 operations"
+                3 * N + 2 <= MAX_OPS,
+                "a product's radius takes 3N + 2 operations"
             )
         };
         let (la, lb) = (self.support(), rhs.support());
-        // Per coefficient of `rhs`: the factor of `|mₐ|` (its radius plus the midpoint chain's
-        // rounding allowance) and of `rₐ`.
-        let mut of_am = [0.0; N];
+        // Per coefficient of `rhs`: its magnitude, and the factor of `rₐ`.
+        let mut bm = [0.0; N];
         let mut of_ar = [0.0; N];
-        let nu = N as f64 * U;
         for j in 0..lb {
-            let bm = rhs.m[j].abs();
-            of_am[j] = nu.mul_add(bm, rhs.r[j]);
-            of_ar[j] = bm + rhs.r[j];
+            bm[j] = rhs.m[j].abs();
+            of_ar[j] = bm[j] + rhs.r[j];
         }
         let am: [f64; N] = std::array::from_fn(|j| self.m[j].abs());
         let mut out = Self::zero_len(n);
         for i in 0..n.min(la + lb - 1) {
             let (from, to) = ((i + 1).saturating_sub(lb), i.min(la - 1));
-            let (mut m, mut r) = (0.0f64, 0.0f64);
+            let (mut m, mut r, mut mag) = (0.0f64, 0.0f64, 0.0f64);
             for j in from..=to {
                 m = self.m[j].mul_add(rhs.m[i - j], m);
-                r = am[j].mul_add(of_am[i - j], r);
+                mag = am[j].mul_add(bm[i - j], mag);
+                r = am[j].mul_add(rhs.r[i - j], r);
                 r = self.r[j].mul_add(of_ar[i - j], r);
             }
+            // The midpoint chain's rounding: at most `n·u·Σ|mₐ·m_b|` for its `n` terms.
+            let chain = (to + 1 - from) as f64 * HALF_U;
             out.m[i] = m;
-            out.r[i] = inflate(r);
+            out.r[i] = inflate(chain.mul_add(mag, r));
         }
         out
     }
