@@ -207,7 +207,7 @@
 //! a loose join were split without narrowing).
 //!
 //! Series arithmetic in midpoint–radius form (`validated::midrad`: round-to-nearest `f64` with
-//! every rounding error bounded into the radius, three fused multiply-adds per product term) is
+//! every rounding error bounded into the radius, four fused multiply-adds per product term) is
 //! used by the link proofs only without AVX-512. On this machine it is 0–4 % slower than
 //! inari's intervals, whose AVX-512 products round in the instruction; built for AVX2
 //! (`-Ctarget-cpu=haswell`, where inari switches the rounding mode around each operation) it

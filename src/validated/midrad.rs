@@ -2,7 +2,7 @@
 //!
 //! [`MidRadSeries`] stores each coefficient as a midpoint `m` and a radius `r` (the coefficient
 //! lies in `[m − r, m + r]`) and computes in plain round-to-nearest `f64`, with no rounding-mode
-//! switch and no four-corner products: a product coefficient costs three fused multiply-adds
+//! switch and no four-corner products: a product coefficient costs four fused multiply-adds
 //! per term where an interval product costs eight directed products. Every rounding error is
 //! bounded and added to the radius, so each operation still returns an enclosure of the exact
 //! result for all values in its operands (the same contract as [`SeriesN`]); the radii are at
