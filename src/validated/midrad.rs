@@ -51,8 +51,8 @@ const U: f64 = f64::EPSILON;
 /// `2⁻⁵³`, the unit roundoff: bounds the relative rounding error of a nearest result, relative
 /// to the exact value (normal range).
 const HALF_U: f64 = f64::EPSILON / 2.0;
-/// Most nearest-rounded operations in one radius's evaluation tree (products of series of up
-/// to 32 terms: three per term plus the operands' preparation).
+/// Most nearest-rounded operations in one radius's evaluation tree: a product of series of `N`
+/// terms takes at most `3N + 2` (checked at compile time), a sum or a scalar product five.
 const MAX_OPS: usize = 200;
 /// `2⁻⁹⁰⁰`: below it [`inflate`] returns a constant, far above every absolute rounding term and
 /// normal, so that radii never feed subnormal operands (each costs a microcode assist) into the

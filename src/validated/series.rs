@@ -129,7 +129,7 @@ impl<const N: usize> Mul for SeriesN<N> {
             let (la, lb) = (self.support(), rhs.support());
             for i in 0..n {
                 // Terms m with m < la and i − m < lb.
-                let (from, to) = ((i + 1).saturating_sub(lb), i.min(la.max(1) - 1));
+                let (from, to) = ((i + 1).saturating_sub(lb), i.min(la - 1));
                 if from > to {
                     continue;
                 }
