@@ -25,7 +25,9 @@
 use super::poly::{eval, eval_mid, reparametrised, taylor_shift, Poly};
 use super::{assemble, chain_segs, check_chain, Cut, Edge, EdgeError, Part, Seg};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
+use crate::geometry::RationalBezierPatch;
 use crate::numeric::scalar::point;
+use crate::pair::krawczyk::{krawczyk, KrawczykResult};
 use crate::shell::corner::diameter;
 use crate::shell::{Face, JoinStatus, JoinedCurve, ShellIntersection};
 use inari::Interval;
@@ -94,7 +96,6 @@ pub fn edge_from_joined(
         } else {
             [&cert.ends[0], &cert.ends[1]]
         };
-        let doms = [p.domain(), q.domain()];
         // The joins before and after this part, and whether each is across a corner.
         let join_at = |i: Option<usize>| -> MustCut {
             let j = &curve.joins[i?];
@@ -112,7 +113,7 @@ pub fn edge_from_joined(
             cert,
             &mut segs,
             ends,
-            &doms,
+            [p, q],
             g,
             [join_at(before), join_at(after)],
         )?;
@@ -158,15 +159,15 @@ pub(super) fn cut_ends(
     cert: &CertifiedBranch,
     segs: &mut Vec<Seg>,
     ends: [&CertifiedEnd; 2],
-    doms: &[crate::geometry::Domain; 2],
+    pq: [&RationalBezierPatch; 2],
     branch: usize,
     must: [MustCut; 2],
 ) -> Result<Vec<Cut>, EdgeError> {
     let mut cuts = Vec::new();
     let boundary = |e: &CertifiedEnd| matches!(e, CertifiedEnd::Boundary { .. });
     let cut = |segs: &mut Vec<Seg>, end: &CertifiedEnd, m: MustCut| match m {
-        Some(Some(corner)) => cut_at_corner(cert, segs, end, doms, branch, corner),
-        _ => cut_at_side(cert, segs, end, doms, branch).map(|(c, _)| c),
+        Some(Some(corner)) => cut_at_corner(cert, segs, end, pq, branch, corner),
+        _ => cut_at_side(cert, segs, end, pq, branch).map(|(c, _)| c),
     };
     if must[0].is_some() || boundary(ends[0]) {
         flip(segs);
@@ -189,7 +190,7 @@ fn cut_at_corner(
     cert: &CertifiedBranch,
     segs: &mut Vec<Seg>,
     end: &CertifiedEnd,
-    doms: &[crate::geometry::Domain; 2],
+    pq: [&RationalBezierPatch; 2],
     branch: usize,
     corner: f64,
 ) -> Result<Cut, EdgeError> {
@@ -205,7 +206,7 @@ fn cut_at_corner(
     for surface in 0..2 {
         let mut mine = segs.clone();
         let boundary = CertifiedEnd::Boundary { surface };
-        let (c, at) = cut_at_side(cert, &mut mine, &boundary, doms, branch)?;
+        let (c, at) = cut_at_side(cert, &mut mine, &boundary, pq, branch)?;
         cuts.push((mine, c, at));
     }
     let first = usize::from((cuts[1].2 .0, cuts[1].2 .1) < (cuts[0].2 .0, cuts[0].2 .1));
@@ -234,7 +235,7 @@ fn cut_at_side(
     cert: &CertifiedBranch,
     segs: &mut Vec<Seg>,
     end: &CertifiedEnd,
-    doms: &[crate::geometry::Domain; 2],
+    pq: [&RationalBezierPatch; 2],
     branch: usize,
 ) -> Result<(Cut, (usize, f64)), EdgeError> {
     let fail = |reason: &str| EdgeError::Trim {
@@ -246,7 +247,7 @@ fn cut_at_side(
             "the part's end at the join is not a proven boundary end",
         ));
     };
-    let d = &doms[surface];
+    let d = &pq[surface].domain();
     let coords = if surface == 0 { [0, 1] } else { [2, 3] };
     let (lo, hi) = ([d.u[0], d.v[0]], [d.u[1], d.v[1]]);
     let poly_of = |s: &Seg| reparametrised(&cert.tubes[s.tube].coeffs, s.ta, s.tb);
@@ -357,7 +358,16 @@ fn cut_at_side(
     } else {
         seg.ta + (seg.tb - seg.ta) * uc
     };
-    let gap = range(&seg, u0, u1).convex_hull(point(at));
+    let next_range = beyond.map(|(ns, e)| (ns.tube, range(&ns, 0.0, e)));
+    let next = beyond.map(|(ns, e)| (ns, poly_of(&ns), e));
+    let (gap, at, next_range) = narrowed_cut(
+        &side,
+        pq,
+        (&seg, &y, [u0, u1]),
+        next.as_ref(),
+        (range(&seg, u0, u1), at, next_range),
+    );
+    let gap = gap.convex_hull(point(at));
     segs.truncate(k + 1);
     if let Some(s) = segs.last_mut() {
         s.tb = at;
@@ -365,10 +375,51 @@ fn cut_at_side(
     let cut = Cut {
         tube: seg.tube,
         gap,
-        next: beyond.map(|(ns, e)| (ns.tube, range(&ns, 0.0, e))),
+        next: next_range,
         corner: 0.0,
     };
     Ok((cut, (k, u0)))
+}
+
+/// The cut's `τ` range on the cut link, the cut point and the next link's range, narrowed to
+/// the proven crossing where [`Side::crossing_slice`] holds (else `was` unchanged): the cut
+/// is at the crossing's middle, not at the reported curve's crossing (which lies up to the
+/// tube's width off it), or at the junction when the crossing may lie on the next link.
+#[allow(clippy::type_complexity)]
+fn narrowed_cut(
+    side: &Side,
+    pq: [&RationalBezierPatch; 2],
+    cut: (&Seg, &Poly<4>, [f64; 2]),
+    next: Option<&(Seg, Poly<4>, f64)>,
+    was: (Interval, f64, Option<(usize, Interval)>),
+) -> (Interval, f64, Option<(usize, Interval)>) {
+    let (gap, _, next_range) = was;
+    let seg = cut.0;
+    let Some(c) = side.crossing_slice(pq, cut, next, gap) else {
+        return was;
+    };
+    let (gap, at) = if c.on_cut.is_empty() {
+        (point(seg.tb), seg.tb)
+    } else if c.on_next.is_some() {
+        (c.on_cut, seg.tb)
+    } else {
+        (c.on_cut, c.on_cut.mid())
+    };
+    let next_range = next_range.zip(c.on_next).map(|((t, _), r)| (t, r));
+    (gap, at, next_range)
+}
+
+/// Where the true curve's crossing of a side lies ([`Side::crossing_slice`]): the `τ` range on
+/// the cut link (empty when it lies wholly on the next), and on the next link if it may lie
+/// there.
+struct Crossing {
+    on_cut: Interval,
+    on_next: Option<Interval>,
+}
+
+/// `[a, z]` as an interval (`None` if not `a ≤ z`).
+fn interval_of(a: f64, z: f64) -> Option<Interval> {
+    inari::interval!(a, z).ok()
 }
 
 /// The side a chain is cut at: coordinate `b` of the four parameters at the value `bound`,
@@ -393,6 +444,82 @@ impl Side<'_> {
         let centred = eval(&taylor_shift(y, point(m)), u - point(m), self.b);
         point(self.out_sign) * (centred - point(self.bound))
             + inari::interval!(-rp, rp).unwrap_or(Interval::ENTIRE)
+    }
+
+    /// The `τ` range of the cut link `s` (its reported curve `y`) that holds the true curve's
+    /// first crossing of the side, narrowed from `gap` (`τ` over `u ∈ [u0, u1]`, proven to
+    /// hold it, or to hold it unless it lies on the next link's `[0, e]`, `next`). The tubes
+    /// over those ranges are hulled into a box `B` holding every true curve point there (one
+    /// arc); Krawczyk's test on `B` with `x_b` held at the bound proves exactly one point of
+    /// the arc on the side, a transversal crossing (so the arc is outside after it), and
+    /// encloses it. Its along coordinate maps back to `τ` (exactly affine); with a next link
+    /// (graphed over the same coordinate, the same way) the range must lie within `gap` to be
+    /// on the cut link. `None` when any of this fails (then the tube's own range stands).
+    /// Near-transversal crossings of a wide link: the range is then the crossing's rounding,
+    /// not the tube's width over the crossing's slope (the cube's faces: a cut share of 1.1e-9
+    /// from a link of 1.5e-10).
+    fn crossing_slice(
+        &self,
+        pq: [&RationalBezierPatch; 2],
+        (s, y, [u0, u1]): (&Seg, &Poly<4>, [f64; 2]),
+        next: Option<&(Seg, Poly<4>, f64)>,
+        gap: Interval,
+    ) -> Option<Crossing> {
+        let t = &self.cert.tubes[s.tube];
+        let along = t.along?.index;
+        if along == self.b {
+            return None;
+        }
+        // τ = dir·(x_j − from), `from` and `dir` (±1) exact as in `TubePiece`.
+        let from = t.coeffs.first()?[along];
+        let dir = t.coeffs.get(1)?[along];
+        if dir.abs() != 1.0 {
+            return None;
+        }
+        let tube_box = |piece: &crate::certify::TubePiece, y: &Poly<4>, a: f64, z: f64| {
+            let u = inari::interval!(a, z).ok()?;
+            let m = u.mid();
+            let shifted = taylor_shift(y, point(m));
+            let rp = inari::interval!(-piece.radius_param, piece.radius_param).ok()?;
+            Some(std::array::from_fn::<Interval, 4, _>(|i| {
+                let c = eval(&shifted, u - point(m), i);
+                if i == along {
+                    c
+                } else {
+                    c + rp
+                }
+            }))
+        };
+        let mut bx = tube_box(t, y, u0, u1)?;
+        if let Some((ns, ny, e)) = next {
+            let nt = &self.cert.tubes[ns.tube];
+            if nt.along.map(|a| a.index) != Some(along) || nt.coeffs.get(1)?[along] != dir {
+                return None;
+            }
+            let nb = tube_box(nt, ny, 0.0, *e)?;
+            bx = std::array::from_fn(|i| bx[i].convex_hull(nb[i]));
+        }
+        bx[self.b] = point(self.bound);
+        let KrawczykResult::Proven { enclosure, .. } = krawczyk(pq[0], pq[1], bx, self.b, 8) else {
+            return None;
+        };
+        let tau = (enclosure[along] - point(from)) * point(dir);
+        let on_cut = tau.intersection(gap);
+        let on_next = match next {
+            Some((ns, _, e)) => {
+                let nt = &self.cert.tubes[ns.tube];
+                let from = nt.coeffs.first()?[along];
+                let whole = point(ns.ta) + (point(ns.tb) - point(ns.ta)) * interval_of(0.0, *e)?;
+                let r = ((enclosure[along] - point(from)) * point(dir)).intersection(whole);
+                (!r.is_empty()).then_some(r)
+            }
+            None => None,
+        };
+        if on_cut.is_empty() && on_next.is_none() {
+            return None;
+        }
+        let narrower = on_cut.is_empty() || on_cut.wid() < gap.wid();
+        narrower.then_some(Crossing { on_cut, on_next })
     }
 
     /// Whether the true curve over `u ∈ [u0, u1]` of the piece `s` is proven strictly inside

@@ -7,8 +7,9 @@
 //! `radius_xyz` (model space) of the reported point with the same along-coordinate, and the
 //! reverse. An edge is built from those polynomials:
 //!
-//! - **Fine spans.** Each link (cut where the edge ends) is one fine span of the edge's
-//!   parameter `s`, as long as the arc length of its reported image `P(σ, t)` (nominal, `f64`):
+//! - **Fine spans.** Each link (cut where the edge ends) is two fine spans of the edge's
+//!   parameter `s` (four where two stalled above the request, in a second build kept if
+//!   closer), each as long as the arc length of its reported image `P(σ, t)` (nominal, `f64`):
 //!   `s` is a nominal arc length, smooth across the links whatever their along coordinates.
 //!   On the span, `r ∈ [0, 1]` is affine in `s`, and the reported curve is compared with the
 //!   coarse curves at `u = w(r)`, the span's warp (`warp.rs`): a polynomial of degree 5 with
@@ -106,7 +107,7 @@ pub enum EdgeError {
         /// Where and why.
         reason: String,
     },
-    /// The certificate is not a cover chain (no along-parameter polynomials of degree ≤ 5).
+    /// The certificate is not a cover chain (no along-parameter polynomials of degree ≤ 7).
     NotCoverChain {
         /// The branch.
         branch: usize,
@@ -378,9 +379,8 @@ pub fn edge_from_certified_within(
     } else {
         // A boundary end: the chain goes on a little past the domain's side (on the patch
         // extended beyond it); it is cut at the side.
-        let doms = [p.domain(), q.domain()];
         let ends = [&cert.ends[0], &cert.ends[1]];
-        cuts = joined::cut_ends(cert, &mut segs, ends, &doms, branch, [None; 2])?;
+        cuts = joined::cut_ends(cert, &mut segs, ends, [p, q], branch, [None; 2])?;
     }
     let part = Part {
         p,
