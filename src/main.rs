@@ -42,7 +42,7 @@ enum MethodArg {
 
 #[derive(Clone, Copy, ValueEnum)]
 enum EngineArg {
-    /// Krawczyk-proven tubes around quintic predictors between the marched points (fast).
+    /// Krawczyk-proven tubes around septic predictors between the marched points (fast).
     Chain,
     /// The validated Taylor ODE solver by arc length (proven arc lengths; slow).
     Taylor,

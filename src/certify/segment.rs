@@ -2,8 +2,8 @@
 //! within a thin tube around a polynomial predictor.
 //!
 //! Write the four parameters as `x_j` (the *along* coordinate) and the other three `x_o`. A
-//! segment has an interval `Ξ` of `ξ = x_j − x0`, a predictor `o(ξ)` (cubic in `ξ`, `f64`
-//! coefficients, exact as written) and a box `Y` of offsets around it. With
+//! segment has an interval `Ξ` of `ξ = x_j − x0`, a predictor `o(ξ)` (of degree
+//! [`PREDICTOR_DEGREE`] in `ξ`, `f64` coefficients, exact as written) and a box `Y` of offsets around it. With
 //! `F = P(σ,t) − Q(u,v)`, `g(ξ) = F(x0 + ξ, o(ξ))`, a preconditioner `C` and the Jacobian
 //! `J_o = ∂F/∂x_o` enclosed over the tube's hull `B = (x0 + Ξ) × (o(Ξ) + Y)`:
 //!
@@ -29,7 +29,6 @@
 //! wrapping; one Taylor form of `F` along a known polynomial and one interval Jacobian.
 
 use crate::certify::lean_patch::{Centred, LeanPatch};
-use crate::geometry::RationalBezierPatch;
 use crate::numeric::imul::mul as imul;
 use crate::numeric::scalar::point;
 #[cfg(not(target_feature = "avx512f"))]
@@ -39,73 +38,12 @@ use inari::Interval;
 use nalgebra::Matrix3;
 
 /// Order of the Taylor form of `g` (the remainder uses the next coefficient).
-pub(crate) const ORDER: usize = 7;
-
-/// The three coordinates other than `j`, ascending.
-pub(crate) fn others(j: usize) -> [usize; 3] {
-    match j {
-        0 => [1, 2, 3],
-        1 => [0, 2, 3],
-        2 => [0, 1, 3],
-        _ => [0, 1, 2],
-    }
-}
+pub(crate) const ORDER: usize = 8;
 
 /// Degree of the predictor.
-pub(crate) const PREDICTOR_DEGREE: usize = 5;
+pub(crate) const PREDICTOR_DEGREE: usize = 7;
 
-/// A curve point seen as a point of the graph over coordinate `along`: the other coordinates'
-/// values, first and second derivatives with respect to `x_along` (`f64`, guidance only).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Jet {
-    /// The point `(σ, t, u, v)`.
-    pub(crate) x: [f64; 4],
-    /// `d x_o / d x_along` for the three others.
-    pub(crate) d1: [f64; 3],
-    /// `d² x_o / d x_along²` for the three others.
-    pub(crate) d2: [f64; 3],
-}
-
-impl Jet {
-    /// The jet of the curve through `x` with parameter velocity `t`, graphed over `along`:
-    /// `o' = t_o / t_j`, and `o'' = −F_o⁻¹·F''[d, d]` with `d = (1, o')` (implicit
-    /// differentiation of `F(x_j, o(x_j)) = 0`). `None` if `t_j = 0` or `F_o` is singular.
-    pub(crate) fn new(
-        p: &RationalBezierPatch,
-        q: &RationalBezierPatch,
-        x: &[f64; 4],
-        t: &[f64; 4],
-        along: usize,
-    ) -> Option<Jet> {
-        if t[along] == 0.0 {
-            return None;
-        }
-        let o = others(along);
-        let d: [f64; 4] = std::array::from_fn(|i| t[i] / t[along]);
-        let dp = p.derivs_f64(x[0], x[1]);
-        let dq = q.derivs_f64(x[2], x[3]);
-        let cols = [dp.su, dp.sv, dq.su.map(|v| -v), dq.sv.map(|v| -v)];
-        let fo = Matrix3::from_fn(|r, c| cols[o[c]][r]);
-        let second: [f64; 3] = std::array::from_fn(|r| {
-            dp.suu[r] * d[0] * d[0] + 2.0 * dp.suv[r] * d[0] * d[1] + dp.svv[r] * d[1] * d[1]
-                - (dq.suu[r] * d[2] * d[2]
-                    + 2.0 * dq.suv[r] * d[2] * d[3]
-                    + dq.svv[r] * d[3] * d[3])
-        });
-        let inv = fo.try_inverse()?;
-        let d2v = -(inv * nalgebra::Vector3::from(second));
-        let jet = Jet {
-            x: *x,
-            d1: o.map(|i| d[i]),
-            d2: [d2v[0], d2v[1], d2v[2]],
-        };
-        jet.d1
-            .iter()
-            .chain(&jet.d2)
-            .all(|v| v.is_finite())
-            .then_some(jet)
-    }
-}
+pub(crate) use super::jet::{others, Jet};
 
 /// A polynomial predictor of the three other coordinates as functions of `ξ = x_j − x0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -119,7 +57,8 @@ pub(crate) struct Predictor {
 }
 
 impl Predictor {
-    /// The quintic Hermite predictor matching the jets `a` and `b` (graphed over the same
+    /// The septic Hermite predictor matching the jets `a` and `b` (values and three
+    /// derivatives at both ends; graphed over the same
     /// coordinate `along`); `None` if `along` does not move between them.
     pub(crate) fn hermite(along: usize, a: &Jet, b: &Jet) -> Option<Predictor> {
         let l = b.x[along] - a.x[along];
@@ -129,18 +68,26 @@ impl Predictor {
         let o = others(along);
         let mut c = [[0.0; 3]; PREDICTOR_DEGREE + 1];
         let l2 = l * l;
+        let l3 = l2 * l;
         for (r, &i) in o.iter().enumerate() {
             let (va, vb) = (a.x[i], b.x[i]);
             let (da, db) = (l * a.d1[r], l * b.d1[r]);
             let (dda, ddb) = (l2 * a.d2[r], l2 * b.d2[r]);
-            // Coefficients in s = ξ/L of the quintic Hermite interpolant.
+            let (ddda, dddb) = (l3 * a.d3[r], l3 * b.d3[r]);
+            let q = [va, da, 0.5 * dda, ddda / 6.0];
+            let r0 = vb - (q[0] + q[1] + q[2] + q[3]);
+            let r1 = db - (q[1] + 2.0 * q[2] + 3.0 * q[3]);
+            let r2 = ddb - (2.0 * q[2] + 6.0 * q[3]);
+            let r3 = dddb - 6.0 * q[3];
             let s = [
-                va,
-                da,
-                0.5 * dda,
-                -10.0 * va - 6.0 * da - 1.5 * dda + 0.5 * ddb - 4.0 * db + 10.0 * vb,
-                15.0 * va + 8.0 * da + 1.5 * dda - ddb + 7.0 * db - 15.0 * vb,
-                -6.0 * va - 3.0 * da - 0.5 * dda + 0.5 * ddb - 3.0 * db + 6.0 * vb,
+                q[0],
+                q[1],
+                q[2],
+                q[3],
+                35.0 * r0 - 15.0 * r1 + 2.5 * r2 - r3 / 6.0,
+                -84.0 * r0 + 39.0 * r1 - 7.0 * r2 + 0.5 * r3,
+                70.0 * r0 - 34.0 * r1 + 6.5 * r2 - 0.5 * r3,
+                -20.0 * r0 + 10.0 * r1 - 2.0 * r2 + r3 / 6.0,
             ];
             let mut lk = 1.0;
             for k in 0..=PREDICTOR_DEGREE {

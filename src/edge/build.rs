@@ -1,4 +1,5 @@
-//! Building an edge from its parts: fine spans ([`FINE_PER_LINK`] per link, each as long as its
+//! Building an edge from its parts: fine spans ([`FINE_PER_LINK`] per link, or
+//! [`DENSE_FINE_PER_LINK`] in links that stalled above the request, each as long as its
 //! arc length, with its warp), coarse curves fitted over them, and the proven bounds, refined until they meet the
 //! target tolerance.
 
@@ -6,7 +7,7 @@ use super::fit::{knots_on, least_squares, on_fine_spans};
 use super::poly::{self, eval_mid, Poly, SPLINE_DEGREE as DEGREE};
 use super::span::{bounds, box_diameter, model_box, SpanBounds, SpanFixed};
 use super::warp::{arc_length_warp, Warp};
-use super::{BSpline, Edge, EdgeBounds, EdgeError, PCurve, Part, Shortfall};
+use super::{BSpline, Edge, EdgeBounds, EdgeError, PCurve, Part, Seg, Shortfall};
 use crate::geometry::RationalBezierPatch;
 
 /// One fine span of the edge: a piece of one link, re-expanded on `u ∈ [0, 1]`, compared with
@@ -30,7 +31,7 @@ const MOST_PIECES: usize = 8;
 /// Fine spans per coarse span at the start.
 const START_SPANS: usize = 32;
 /// Fine spans per link (equal parts of its `τ` range): a coarse knot may then fall inside a
-/// link. With one, a degree-8 piece per link could not follow a long link's quintic through
+/// link. With one, a degree-8 piece per link could not follow a long link's polynomial through
 /// its warp (the bicubic pair's 11 links stalled at 4.5e-9 against a request of 1e-9; with two
 /// it reaches 4e-12).
 pub(crate) const FINE_PER_LINK: usize = 2;
@@ -414,27 +415,51 @@ pub(crate) fn assemble(
     pcurve_closed: bool,
     requested: Option<f64>,
 ) -> Result<Edge, EdgeError> {
-    let cert_tol = parts
-        .iter()
-        .map(|p| p.cert.certified_tolerance)
-        .fold(0.0, f64::max);
+    let (e, stalled) = assemble_with(parts, closed, pcurve_closed, requested, &[])?;
+    if !matches!(e.shortfall, Some(Shortfall::FitStalled { .. })) || stalled.is_empty() {
+        return Ok(e);
+    }
+    // The stalled spans' links cut into more fine spans: the coarse knots can then fall
+    // closer together there (Viviani's arcs asked for 1.05x their certificate stalled at
+    // 1.07x in a long link's two fine spans; with four they meet the request).
+    let again = assemble_with(parts, closed, pcurve_closed, requested, &stalled)?.0;
+    Ok(if again.edge_tolerance < e.edge_tolerance {
+        again
+    } else {
+        e
+    })
+}
+
+/// The fine spans of the parts (in order), their nominal arc lengths, and each part's range
+/// of them: [`FINE_PER_LINK`] per link, [`DENSE_FINE_PER_LINK`] in the links `dense`.
+#[allow(clippy::type_complexity)]
+fn fine_spans(
+    parts: &[Part],
+    dense: &[(usize, usize)],
+) -> (Vec<Span>, Vec<f64>, Vec<std::ops::Range<usize>>) {
     let mut spans = Vec::new();
     let mut ds = Vec::new();
     let mut ranges = Vec::with_capacity(parts.len());
-    for pt in parts {
+    for (pi, pt) in parts.iter().enumerate() {
         let start = spans.len();
-        for (s, k) in pt
-            .segs
-            .iter()
-            .flat_map(|s| (0..FINE_PER_LINK).map(move |k| (s, k)))
-        {
+        let fine = |s: &Seg| {
+            if dense.contains(&(pi, s.tube)) {
+                DENSE_FINE_PER_LINK
+            } else {
+                FINE_PER_LINK
+            }
+        };
+        for (s, k, fine) in pt.segs.iter().flat_map(|s| {
+            let f = fine(s);
+            (0..f).map(move |k| (s, k, f))
+        }) {
             let t = &pt.cert.tubes[s.tube];
             // Piece k runs between the cut points k and k + 1, each computed once, so that
             // neighbouring pieces share their end exactly (no gap of an ulp between them).
             let cut = |i: usize| match i {
                 0 => s.ta,
-                i if i == FINE_PER_LINK => s.tb,
-                i => s.ta + (s.tb - s.ta) * i as f64 / FINE_PER_LINK as f64,
+                i if i == fine => s.tb,
+                i => s.ta + (s.tb - s.ta) * i as f64 / fine as f64,
             };
             let (ta, tb) = (cut(k), cut(k + 1));
             let y = poly::reparametrised(&t.coeffs, ta, tb);
@@ -451,6 +476,26 @@ pub(crate) fn assemble(
         }
         ranges.push(start..spans.len());
     }
+    (spans, ds, ranges)
+}
+
+/// Fine spans per link in the links of [`assemble_with`]'s `dense`.
+const DENSE_FINE_PER_LINK: usize = 2 * FINE_PER_LINK;
+
+/// [`assemble`], with [`DENSE_FINE_PER_LINK`] fine spans in the links `dense` (part, tube);
+/// also returns the links holding a span above the request.
+fn assemble_with(
+    parts: &[Part],
+    closed: bool,
+    pcurve_closed: bool,
+    requested: Option<f64>,
+    dense: &[(usize, usize)],
+) -> Result<(Edge, Vec<(usize, usize)>), EdgeError> {
+    let cert_tol = parts
+        .iter()
+        .map(|p| p.cert.certified_tolerance)
+        .fold(0.0, f64::max);
+    let (spans, ds, ranges) = fine_spans(parts, dense);
     if spans.is_empty() || ranges.iter().any(|r| r.is_empty()) {
         return Err(EdgeError::NotGapFree {
             branch: parts.first().map(|p| p.branch).unwrap_or(0),
@@ -550,7 +595,18 @@ pub(crate) fn assemble(
     e.shortfall = requested
         .filter(|&r| e.edge_tolerance > r)
         .map(|r| shortfall(&data, &spans, &fits, floor, r, out_of_rounds));
-    Ok(e)
+    let mut stalled = Vec::new();
+    if let Some(r) = requested {
+        for (pi, (d, f)) in data.iter().zip(&fits).enumerate() {
+            for (m, x) in ratios(d, &spans, f, r).iter().enumerate() {
+                let key = (pi, spans[d.range.start + m].tube);
+                if x.1 > r && !stalled.contains(&key) {
+                    stalled.push(key);
+                }
+            }
+        }
+    }
+    Ok((e, stalled))
 }
 
 /// Why the final fits' tolerance is above the request `r`.

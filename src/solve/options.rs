@@ -41,7 +41,7 @@ impl Method {
 /// How a transversal branch is certified.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Engine {
-    /// A cover chain ([`crate::certify::chain`]): Krawczyk-proven tubes around quintic predictors
+    /// A cover chain ([`crate::certify::chain`]): Krawczyk-proven tubes around septic predictors
     /// between the marched points, joined without gaps. Fast; its certificate's tube pieces are
     /// parametrised by a parameter of the curve, its arc lengths are nominal (`"chain"`).
     #[default]

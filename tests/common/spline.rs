@@ -65,6 +65,23 @@ pub(crate) fn dist_to_spline(b: &BSpline<3>, ss: &[f64], pts: &[[f64; 3]], x: &[
             }
         }
     }
+    if found > 1e-8 {
+        // Still far (a cube edge's C0 join: 7.7e-5 found where the curve passes within 4e-12,
+        // its nearest point 3e-4 past the join in s): scan the whole curve, then finely round
+        // the best scanned point.
+        let (lo, hi) = (at(0), at(n - 1));
+        let m = 100_000;
+        let t = |i: usize| lo + (hi - lo) * i as f64 / m as f64;
+        if let Some(i) = (0..=m).min_by(|&a, &c| f(t(a)).total_cmp(&f(t(c)))) {
+            let (a, c) = (t(i.saturating_sub(2)), t((i + 2).min(m)));
+            let k = 20_000;
+            let u = |j: usize| a + (c - a) * j as f64 / k as f64;
+            if let Some(j) = (0..=k).min_by(|&x, &y| f(u(x)).total_cmp(&f(u(y)))) {
+                let s = golden(&f, u(j.saturating_sub(1)), u((j + 1).min(k)));
+                found = found.min(f(u(j))).min(f(s));
+            }
+        }
+    }
     found
 }
 

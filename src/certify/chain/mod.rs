@@ -80,7 +80,7 @@ const MAX_SPLITS: usize = 20_000;
 /// A link whose tube halving did not narrow is kept although wider than the tolerance when its
 /// width is at rounding level (any length: a tolerance below rounding was asked for), or when
 /// it is shorter than this scaled length and no singular box lies within 1e-4 (the predictor's
-/// error, of order `L⁶`, is negligible there, so the width is the conditioning): the certificate
+/// error, of order `L⁸`, is negligible there, so the width is the conditioning): the certificate
 /// then says the tolerance is not met. Near a singular box the half stops instead, within the
 /// tolerance.
 const FLOOR_LINK: f64 = 1e-4;

@@ -341,14 +341,14 @@ impl<'a> Walker<'a> {
     }
 
     /// Learns the next link's length from an attempt of scaled length `len`: aim at a tube of
-    /// half the tolerance (`r ∝ L⁶`; the tube is the predictor's own deviation since the
+    /// half the tolerance (`r ∝ L⁸` for the septic predictor; the tube is the predictor's own deviation since the
     /// residual is ranged by its Bernstein form, so half leaves room enough), at most doubling
     /// after a success, at least halving after a failure without a width.
     fn learn(&mut self, len: f64, attempt: &Attempt) {
         let tol = self.opts.required_tolerance;
         let aim = |r: f64| {
             if r > 0.0 {
-                (tol / (2.0 * r)).powf(1.0 / 6.0)
+                (tol / (2.0 * r)).powf(1.0 / (PREDICTOR_DEGREE + 1) as f64)
             } else {
                 2.0
             }
