@@ -85,8 +85,9 @@ impl Jet {
 /// graph `y(ξ) = x + d·ξ + e·ξ²` (`e` the others' `d2 / 2`, zero along), `g(ξ) = F(y(ξ))` has
 /// `g''(ξ) = F''(y)[y', y'] + F'(y)·y''`; its derivative at 0 comes from a central difference
 /// of `g''` at `±h`, and the curve's third coefficient is `c₃ = −F_o⁻¹·g'''(0)/6`. The step
-/// `h` is `10⁻⁴` of the along coordinate's domain (truncation error about `h²` relative,
-/// rounding about `ε/h`).
+/// `h` is `10⁻³` of the smaller of the along coordinate's domain and the graph's bending
+/// length `max|d1| / max|d2|` (truncation error about `(h/ℓ)²` relative, rounding about
+/// `ε·ℓ/h`).
 fn third_derivative(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -107,7 +108,12 @@ fn third_derivative(
     } else {
         dom.v
     };
-    let h = 1e-4 * (side[1] - side[0]);
+    // The length over which the graph's slope changes by about its size: a tight loop (a
+    // near-tangent torus, radius 1e-4) needs a step well inside it.
+    let slope = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let bend = d2.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = (side[1] - side[0]).min(slope / bend.max(f64::MIN_POSITIVE));
+    let h = 1e-3 * scale;
     let g2 = |xi: f64| -> [f64; 3] {
         let y: [f64; 4] = std::array::from_fn(|i| x[i] + (d[i] + e[i] * xi) * xi);
         let dy: [f64; 4] = std::array::from_fn(|i| d[i] + 2.0 * e[i] * xi);

@@ -256,7 +256,11 @@ pub(crate) fn compare(c: &Comparison<'_>, fig: &mut Figures) {
                     ));
                 }
             }
-            None => fig.not_certified += 1,
+            None => {
+                fig.not_certified += 1;
+                fig.notes
+                    .push(format!("seed {seed} branch {}: not certified", b.id()));
+            }
         }
         if let Some(cb) = b.certified() {
             check_boundary_ends(c, b.id(), cb, fig);

@@ -146,9 +146,23 @@ pub fn certify_chain(
         if let Some(c) = closed_chain(p, q, &xs, opts) {
             return Ok(c);
         }
-        // Not closed by proof: from the first point both ways round, each way until it stops.
-        return ring_chain(p, q, &xs, opts)
-            .ok_or_else(|| fail("no link of the loop could be proven", xs[0]));
+        // Not closed by proof: from the first point both ways round, each way until it stops;
+        // from another point where no link from it holds (a near-tangent loop: a start where
+        // the links must be far shorter than elsewhere).
+        let n = xs.len();
+        let mut tried = Vec::new();
+        for k in [0, n / 2, n / 4, 3 * n / 4] {
+            if tried.contains(&k) {
+                continue;
+            }
+            tried.push(k);
+            let mut ring = xs.clone();
+            ring.rotate_left(k);
+            if let Some(c) = ring_chain(p, q, &ring, opts) {
+                return Ok(c);
+            }
+        }
+        return Err(fail("no link of the loop could be proven", xs[0]));
     }
     if xs.len() == 2 {
         split_two(p, q, &mut xs);
