@@ -93,6 +93,9 @@ const STALLED_SPLITS: usize = 3;
 const STALL_RATIO: f64 = 0.9;
 /// Shortest link tried, in scaled parameters (below it a half gives up there).
 const MIN_LINK: f64 = 1e-10;
+/// The longest link towards a singular end of the march, as a fraction of the scaled distance
+/// to the marched end ([`walker::Walker`]'s `singular_reach`).
+const SINGULAR_REACH: f64 = 0.8;
 
 /// Refined guide points of the marched branch (each on `P = Q` to rounding level; a point that
 /// does not refine is kept as marched).
@@ -176,6 +179,15 @@ pub fn certify_chain(
     // Not at an end of the marched points (when there is a point between): a half starting at
     // the last point has no link to walk and its end could not be proven even at a boundary.
     let s = if n > 2 { s.clamp(1, n - 2) } else { s };
+    // Towards a singular end the marched points halve their distance to it, so a start chosen
+    // by index or by the search lies close to it, where links must be short both ways: start
+    // half way along the marched length instead (the cylinders' arcs: the half away from the
+    // node began 1e-4 from it, four failed links and four doublings before its links were long).
+    let s = if b.ends.contains(&EndReason::Singular) && n > 2 {
+        middle_by_length(&xs, &scales).clamp(1, n - 2)
+    } else {
+        s
+    };
     // Another start where no link from the chosen one can be proven (a start next to a
     // singular point).
     let mut tried = Vec::new();
@@ -192,6 +204,27 @@ pub fn certify_chain(
         "no link could be proven from any tried start point",
         xs[s],
     ))
+}
+
+/// The index of the point of `xs` nearest half way along the polyline's scaled length.
+fn middle_by_length(xs: &[[f64; 4]], scales: &[f64; 4]) -> usize {
+    let total: f64 = xs
+        .windows(2)
+        .map(|w| scaled_dist(&w[0], &w[1], scales))
+        .sum();
+    let mut run = 0.0;
+    for (i, w) in xs.windows(2).enumerate() {
+        let step = scaled_dist(&w[0], &w[1], scales);
+        if run + step >= 0.5 * total {
+            return if 0.5 * total - run <= run + step - 0.5 * total {
+                i
+            } else {
+                i + 1
+            };
+        }
+        run += step;
+    }
+    xs.len() / 2
 }
 
 /// A marched branch of two points (a short arc across a corner of a domain) gets a third, a

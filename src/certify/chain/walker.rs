@@ -78,6 +78,8 @@ pub(super) struct Walker<'a> {
     /// The scaled length the next link should have, learnt from the last attempts (the tube's
     /// width grows like the sixth power of the length).
     pub(super) l_pred: Option<f64>,
+    /// The last marched point when the march ended at a singular point there.
+    toward_singular: Option<[f64; 4]>,
     /// Scaled length and model width of the last link added.
     prev: Option<(f64, f64)>,
     /// Both patches in the form the link proofs evaluate.
@@ -117,6 +119,7 @@ impl<'a> Walker<'a> {
             closed: false,
             wants_closure: false,
             l_pred: None,
+            toward_singular: None,
             prev: None,
             costly_side: costlier_side(&lean),
             lean,
@@ -333,6 +336,16 @@ impl<'a> Walker<'a> {
         self.node(r.x, &a.t)
     }
 
+    /// How long a link from `node` can be when the march ended at a singular point: a link
+    /// towards it fails to contract once it reaches much more than half way (the cylinders'
+    /// node ends: links of 0.47–0.49 of the distance to the marched end held, of 0.95 failed
+    /// but for one; each failure then halved the link), so [`SINGULAR_REACH`] of that distance.
+    /// `None` otherwise.
+    fn singular_reach(&self, node: &Node) -> Option<f64> {
+        self.toward_singular
+            .map(|t| SINGULAR_REACH * scaled_dist(&node.x, &t, &self.scales))
+    }
+
     /// The tube width that rounding alone can cause near `node`: 1e-12 of the model's size
     /// there.
     fn rounding_floor(&self, node: &Node) -> f64 {
@@ -462,6 +475,19 @@ impl<'a> Walker<'a> {
             }
             let closing = (stack.len() == 1).then_some(must_end).flatten();
             let len = scaled_dist(&cur.x, &tgt.x, &self.scales);
+            // Towards a singular end a link longer than its reach fails: split it untried.
+            if let Some(r) = self
+                .singular_reach(&cur)
+                .filter(|&r| len > r && len > MIN_LINK)
+            {
+                if splits < MAX_SPLITS {
+                    if let Some(m) = self.midpoint(&cur, &tgt, (r / len).clamp(0.1, 0.75)) {
+                        splits += 1;
+                        stack.push((m, wider));
+                        continue;
+                    }
+                }
+            }
             let attempt = self.link(&cur, &tgt, closing);
             self.learn(len, &attempt);
             let too_wide = match attempt {
@@ -695,6 +721,11 @@ impl<'a> Walker<'a> {
                     k += 1;
                 }
             }
+            if let Some(r) = self.singular_reach(&nodes[i]) {
+                while k > 1 && scaled_dist(&nodes[i].x, &nodes[i + k].x, &self.scales) > r {
+                    k -= 1;
+                }
+            }
             let must = (i + k == n - 1).then_some(closing).flatten();
             if k > 1 {
                 if let Some(reason) = self.out_of_budget() {
@@ -748,6 +779,9 @@ impl<'a> Walker<'a> {
     /// `end`.
     pub(super) fn walk(&mut self, xs: &[[f64; 4]], end: EndReason) -> CertifiedEnd {
         let nodes = self.nodes(xs);
+        if end == EndReason::Singular {
+            self.toward_singular = xs.last().copied();
+        }
         if let Err(e) = self.advance(&nodes, None) {
             return e;
         }
