@@ -214,29 +214,35 @@
 //! takes 27 % off Fig. 7's chain, 20 % off cylinders_full's, 17 % off Viviani's and 12 % off
 //! the sphere's (the probe's single-thread chains, 10 runs each, two alternations).
 //!
-//! **Stop 24, the same machine** (the session's start build, the septic predictor with the
-//! `L⁶` rule, and the final one, run alternately three times; ratio ranges):
+//! **Stop 24, the same machine** (the session's start build against the final one, run
+//! alternately two to five times; ratio ranges):
 //!
 //! | scene | links start → final | ratio start | ratio final |
 //! |---|---|---|---|
-//! | sphere_patch_plane | 108 → 50 | 4.1–5.5 | 2.9–3.0 |
-//! | bicubic_transversal | 11 → 11 | 1.7–3.0 | 1.9–3.4 |
-//! | two_loops_s31_s32 | 251 → 118 | 2.4–3.1 | 1.9–2.0 |
-//! | Fig. 7, smallest loop | 119 → 86 | 10.8–14.1 | 8.6–8.8 |
-//! | small_loop | 40 → 56 | 1.9 | 2.2–2.3 |
-//! | Fig. 7, three loops | 366 → 306 | 11.4–11.5 | 9.3–9.8 |
-//! | cylinders | 81 → 61 | 7.7–8.0 | 6.5–7.7 |
-//! | cylinders_full | 173 → 133 | 13.7–15.2 | 12.9–13.4 |
-//! | viviani | 76 → 64 | 6.0–6.9 | 5.9–6.9 |
+//! | sphere_patch_plane | 108 → 50 | 4.1–4.2 | 2.9–3.0 |
+//! | bicubic_transversal | 11 → 11 | 1.7–1.8 | 1.9–3.4 (a 0.3 ms chain) |
+//! | two_loops_s31_s32 | 251 → 118 | 2.3–2.4 | 1.9 |
+//! | Fig. 7, smallest loop | 119 → 86 | 11.2–11.3 | 8.7–8.8 |
+//! | small_loop | 40 → 56 | 1.9–2.0 | 2.3–2.4 |
+//! | Fig. 7, three loops | 366 → 305 | 11.3–11.5 | 9.4–9.6 |
+//! | cylinders | 81 → 65 | 7.5–8.0 | 7.8–9.1 |
+//! | cylinders_full | 173 → 124 | 13.7–13.9 | 9.5–9.9 |
+//! | viviani | 76 → 68 | 6.2–7.1 | 6.7–7.8 |
 //!
-//! What changed: the predictor is the septic Hermite interpolant (values and three derivatives
-//! at both ends; the third derivative by a central difference of the second along the curve's
-//! quadratic graph, two more `f64` patch evaluations per end, since a series evaluation of the
-//! Bernstein form cost 12 % of Fig. 7's chain), the Taylor form is of order 8 (order 9: 226
-//! links but 20 % slower on Fig. 7; order 7: cylinders_full 155 links) and the next link's
-//! length is learnt with the `L⁸` rule (`L⁶`: Fig. 7 257 links but six times the too-wide
-//! attempts). cylinders_full is not helped: half of its links approach its eight node ends,
-//! halving their distance, where the predictor's order does not limit them.
+//! What changed: (1) the predictor is the septic Hermite interpolant (values and three
+//! derivatives at both ends; the third derivative by a central difference of the second along
+//! the curve's quadratic graph, two more `f64` patch evaluations per end, since a series
+//! evaluation of the Bernstein form cost 12 % of Fig. 7's chain), the Taylor form is of order 8
+//! (order 9: 226 links on Fig. 7 but 20 % slower; order 7: cylinders_full 155 links) and the next
+//! link's length is learnt with the `L⁸` rule (`L⁶`: Fig. 7 257 links but six times the too-wide
+//! attempts). (2) What limited cylinders_full was its eight node ends, not the predictor: the
+//! marcher's last step lands near the node, each link reaching more than about 0.8 of the
+//! distance to it failed to contract and was halved (one failed attempt per halving), and the
+//! start chosen near the node made the half away from it begin with four failed links. Links
+//! towards a marched singular end are now split untried at 0.8 of the distance, and a branch
+//! with such an end starts half way along its marched length (its two halves run at the same
+//! time): 139 → 124 links, no failed attempt left on the short arcs. On the single-node
+//! `cylinders` scene that start costs a little (its start was already well placed).
 //!
 //! The group `halves` times the open bicubic branch with its two halves one after the other and
 //! on two threads (`CertifyOptions::parallel_halves`).
