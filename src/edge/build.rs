@@ -415,19 +415,58 @@ pub(crate) fn assemble(
     pcurve_closed: bool,
     requested: Option<f64>,
 ) -> Result<Edge, EdgeError> {
-    let (e, stalled) = assemble_with(parts, closed, pcurve_closed, requested, &[])?;
-    if !matches!(e.shortfall, Some(Shortfall::FitStalled { .. })) || stalled.is_empty() {
-        return Ok(e);
+    let missed = |e: &Edge| requested.is_some_and(|r| e.edge_tolerance > r);
+    let first = assemble_with(parts, closed, pcurve_closed, requested, &[], false)?;
+    if !missed(&first.edge) {
+        return Ok(first.edge);
     }
+    let mut best = first.edge;
     // The stalled spans' links cut into more fine spans: the coarse knots can then fall
     // closer together there (Viviani's arcs asked for 1.05x their certificate stalled at
     // 1.07x in a long link's two fine spans; with four they meet the request).
-    let again = assemble_with(parts, closed, pcurve_closed, requested, &stalled)?.0;
-    Ok(if again.edge_tolerance < e.edge_tolerance {
-        again
-    } else {
-        e
-    })
+    if matches!(best.shortfall, Some(Shortfall::FitStalled { .. })) && !first.stalled.is_empty() {
+        let dense = assemble_with(
+            parts,
+            closed,
+            pcurve_closed,
+            requested,
+            &first.stalled,
+            false,
+        )?;
+        if dense.edge.edge_tolerance < best.edge_tolerance {
+            best = dense.edge;
+        }
+        if !missed(&best) {
+            return Ok(best);
+        }
+    }
+    // Still missed with more room than the least: the stalls depend on the aim (a region
+    // stalls at a level that another aim passes), so aim at the least room too and keep the
+    // closer edge. Last, since that aim costs control points: Fig. 7's third loop at 1e-9,
+    // 426 where the dense spans would do.
+    if first.least_room_differs {
+        let least = assemble_with(
+            parts,
+            closed,
+            pcurve_closed,
+            requested,
+            &first.stalled,
+            true,
+        )?;
+        if least.edge.edge_tolerance < best.edge_tolerance {
+            best = least.edge;
+        }
+    }
+    Ok(best)
+}
+
+/// An edge of [`assemble_with`], the links holding a span above the request (part, tube), and
+/// whether the request left more room above the floor than [`LEAST_ROOM`] (and is not below
+/// the floor), so that aiming at the least room is another aim.
+struct Built {
+    edge: Edge,
+    stalled: Vec<(usize, usize)>,
+    least_room_differs: bool,
 }
 
 /// The fine spans of the parts (in order), their nominal arc lengths, and each part's range
@@ -490,7 +529,8 @@ fn assemble_with(
     pcurve_closed: bool,
     requested: Option<f64>,
     dense: &[(usize, usize)],
-) -> Result<(Edge, Vec<(usize, usize)>), EdgeError> {
+    least_room: bool,
+) -> Result<Built, EdgeError> {
     let cert_tol = parts
         .iter()
         .map(|p| p.cert.certified_tolerance)
@@ -580,17 +620,8 @@ fn assemble_with(
         Ok((e, fits, out_of_rounds))
     };
     let goal = target(floor, requested);
-    let (mut e, mut fits, mut out_of_rounds) = build(goal)?;
-    // A request missed although it had more room than the least: the stalls depend on the
-    // aim (a region stalls at a level that another aim passes), so aim at the least room too
-    // and keep the closer edge.
     let least = LEAST_ROOM * floor;
-    if requested.is_some_and(|r| e.edge_tolerance > r && floor <= r && goal > least) {
-        let again = build(least)?;
-        if again.0.edge_tolerance < e.edge_tolerance {
-            (e, fits, out_of_rounds) = again;
-        }
-    }
+    let (mut e, fits, out_of_rounds) = build(if least_room { least } else { goal })?;
     e.requested = requested;
     e.shortfall = requested
         .filter(|&r| e.edge_tolerance > r)
@@ -606,7 +637,11 @@ fn assemble_with(
             }
         }
     }
-    Ok((e, stalled))
+    Ok(Built {
+        edge: e,
+        stalled,
+        least_room_differs: requested.is_some_and(|r| floor <= r && goal > least),
+    })
 }
 
 /// Why the final fits' tolerance is above the request `r`.

@@ -45,10 +45,11 @@
 //!   its worst bound falling stops being refined, and the other spans aim no lower than the
 //!   best bound it reached. Then, on parts of few coarse spans, the knots the refinement did
 //!   not need are removed one by one while the part's bounds stay within the goal. The bounds
-//!   reported are those of the final curves, whatever the target. Where regions stall depends
-//!   on the aim, so a request missed with more room than 2% is aimed again at 2% above the
-//!   floor and the closer of the two edges kept; an edge still above the request says why
-//!   ([`Shortfall`]).
+//!   reported are those of the final curves, whatever the target. A request missed because
+//!   the fit stalled is built again with four fine spans in the stalled spans' links; where
+//!   regions stall also depends on the aim, so a request still missed with more room than 2%
+//!   is aimed again at 2% above the floor (that aim costs control points, so it comes last).
+//!   The closest edge is kept; one still above the request says why ([`Shortfall`]).
 //! - **Cuts.** A chain is cut where the edge must end: a closed loop where its last link meets
 //!   the start box again, a boundary end (the chain goes on a little past the domain's side, on
 //!   the patch extended beyond it) and a joined curve's piece side at the side. A range `T` of
