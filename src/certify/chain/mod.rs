@@ -47,6 +47,7 @@ use std::time::Instant;
 
 mod leave;
 mod output;
+mod singular;
 mod slice;
 mod walker;
 

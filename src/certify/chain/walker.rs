@@ -3,7 +3,6 @@
 
 use super::*;
 use crate::certify::lean_patch::{costlier_side, LeanPatch};
-use crate::pair::branch_point::locate_singular_point_within;
 
 /// A guide point on the curve and its parameter velocity, oriented along the walk.
 #[derive(Debug, Clone, Copy)]
@@ -76,12 +75,12 @@ pub(super) struct Walker<'a> {
     /// Whether to watch for the loop closing (set `close_at` from the first link).
     pub(super) wants_closure: bool,
     /// The scaled length the next link should have, learnt from the last attempts (the tube's
-    /// width grows like the sixth power of the length).
+    /// width grows like the eighth power of the length).
     pub(super) l_pred: Option<f64>,
     /// The last marched point when the march ended at a singular point there.
-    toward_singular: Option<[f64; 4]>,
+    pub(super) toward_singular: Option<[f64; 4]>,
     /// Scaled length and model width of the last link added.
-    prev: Option<(f64, f64)>,
+    pub(super) prev: Option<(f64, f64)>,
     /// Both patches in the form the link proofs evaluate.
     lean: [LeanPatch<'a>; 2],
     /// The first coordinate (0 for `P`, 2 for `Q`) of the patch that costs at least four times the
@@ -336,16 +335,6 @@ impl<'a> Walker<'a> {
         self.node(r.x, &a.t)
     }
 
-    /// How long a link from `node` can be when the march ended at a singular point: a link
-    /// towards it fails to contract once it reaches much more than half way (the cylinders'
-    /// node ends: links of 0.47–0.49 of the distance to the marched end held, of 0.95 failed
-    /// but for one; each failure then halved the link), so [`SINGULAR_REACH`] of that distance.
-    /// `None` otherwise.
-    fn singular_reach(&self, node: &Node) -> Option<f64> {
-        self.toward_singular
-            .map(|t| SINGULAR_REACH * scaled_dist(&node.x, &t, &self.scales))
-    }
-
     /// The tube width that rounding alone can cause near `node`: 1e-12 of the model's size
     /// there.
     fn rounding_floor(&self, node: &Node) -> f64 {
@@ -374,50 +363,6 @@ impl<'a> Walker<'a> {
         if len > 0.0 && f.is_finite() {
             self.l_pred = Some(len * f);
         }
-    }
-
-    /// Whether a proven link of scaled length `len` and model width `width` shows the walk
-    /// held up by the conditioning, not by the predictor: wider than the aim (half the
-    /// tolerance) although the link before it was at least as long and less than 3/4 as wide.
-    /// Near a singular point the width grows like the inverse of the distance to it whatever
-    /// the length, and the walk would only creep on with links as wide (the cylinders: about
-    /// ten more attempts per end, to gain 1e-6); the caller ends the half there when a
-    /// singular point is near ([`Self::conditioning_end`]; nearly tangent surfaces are not
-    /// enough: on Fig. 7 the normals' cross product over boxes 1e-4 round ordinary links
-    /// contains zero).
-    fn conditioning_limited(&self, len: f64, width: f64) -> bool {
-        width > 0.5 * self.opts.required_tolerance
-            && self
-                .prev
-                .is_some_and(|(l, w)| l >= len && w <= 0.75 * width)
-    }
-
-    /// The end of a half after a kept link from `a` to `b` of scaled length `len` that was
-    /// [`Self::conditioning_limited`]: singular, when the link is shorter than [`FLOOR_LINK`],
-    /// a singular point is found near `b` and a singular box within four lengths.
-    fn conditioning_end(
-        &self,
-        limited: bool,
-        len: f64,
-        a: &[f64; 4],
-        b: &[f64; 4],
-    ) -> Option<CertifiedEnd> {
-        if !(limited && len < FLOOR_LINK && self.singular_point_near(b, 4.0 * len)) {
-            return None;
-        }
-        let near = self.singular_box(a, b, 4.0 * len)?;
-        Some(CertifiedEnd::Singular { near })
-    }
-
-    /// Whether Gauss–Newton finds a point of `P = Q` with parallel normals (sine below 1e-6)
-    /// within the scaled distance `reach` of `x`: a singular point the walk is approaching, not
-    /// merely nearly tangent surfaces (on a torus 1e-6 from tangency the conditioning also
-    /// holds links up, but the curve goes on to the boundary). Guidance only: the end reported
-    /// is the proven singular box.
-    fn singular_point_near(&self, x: &[f64; 4], reach: f64) -> bool {
-        let scale = self.scales.iter().copied().fold(0.0, f64::max);
-        let tol = self.opts.required_tolerance.max(1e-12);
-        locate_singular_point_within(self.p, self.q, *x, tol, 1e-6, reach * scale, 50).is_some()
     }
 
     /// Adds a proven link of scaled length `len`; on a loop, whether it closes the loop (then the walk stops).
@@ -552,60 +497,6 @@ impl<'a> Walker<'a> {
             }
         }
         Stop::Done
-    }
-
-    /// Why no link could be proven between `a` and `b`: a singular box if the normals'
-    /// cross product cannot be bounded away from zero on a box around them (widened by up to
-    /// 1e-4 of the domains: a link fails some way before a singular point, where the proven
-    /// tube outgrows the tolerance), else close branches.
-    fn classify(&self, a: &Node, b: &Node) -> CertifiedEnd {
-        let h = scaled_dist(&a.x, &b.x, &self.scales);
-        match self.singular_box(&a.x, &b.x, 1e-4) {
-            Some(near) => CertifiedEnd::Singular { near },
-            None => CertifiedEnd::CloseBranches {
-                h,
-                near: std::array::from_fn(|i| hull(a.x[i], b.x[i])),
-            },
-        }
-    }
-
-    /// The end of a half stopped at `last` before the marched point `x` where the velocity
-    /// vanishes: a singular box if one is found near them, else unproven.
-    fn singular_end(&self, last: &Node, x: &[f64; 4]) -> CertifiedEnd {
-        let h = scaled_dist(&last.x, x, &self.scales);
-        match self.singular_box(&last.x, x, (4.0 * h).max(1e-4)) {
-            Some(near) => CertifiedEnd::Singular { near },
-            None => CertifiedEnd::Unproven {
-                reason: "the marched branch ends at a point without a velocity".into(),
-                near: std::array::from_fn(|i| hull(last.x[i], x[i])),
-            },
-        }
-    }
-
-    /// The smallest of the boxes around `hull(a, b)`, widened by up to `reach` (scaled), on
-    /// which every component of `N^P × N^Q` contains zero.
-    fn singular_box(&self, a: &[f64; 4], b: &[f64; 4], reach: f64) -> Option<[Interval; 4]> {
-        let mut pad = 0.0;
-        loop {
-            let near: [Interval; 4] = std::array::from_fn(|i| {
-                let w = pad * self.scales[i];
-                hull(a[i].min(b[i]) - w, a[i].max(b[i]) + w)
-            });
-            let [_, ps, pt] = self.p.first_derivs(near[0], near[1]);
-            let [_, qu, qv] = self.q.first_derivs(near[2], near[3]);
-            let m = cross(&cross(&ps, &pt), &cross(&qu, &qv));
-            if m.iter().all(|c| c.contains(0.0)) {
-                return Some(near);
-            }
-            if pad >= reach {
-                return None;
-            }
-            pad = if pad == 0.0 {
-                reach * 1e-6
-            } else {
-                (pad * 4.0).min(reach)
-            };
-        }
     }
 
     /// At a boundary end: a node past the boundary of `surface` along the curve, proven links
