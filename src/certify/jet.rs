@@ -16,7 +16,8 @@ pub(crate) fn others(j: usize) -> [usize; 3] {
 }
 
 /// A curve point seen as a point of the graph over coordinate `along`: the other coordinates'
-/// values, first and second derivatives with respect to `x_along` (`f64`, guidance only).
+/// values and first, second and third derivatives with respect to `x_along` (`f64`, guidance
+/// only).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Jet {
     /// The point `(σ, t, u, v)`.
@@ -32,7 +33,8 @@ pub(crate) struct Jet {
 impl Jet {
     /// The jet of the curve through `x` with parameter velocity `t`, graphed over `along`:
     /// `o' = t_o / t_j`, and `o'' = −F_o⁻¹·F''[d, d]` with `d = (1, o')` (implicit
-    /// differentiation of `F(x_j, o(x_j)) = 0`). `None` if `t_j = 0` or `F_o` is singular.
+    /// differentiation of `F(x_j, o(x_j)) = 0`), `o'''` by [`third_derivative`]. `None` if
+    /// `t_j = 0` or `F_o` is singular.
     pub(crate) fn new(
         p: &RationalBezierPatch,
         q: &RationalBezierPatch,
@@ -120,13 +122,13 @@ fn third_derivative(
         let dp = p.derivs_f64(y[0], y[1]);
         let dq = q.derivs_f64(y[2], y[3]);
         std::array::from_fn(|r| {
-            let side = |s: &crate::geometry::PatchDerivs<f64>, a: f64, b: f64, ea: f64, eb: f64| {
+            let quad = |s: &crate::geometry::PatchDerivs<f64>, a: f64, b: f64, ea: f64, eb: f64| {
                 s.suu[r] * a * a
                     + 2.0 * s.suv[r] * a * b
                     + s.svv[r] * b * b
                     + 2.0 * (s.su[r] * ea + s.sv[r] * eb)
             };
-            side(&dp, dy[0], dy[1], e[0], e[1]) - side(&dq, dy[2], dy[3], e[2], e[3])
+            quad(&dp, dy[0], dy[1], e[0], e[1]) - quad(&dq, dy[2], dy[3], e[2], e[3])
         })
     };
     let (hi, lo) = (g2(h), g2(-h));

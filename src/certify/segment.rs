@@ -3,7 +3,8 @@
 //!
 //! Write the four parameters as `x_j` (the *along* coordinate) and the other three `x_o`. A
 //! segment has an interval `Ξ` of `ξ = x_j − x0`, a predictor `o(ξ)` (of degree
-//! [`PREDICTOR_DEGREE`] in `ξ`, `f64` coefficients, exact as written) and a box `Y` of offsets around it. With
+//! [`PREDICTOR_DEGREE`] in `ξ`, `f64` coefficients, exact as written) and a box `Y` of
+//! offsets around it. With
 //! `F = P(σ,t) − Q(u,v)`, `g(ξ) = F(x0 + ξ, o(ξ))`, a preconditioner `C` and the Jacobian
 //! `J_o = ∂F/∂x_o` enclosed over the tube's hull `B = (x0 + Ξ) × (o(Ξ) + Y)`:
 //!

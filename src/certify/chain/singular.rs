@@ -9,9 +9,9 @@ use crate::pair::branch_point::locate_singular_point_within;
 impl Walker<'_> {
     /// How long a link from `node` can be when the march ended at a singular point: a link
     /// towards it fails to contract once it reaches much more than half way (the cylinders'
-    /// node ends: links of 0.47–0.49 of the distance to the marched end held, of 0.95 failed
-    /// but for one; each failure then halved the link), so [`SINGULAR_REACH`] of that distance.
-    /// `None` otherwise.
+    /// node ends: links of 0.5 and 0.75 of the distance to the marched end held, of 0.95 all
+    /// but one failed, and each failure halved the link), so [`SINGULAR_REACH`] of that
+    /// distance. `None` otherwise.
     pub(super) fn singular_reach(&self, node: &Node) -> Option<f64> {
         self.toward_singular
             .map(|t| SINGULAR_REACH * scaled_dist(&node.x, &t, &self.scales))
