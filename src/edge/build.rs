@@ -521,8 +521,9 @@ fn fine_spans(
 /// Fine spans per link in the links of [`assemble_with`]'s `dense`.
 const DENSE_FINE_PER_LINK: usize = 2 * FINE_PER_LINK;
 
-/// [`assemble`], with [`DENSE_FINE_PER_LINK`] fine spans in the links `dense` (part, tube);
-/// also returns the links holding a span above the request.
+/// [`assemble`]'s one build: [`DENSE_FINE_PER_LINK`] fine spans in the links `dense` (part,
+/// tube), aimed at the request (or above the floor, [`target`]) or, with `least_room`, at
+/// [`LEAST_ROOM`] times the floor.
 fn assemble_with(
     parts: &[Part],
     closed: bool,
