@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::certify::lean_patch::{costlier_side, LeanPatch};
+use std::cell::Cell;
 
 /// A guide point on the curve and its parameter velocity, oriented along the walk.
 #[derive(Debug, Clone, Copy)]
@@ -86,6 +87,10 @@ pub(super) struct Walker<'a> {
     /// The first coordinate (0 for `P`, 2 for `Q`) of the patch that costs at least four times the
     /// other to evaluate, if one does (see [`Self::along`]).
     costly_side: Option<usize>,
+    /// The jets of the last two nodes a predictor was made from (node, along coordinate): a
+    /// kept link's end node starts the next link, and a failed link's start node starts the
+    /// split, so each jet (three patch evaluations per surface) is made about once.
+    jets: Cell<[Option<(Node, usize, Jet)>; 2]>,
 }
 
 pub(super) fn velocity(p: &RationalBezierPatch, q: &RationalBezierPatch, x: &[f64; 4]) -> [f64; 4] {
@@ -122,6 +127,7 @@ impl<'a> Walker<'a> {
             prev: None,
             costly_side: costlier_side(&lean),
             lean,
+            jets: Cell::new([None; 2]),
         }
     }
 
@@ -185,9 +191,22 @@ impl<'a> Walker<'a> {
 
     /// The Hermite predictor from `a` to `b` graphed over `j`.
     fn predictor(&self, j: usize, a: &Node, b: &Node) -> Option<Predictor> {
-        let ja = Jet::new(self.p, self.q, &a.x, &a.t, j)?;
-        let jb = Jet::new(self.p, self.q, &b.x, &b.t, j)?;
+        let ja = self.jet(a, j)?;
+        let jb = self.jet(b, j)?;
         Predictor::hermite(j, &ja, &jb)
+    }
+
+    /// The jet of node `n` graphed over `j`, from the last two made when it is one of them.
+    fn jet(&self, n: &Node, j: usize) -> Option<Jet> {
+        let mut kept = self.jets.get();
+        let same = |m: &Node| m.x == n.x && m.t == n.t;
+        if let Some((_, _, jet)) = kept.iter().flatten().find(|(m, k, _)| *k == j && same(m)) {
+            return Some(*jet);
+        }
+        let jet = Jet::new(self.p, self.q, &n.x, &n.t, j)?;
+        kept = [Some((*n, j, jet)), kept[0]];
+        self.jets.set(kept);
+        Some(jet)
     }
 
     /// Tries one link from `a` to `b`; `must_end` must also lie in its tube (the closing join).
