@@ -416,7 +416,10 @@ pub(crate) fn assemble(
     requested: Option<f64>,
 ) -> Result<Edge, EdgeError> {
     let missed = |e: &Edge| requested.is_some_and(|r| e.edge_tolerance > r);
-    let first = assemble_with(parts, closed, pcurve_closed, requested, &[], false)?;
+    let build = |dense: &[(usize, usize)], least_room: bool| {
+        assemble_with(parts, closed, pcurve_closed, requested, dense, least_room)
+    };
+    let first = build(&[], false)?;
     if !missed(&first.edge) {
         return Ok(first.edge);
     }
@@ -425,16 +428,9 @@ pub(crate) fn assemble(
     // closer together there (Viviani's arcs asked for 1.05x their certificate stalled at
     // 1.07x in a long link's two fine spans; with four they meet the request).
     if matches!(best.shortfall, Some(Shortfall::FitStalled { .. })) && !first.stalled.is_empty() {
-        let dense = assemble_with(
-            parts,
-            closed,
-            pcurve_closed,
-            requested,
-            &first.stalled,
-            false,
-        )?;
-        if dense.edge.edge_tolerance < best.edge_tolerance {
-            best = dense.edge;
+        let dense = build(&first.stalled, false)?.edge;
+        if dense.edge_tolerance < best.edge_tolerance {
+            best = dense;
         }
         if !missed(&best) {
             return Ok(best);
@@ -445,16 +441,9 @@ pub(crate) fn assemble(
     // closer edge. Last, since that aim costs control points: Fig. 7's third loop at 1e-9,
     // 426 where the dense spans would do.
     if first.least_room_differs {
-        let least = assemble_with(
-            parts,
-            closed,
-            pcurve_closed,
-            requested,
-            &first.stalled,
-            true,
-        )?;
-        if least.edge.edge_tolerance < best.edge_tolerance {
-            best = least.edge;
+        let least = build(&first.stalled, true)?.edge;
+        if least.edge_tolerance < best.edge_tolerance {
+            best = least;
         }
     }
     Ok(best)

@@ -349,23 +349,19 @@ fn cut_at_side(
             "a later link is not proven outside the piece"
         }));
     };
-    let range = |s: &Seg, a: f64, z: f64| {
-        let len = point(s.tb) - point(s.ta);
-        point(s.ta) + len * inari::interval!(a, z).unwrap_or(Interval::ENTIRE)
-    };
     let at = if uc >= 1.0 {
         seg.tb
     } else {
         seg.ta + (seg.tb - seg.ta) * uc
     };
-    let next_range = beyond.map(|(ns, e)| (ns.tube, range(&ns, 0.0, e)));
+    let next_range = beyond.map(|(ns, e)| (ns.tube, tau_range(&ns, 0.0, e)));
     let next = beyond.map(|(ns, e)| (ns, poly_of(&ns), e));
     let (gap, at, next_range) = narrowed_cut(
         &side,
         pq,
         (&seg, &y, [u0, u1]),
         next.as_ref(),
-        (range(&seg, u0, u1), at, next_range),
+        (tau_range(&seg, u0, u1), at, next_range),
     );
     let gap = gap.convex_hull(point(at));
     segs.truncate(k + 1);
@@ -417,9 +413,10 @@ struct Crossing {
     on_next: Option<Interval>,
 }
 
-/// `[a, z]` as an interval (`None` if not `a ≤ z`).
-fn interval_of(a: f64, z: f64) -> Option<Interval> {
-    inari::interval!(a, z).ok()
+/// The `τ` range of the piece `s` over `u ∈ [a, z]` (`τ = ta + (tb − ta)·u`), enclosed.
+fn tau_range(s: &Seg, a: f64, z: f64) -> Interval {
+    let len = point(s.tb) - point(s.ta);
+    point(s.ta) + len * inari::interval!(a, z).unwrap_or(Interval::ENTIRE)
 }
 
 /// The side a chain is cut at: coordinate `b` of the four parameters at the value `bound`,
@@ -509,7 +506,7 @@ impl Side<'_> {
             Some((ns, _, e)) => {
                 let nt = &self.cert.tubes[ns.tube];
                 let from = nt.coeffs.first()?[along];
-                let whole = point(ns.ta) + (point(ns.tb) - point(ns.ta)) * interval_of(0.0, *e)?;
+                let whole = tau_range(ns, 0.0, *e);
                 let r = ((enclosure[along] - point(from)) * point(dir)).intersection(whole);
                 (!r.is_empty()).then_some(r)
             }
