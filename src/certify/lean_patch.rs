@@ -65,8 +65,23 @@ impl<'a> LeanPatch<'a> {
     }
 
     /// The patch written around `(cu, cv)` (any finite point; the lean form is tightest near
-    /// it).
+    /// it), with every term kept: valid wherever it is evaluated.
+    #[cfg(test)]
     pub(crate) fn centred(&self, cu: f64, cv: f64) -> Centred<'_> {
+        self.centred_within(cu, cv, None)
+    }
+
+    /// The patch written around `(cu, cv)` for evaluations inside `window` (a parameter box
+    /// `[u, v]`; `None`: anywhere): the terms that are negligible over the window
+    /// ([`DROPPED`]) are replaced by a bound on their sum, which saves their series products.
+    /// The form is valid only inside its window: check [`Centred::covers`] for every box it
+    /// is evaluated on.
+    pub(crate) fn centred_within(
+        &self,
+        cu: f64,
+        cv: f64,
+        window: Option<[Interval; 2]>,
+    ) -> Centred<'_> {
         let net = &self.power;
         let taylor = (cu.is_finite() && cv.is_finite()).then(|| {
             let d = self.patch.domain();
@@ -86,7 +101,10 @@ impl<'a> LeanPatch<'a> {
         });
         Centred {
             patch: self.patch,
-            taylor,
+            taylor: taylor.map(|t| {
+                let tr = t.truncated(window);
+                (t, tr)
+            }),
         }
     }
 }
@@ -108,7 +126,60 @@ pub(crate) fn costlier_side(lean: &[LeanPatch<'_>; 2]) -> Option<usize> {
 #[derive(Debug, Clone)]
 pub(crate) struct Centred<'a> {
     patch: &'a RationalBezierPatch,
-    taylor: Option<Rc<Taylor>>,
+    /// The Taylor form (polynomial patches and homogeneous forms) and its truncation for the
+    /// window.
+    taylor: Option<(Rc<Taylor>, Rc<Truncated>)>,
+}
+
+/// The derivative orders `(a, b)` (of `∂^(a+b)/∂uᵃ∂vᵇ`) a centred form provides: the point,
+/// the first and the second partials.
+const ORDERS: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
+
+/// A term is dropped from a truncated form when its size over the window, `|T_kl|·ρ_uᵏ·ρ_vˡ`,
+/// is at most this part (`2⁻⁶⁰`) of the largest term's of its coordinate: below the rounding of
+/// the coordinate's value. The terms a polynomial patch's Taylor form holds only by rounding
+/// (a height field's `x = u` written in degree 6 has 44 coefficients that are intervals of width
+/// 1e-16 around zero) and the terms above a polynomial's total degree are all such terms.
+const DROPPED: f64 = 8.673_617_379_884_035e-19;
+
+/// A term whose coefficient holds zero (its sign unknown: a rounding artefact, or an
+/// uncertain input) is dropped when its size is at most this part (`2⁻⁴⁰`) of the largest
+/// term's: its contribution to the value's width is then its size anyway.
+const UNSIGNED: f64 = 9.094_947_017_729_282e-13;
+
+/// Forms of fewer terms per coordinate than this (below bicubic) are not truncated.
+const FEW_TERMS: usize = 16;
+
+/// `2⁻¹⁰⁰⁰`: more than the underflow error of any truncated form's bound.
+const UNDERFLOW_PAD: f64 = 9.332_636_185_032_189e-302;
+
+/// Smallest window radius (in offsets normalised by the domain's width): below it the dropped
+/// terms' bounds stop shrinking.
+const MIN_RADIUS: f64 = 9.5367431640625e-7;
+
+/// A Taylor form with its negligible terms replaced by bounds, valid over a window of offsets.
+#[derive(Debug, Clone)]
+struct Truncated {
+    /// The window's half-widths `ρ` in normalised offsets (powers of two); `None`: no window,
+    /// every term kept.
+    radius: Option<[f64; 2]>,
+    /// Per coordinate, per entry of [`ORDERS`], the derivative's form.
+    forms: Vec<[DerivativeForm; 6]>,
+}
+
+/// One derivative `∂^(a+b)/∂uᵃ∂vᵇ` of one coordinate, as a polynomial in the normalised
+/// offsets: `Σ c_kl·dsᵏ·drˡ + rest`.
+#[derive(Debug, Clone)]
+struct DerivativeForm {
+    /// Degrees of the kept polynomial (`m − a`, `n − b`).
+    km: usize,
+    ln: usize,
+    /// `c_kl = T_{k+a,l+b}·(k+a)!/k!·(l+b)!/l!·Δu⁻ᵃ·Δv⁻ᵇ` at `k·(ln+1) + l`, zero where
+    /// dropped.
+    c: Vec<Interval>,
+    /// `[−ε, ε]`: the dropped terms' derivative over the window is within it (exactly 0 if
+    /// none was dropped); `None` if the derivative vanishes (`a > m` or `b > n`).
+    rest: Option<Interval>,
 }
 
 /// The Taylor coefficients of a polynomial patch at a centre, in the normalised offsets.
@@ -122,6 +193,8 @@ struct Taylor {
     /// Per coordinate (`x, y, z`, and `w` for a rational patch's homogeneous form), `T_kl` at
     /// index `k·(n+1) + l`.
     coeffs: Vec<Vec<Interval>>,
+    /// The last truncated form made from it (links in a row share their window's size).
+    last_truncated: RefCell<Option<Rc<Truncated>>>,
 }
 
 impl Taylor {
@@ -165,7 +238,141 @@ impl Taylor {
             centre: [cu, cv],
             inv: [point(1.0) / du, point(1.0) / dv],
             coeffs,
+            last_truncated: RefCell::new(None),
         }
+    }
+
+    /// The window's radius in normalised offsets, per parameter: the smallest power of two
+    /// (at least [`MIN_RADIUS`]) that holds every offset of the box, or `None` if none does.
+    fn radius_of(&self, window: [Interval; 2]) -> Option<[f64; 2]> {
+        let mut out = [0.0; 2];
+        for p in 0..2 {
+            let reach = imul(window[p] - point(self.centre[p]), self.inv[p]).mag();
+            if !reach.is_finite() {
+                return None;
+            }
+            let mut r = MIN_RADIUS;
+            while r < reach {
+                r *= 2.0;
+            }
+            out[p] = r;
+        }
+        Some(out)
+    }
+
+    /// The form truncated for `window` (made, or the last one if its radius is the same).
+    fn truncated(&self, window: Option<[Interval; 2]>) -> Rc<Truncated> {
+        // Low degrees have few terms to drop: their whole forms are cheaper than truncating.
+        let few = (self.m + 1) * (self.n + 1) < FEW_TERMS;
+        let radius = window.filter(|_| !few).and_then(|w| self.radius_of(w));
+        let mut last = self.last_truncated.borrow_mut();
+        // A form made for a window up to four times as wide serves too (valid on any part of
+        // its window, the dropped terms' bounds a little wider).
+        let serves = |t: &Truncated| match (t.radius, radius) {
+            (Some(have), Some(need)) => {
+                (0..2).all(|p| need[p] <= have[p] && have[p] <= 4.0 * need[p])
+            }
+            (have, need) => have == need,
+        };
+        if let Some(t) = last.as_ref().filter(|t| serves(t)) {
+            return Rc::clone(t);
+        }
+        // Made for twice the window, so that the next links, a little further from the centre,
+        // find it too.
+        let radius = radius.map(|r| r.map(|x| 2.0 * x));
+        let t = Rc::new(Truncated {
+            radius,
+            forms: (0..self.coeffs.len())
+                .map(|x| self.derivative_forms(x, radius))
+                .collect(),
+        });
+        *last = Some(Rc::clone(&t));
+        t
+    }
+
+    /// The forms of the derivatives [`ORDERS`] of coordinate `x`, without the terms that are
+    /// negligible over `radius` ([`DROPPED`], [`UNSIGNED`]) but with a bound on them.
+    fn derivative_forms(&self, x: usize, radius: Option<[f64; 2]>) -> [DerivativeForm; 6] {
+        let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
+        // ρᵏ: exact powers of two (or underflowed, covered by the bound's pad below).
+        let [rs, rr] = radius.unwrap_or([1.0; 2]);
+        let powers = |r: f64, d: usize| {
+            let mut p = vec![1.0; d + 1];
+            for k in 1..=d {
+                p[k] = p[k - 1] * r;
+            }
+            p
+        };
+        let (ps, pr) = (powers(rs, m), powers(rr, n));
+        // Whether term (k, l) is dropped: a choice only, so f64 is fine.
+        let size = |i: usize| t[i].mag() * ps[i / (n + 1)] * pr[i % (n + 1)];
+        let dropped: Vec<bool> = match radius {
+            None => vec![false; t.len()],
+            Some(_) => {
+                let largest = (0..t.len()).map(size).fold(0.0, f64::max);
+                (0..t.len())
+                    .map(|i| {
+                        let sz = size(i);
+                        sz <= DROPPED * largest || (t[i].contains(0.0) && sz <= UNSIGNED * largest)
+                    })
+                    .collect()
+            }
+        };
+        let falling = |top: usize, k: usize| ((top - k + 1)..=top).product::<usize>() as f64;
+        ORDERS.map(|(a, b)| {
+            if a > m || b > n {
+                return DerivativeForm {
+                    km: 0,
+                    ln: 0,
+                    c: vec![point(0.0)],
+                    rest: None,
+                };
+            }
+            let (km, ln) = (m - a, n - b);
+            let mut c = vec![point(0.0); (km + 1) * (ln + 1)];
+            // Σ over the dropped terms of |T|·falling·ρ_uᵏ·ρ_vˡ (non-negative terms) in
+            // round-to-nearest, then enlarged by the relative error of N such sums and products
+            // ((N + 2)·2⁻⁵³, with room to spare) and an underflow pad.
+            let (mut rest, mut terms) = (0.0, 0.0);
+            for k in 0..=km {
+                for l in 0..=ln {
+                    let i = (k + a) * (n + 1) + l + b;
+                    let f = falling(k + a, a) * falling(l + b, b);
+                    if dropped[i] {
+                        rest += t[i].mag() * f * ps[k] * pr[l];
+                        terms += 1.0;
+                    } else {
+                        c[k * (ln + 1) + l] = if f == 1.0 { t[i] } else { imul(t[i], point(f)) };
+                    }
+                }
+            }
+            let e = if terms == 0.0 {
+                0.0
+            } else {
+                (rest * (1.0 + (terms + 4.0) * f64::EPSILON) + UNDERFLOW_PAD).next_up()
+            };
+            // The chain rule's factors 1/Δuᵃ·1/Δvᵇ, once here rather than at every evaluation.
+            let mut scale = point(1.0);
+            for _ in 0..a {
+                scale = imul(scale, self.inv[0]);
+            }
+            for _ in 0..b {
+                scale = imul(scale, self.inv[1]);
+            }
+            let nonzero = |x: &Interval| !(x.inf() == 0.0 && x.sup() == 0.0);
+            if a + b > 0 {
+                for x in c.iter_mut().filter(|x| nonzero(x)) {
+                    *x = imul(*x, scale);
+                }
+            }
+            let rest = inari::interval!(-e, e).unwrap_or(Interval::ENTIRE);
+            DerivativeForm {
+                km,
+                ln,
+                c,
+                rest: Some(if a + b > 0 { imul(rest, scale) } else { rest }),
+            }
+        })
     }
 
     /// Whether the coefficients are of the homogeneous form (a rational patch).
@@ -234,83 +441,101 @@ impl Taylor {
         outer
     }
 
-    /// The partial derivative `∂^(a+b) / ∂uᵃ ∂vᵇ` of coordinate `x` (the point for `(0, 0)`):
-    /// Horner's rule on the coefficients `T_{k+a, l+b}` times the falling factorials
-    /// `(k+a)!/k!·(l+b)!/l!` (small integers, exact), then `a` factors `1/Δu` and `b` factors
-    /// `1/Δv`.
-    fn derivative<S: Scalar>(&self, x: usize, a: usize, b: usize, ds: S, dr: S) -> S {
-        let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
-        if a > m || b > n {
+    /// The partial derivative `∂^(a+b) / ∂uᵃ ∂vᵇ` of coordinate `x` (the point for `(0, 0)`)
+    /// from the truncated form `tr` (for offsets inside its window): Horner's rule on the kept
+    /// coefficients, plus the dropped terms' bound.
+    fn derivative<S: Scalar>(
+        &self,
+        tr: &Truncated,
+        x: usize,
+        a: usize,
+        b: usize,
+        ds: S,
+        dr: S,
+    ) -> S {
+        let k = ORDERS
+            .iter()
+            .position(|&o| o == (a, b))
+            .expect("a derivative order the form provides");
+        let form = &tr.forms[x][k];
+        let Some(rest) = form.rest else {
             return S::zero();
-        }
-        let falling = |top: usize, k: usize| ((top - k + 1)..=top).product::<usize>() as f64;
-        let coeff = |k: usize, l: usize| {
-            let c = t[(k + a) * (n + 1) + l + b];
-            let f = falling(k + a, a) * falling(l + b, b);
-            if f == 1.0 {
-                c
-            } else {
-                imul(c, point(f))
-            }
         };
-        let mut d = Self::horner(m - a, n - b, coeff, ds, dr);
-        for _ in 0..a {
-            d = d * S::from_interval(self.inv[0]);
+        let ln = form.ln;
+        let d = Self::horner(form.km, ln, |k, l| form.c[k * (ln + 1) + l], ds, dr);
+        if rest.sup() > 0.0 {
+            d + S::from_interval(rest)
+        } else {
+            d
         }
-        for _ in 0..b {
-            d = d * S::from_interval(self.inv[1]);
-        }
-        d
     }
 }
 
 impl Centred<'_> {
+    /// Whether the box `[u, v]` lies inside the form's window (always, without a window or a
+    /// Taylor form): every evaluation of a truncated form must be.
+    pub(crate) fn covers(&self, u: Interval, v: Interval) -> bool {
+        let Some((t, tr)) = &self.taylor else {
+            return true;
+        };
+        let Some(radius) = tr.radius else {
+            return true;
+        };
+        [u, v]
+            .iter()
+            .enumerate()
+            .all(|(p, x)| imul(*x - point(t.centre[p]), t.inv[p]).mag() <= radius[p])
+    }
+
     /// The second partials `[S_uu, S_uv, S_vv]` at `(u, v)` (as the fields of
     /// [`RationalBezierPatch::eval_derivs`]).
     pub(crate) fn second_partials<S: Scalar>(&self, u: S, v: S) -> [[S; 3]; 3] {
-        let Some(t) = self.taylor.as_ref().filter(|t| !t.rational()) else {
+        let Some((t, tr)) = self.taylor.as_ref().filter(|(t, _)| !t.rational()) else {
             let d = self.patch.eval_derivs(u, v);
             return [d.suu, d.suv, d.svv];
         };
         let (ds, dr) = t.offsets(u, v);
         let per: [[S; 3]; 3] = std::array::from_fn(|x| {
-            [(2, 0), (1, 1), (0, 2)].map(|(a, b)| t.derivative(x, a, b, ds, dr))
+            [(2, 0), (1, 1), (0, 2)].map(|(a, b)| t.derivative(tr, x, a, b, ds, dr))
         });
         std::array::from_fn(|d| std::array::from_fn(|x| per[x][d]))
     }
 
     /// The point at `(u, v)` (as [`RationalBezierPatch::eval`]).
     pub(crate) fn eval<S: Scalar>(&self, u: S, v: S) -> [S; 3] {
-        let Some(t) = &self.taylor else {
+        let Some((t, tr)) = &self.taylor else {
             return self.patch.eval(u, v);
         };
         let (ds, dr) = t.offsets(u, v);
         if t.rational() {
-            let w = t.derivative(3, 0, 0, ds, dr);
-            return std::array::from_fn(|x| t.derivative(x, 0, 0, ds, dr) / w);
+            let w = t.derivative(tr, 3, 0, 0, ds, dr);
+            return std::array::from_fn(|x| t.derivative(tr, x, 0, 0, ds, dr) / w);
         }
-        std::array::from_fn(|x| t.derivative(x, 0, 0, ds, dr))
+        std::array::from_fn(|x| t.derivative(tr, x, 0, 0, ds, dr))
     }
 
     /// The first partials `[S_u, S_v]` at `(u, v)` (as the last two of
     /// [`RationalBezierPatch::first_derivs`]; the point is not formed).
     pub(crate) fn partials<S: Scalar>(&self, u: S, v: S) -> [[S; 3]; 2] {
-        let Some(t) = &self.taylor else {
+        let Some((t, tr)) = &self.taylor else {
             let [_, su, sv] = self.patch.first_derivs(u, v);
             return [su, sv];
         };
         let (ds, dr) = t.offsets(u, v);
         if t.rational() {
-            let w = t.derivative(3, 0, 0, ds, dr);
-            let (wu, wv) = (t.derivative(3, 1, 0, ds, dr), t.derivative(3, 0, 1, ds, dr));
-            let point: [S; 3] = std::array::from_fn(|x| t.derivative(x, 0, 0, ds, dr) / w);
+            let w = t.derivative(tr, 3, 0, 0, ds, dr);
+            let (wu, wv) = (
+                t.derivative(tr, 3, 1, 0, ds, dr),
+                t.derivative(tr, 3, 0, 1, ds, dr),
+            );
+            let point: [S; 3] = std::array::from_fn(|x| t.derivative(tr, x, 0, 0, ds, dr) / w);
             return [(1, 0, wu), (0, 1, wv)].map(|(a, b, wd)| {
-                std::array::from_fn(|x| (t.derivative(x, a, b, ds, dr) - point[x] * wd) / w)
+                std::array::from_fn(|x| (t.derivative(tr, x, a, b, ds, dr) - point[x] * wd) / w)
             });
         }
         [
-            std::array::from_fn(|x| t.derivative(x, 1, 0, ds, dr)),
-            std::array::from_fn(|x| t.derivative(x, 0, 1, ds, dr)),
+            std::array::from_fn(|x| t.derivative(tr, x, 1, 0, ds, dr)),
+            std::array::from_fn(|x| t.derivative(tr, x, 0, 1, ds, dr)),
         ]
     }
 }
@@ -439,6 +664,96 @@ mod tests {
                             assert!(
                                 (a.mid() - b.mid()).abs() < 1e-9 * (1.0 + b.mag()),
                                 "{x} {i} {z}: {a:?} vs {b:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// A form truncated to a window encloses the patch's point and first and second partials
+    /// (sampled, and over sub-boxes) everywhere inside the window, whatever the window's size
+    /// and its distance from the centre; it covers exactly the boxes inside its window; and on
+    /// a height field it drops the rounding-only terms of `x = u` and `y = v`.
+    #[test]
+    fn truncated_forms_enclose_the_patch_inside_their_window() {
+        let p = sextic();
+        let lean = LeanPatch::new(&p);
+        let d = p.domain();
+        let (wu, wv) = (d.u[1] - d.u[0], d.v[1] - d.v[0]);
+        for (k, half) in [1e-6, 1e-4, 3e-3, 0.02, 0.07, 0.3].into_iter().enumerate() {
+            // A window off the centre (as when a form is reused for a later link).
+            let (cu, cv) = (d.u[0] + 0.37 * wu, d.v[0] + 0.61 * wv);
+            let (lo_u, lo_v) = (cu + 0.2 * half * wu, cv - 0.9 * half * wv);
+            let window = [
+                interval(lo_u, lo_u + half * wu).unwrap(),
+                interval(lo_v, lo_v + half * wv).unwrap(),
+            ];
+            let c = lean.centred_within(cu, cv, Some(window));
+            assert!(c.covers(window[0], window[1]), "{k}");
+            let outside = interval(cu + 2.1 * wu, cu + 2.2 * wu).unwrap();
+            assert!(!c.covers(outside, window[1]), "{k}");
+            if k == 3 {
+                // x = u and y = v: the constant and the linear term only.
+                let (t, tr) = c.taylor.as_ref().unwrap();
+                assert_eq!(t.coeffs.len(), 3);
+                for x in 0..2 {
+                    let kept = tr.forms[x][0].c.iter();
+                    let kept = kept.filter(|v| !(v.inf() == 0.0 && v.sup() == 0.0)).count();
+                    assert!(kept <= 2, "coordinate {x}: {kept} terms kept");
+                }
+            }
+            for a in 0..=6 {
+                for b in 0..=6 {
+                    let u = window[0].inf() + window[0].wid() * a as f64 / 6.0;
+                    let v = window[1].inf() + window[1].wid() * b as f64 / 6.0;
+                    let (iu, iv) = (
+                        interval(u, (u + 1e-3 * half * wu).min(window[0].sup())).unwrap(),
+                        interval(v, (v + 1e-3 * half * wv).min(window[1].sup())).unwrap(),
+                    );
+                    // Every dropped term's derivative, summed, lies in the form's bound.
+                    let (t, tr) = c.taylor.as_ref().unwrap();
+                    let (ds, dr) = t.offsets(point(u), point(v));
+                    for (x, forms) in tr.forms.iter().enumerate() {
+                        for (&(oa, ob), form) in ORDERS.iter().zip(forms) {
+                            let Some(rest) = form.rest else { continue };
+                            let mut dropped = point(0.0);
+                            for i in 0..=form.km {
+                                for j in 0..=form.ln {
+                                    let full = t.coeffs[x][(i + oa) * (t.n + 1) + j + ob];
+                                    if form.c[i * (form.ln + 1) + j] != point(0.0)
+                                        || full == point(0.0)
+                                    {
+                                        continue;
+                                    }
+                                    let f = (i + 1..=i + oa).product::<usize>()
+                                        * (j + 1..=j + ob).product::<usize>();
+                                    let mut term = full * point(f as f64);
+                                    term *= t.inv[0].powi(oa as i32) * t.inv[1].powi(ob as i32);
+                                    dropped += term * ds.powi(i as i32) * dr.powi(j as i32);
+                                }
+                            }
+                            assert!(
+                                dropped.subset(rest),
+                                "{k} {x} {oa}{ob}: {dropped:?} {rest:?}"
+                            );
+                        }
+                    }
+                    let want = p.eval_derivs(u, v);
+                    let [su, sv] = c.partials(iu, iv);
+                    let got = [c.eval(iu, iv), su, sv];
+                    let second = c.second_partials(iu, iv);
+                    let pairs = [want.p, want.su, want.sv, want.suu, want.suv, want.svv]
+                        .into_iter()
+                        .zip(got.into_iter().chain(second));
+                    for (w, g) in pairs {
+                        for x in 0..3 {
+                            // The reference is the patch's own f64 evaluation: a few ulps.
+                            let slack = 1e-12 * (1.0 + w[x].abs());
+                            assert!(
+                                g[x].inf() - slack <= w[x] && w[x] <= g[x].sup() + slack,
+                                "{k} {a} {b}: {w:?} vs {g:?}"
                             );
                         }
                     }

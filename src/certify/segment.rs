@@ -131,21 +131,23 @@ impl Predictor {
         for m in 1..=PREDICTOR_DEGREE {
             pow[m] = imul(pow[m - 1], centre);
         }
-        let binom = |n: usize, k: usize| -> f64 {
-            (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
-        };
         std::array::from_fn(|k| {
             std::array::from_fn(|r| {
                 (k..=PREDICTOR_DEGREE).fold(point(0.0), |acc, i| {
-                    acc + imul(imul(point(binom(i, k)), point(self.c[i][r])), pow[i - k])
+                    acc + imul(imul(point(BINOMIAL[i][k]), point(self.c[i][r])), pow[i - k])
                 })
             })
         })
     }
 
-    /// The four coordinates as series in `τ` around `ζ ∈ centre`, of length `len ≤ N`.
-    fn series<const N: usize>(&self, centre: Interval, len: usize) -> [SeriesN<N>; 4] {
-        let sh = self.shifted(centre);
+    /// The four coordinates as series in `τ` around `ζ ∈ centre`, of length `len ≤ N`, from
+    /// `sh`, the coefficients [`shifted`](Self::shifted) to `centre`.
+    fn series<const N: usize>(
+        &self,
+        sh: &[[Interval; 3]; PREDICTOR_DEGREE + 1],
+        centre: Interval,
+        len: usize,
+    ) -> [SeriesN<N>; 4] {
         let zero = point(0.0);
         let mut out = [SeriesN::<N>::constant(zero); 4];
         let mut coeffs = [zero; 16];
@@ -412,21 +414,18 @@ fn polynomial_range(h: &[Interval; ORDER + 2], tau: Interval) -> Interval {
     if !(lo < 0.0 && 0.0 < hi && lo.is_finite() && hi.is_finite()) {
         return horner;
     }
-    const N: usize = ORDER + 1;
-    let binom = |n: usize, k: usize| -> f64 {
-        (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
-    };
+    let ratios = bernstein_ratios();
     let mut hull: Option<Interval> = None;
     for end in [lo, hi] {
-        // d_k = c_k / C(n, k) with c_k = h_k·endᵏ.
-        let mut d = [point(0.0); N + 1];
+        // c_k = h_k·endᵏ.
+        let mut c = [point(0.0); ORDER + 2];
         let mut pow = point(1.0);
-        for k in 0..=N {
-            d[k] = imul(h[k], pow) / point(binom(N, k));
+        for k in 0..=ORDER + 1 {
+            c[k] = imul(h[k], pow);
             pow = imul(pow, point(end));
         }
-        for i in 0..=N {
-            let b = (0..=i).fold(point(0.0), |acc, k| acc + imul(point(binom(i, k)), d[k]));
+        for (i, row) in ratios.iter().enumerate() {
+            let b = (0..=i).fold(point(0.0), |acc, k| acc + imul(row[k], c[k]));
             hull = Some(hull.map_or(b, |x| x.convex_hull(b)));
         }
     }
@@ -434,6 +433,41 @@ fn polynomial_range(h: &[Interval; ORDER + 2], tau: Interval) -> Interval {
         Some(b) if !b.is_empty() && !horner.intersection(b).is_empty() => horner.intersection(b),
         _ => horner,
     }
+}
+
+/// `C(n, k)` for `n, k ≤ ORDER + 1` (exact small integers).
+const BINOMIAL: [[f64; ORDER + 2]; ORDER + 2] = {
+    let mut t = [[0.0; ORDER + 2]; ORDER + 2];
+    let mut n = 0;
+    while n < ORDER + 2 {
+        t[n][0] = 1.0;
+        let mut k = 1;
+        while k <= n {
+            t[n][k] = t[n - 1][k - 1] + t[n - 1][k];
+            k += 1;
+        }
+        n += 1;
+    }
+    t
+};
+
+/// `C(i, k)/C(n, k)` for `k ≤ i ≤ n = ORDER + 1`, enclosed: the Bernstein coefficient `b_i` of
+/// `Σ c_k xᵏ` on `[0, 1]` in degree `n` is `Σ_{k ≤ i} C(i,k)/C(n,k)·c_k`.
+fn bernstein_ratios() -> &'static [[Interval; ORDER + 2]; ORDER + 2] {
+    static RATIOS: std::sync::OnceLock<[[Interval; ORDER + 2]; ORDER + 2]> =
+        std::sync::OnceLock::new();
+    RATIOS.get_or_init(|| {
+        let n = ORDER + 1;
+        std::array::from_fn(|i| {
+            std::array::from_fn(|k| {
+                if k <= i {
+                    point(BINOMIAL[i][k]) / point(BINOMIAL[n][k])
+                } else {
+                    point(0.0)
+                }
+            })
+        })
+    })
 }
 
 /// The Krawczyk image `−C·g + (A − C·ΔJ(x))·x` of the offsets `x`; `None` if unbounded.
@@ -547,6 +581,32 @@ pub(crate) fn prove_segment(
     x_range: [f64; 2],
     need: [f64; 3],
 ) -> Result<SegmentProof, SegmentFailure> {
+    // The patches' forms are truncated to a window: the predictor's range over the segment and
+    // room for the offsets' box. Should the tube leave it, the proof runs again on whole forms.
+    let xi = hull(x_range[0], x_range[1]) - point(pred.x0);
+    let o = pred.others_over(xi);
+    let mut window = [point(pred.x0) + xi; 4];
+    for (r, &i) in others(pred.along).iter().enumerate() {
+        let room = 1.5 * need[r];
+        window[i] = o[r] + inari::interval!(-room, room).unwrap_or(Interval::ENTIRE);
+    }
+    match prove_within(lean, pred, x_range, need, Some(window)) {
+        Ok(proof) => Ok(proof),
+        Err(Some(failure)) => Err(failure),
+        Err(None) => prove_within(lean, pred, x_range, need, None)
+            .map_err(|f| f.unwrap_or(SegmentFailure::Singular)),
+    }
+}
+
+/// [`prove_segment`] with the patches' forms truncated to `window` (a box in all four
+/// parameters); `Err(None)` if the tube does not lie inside it.
+fn prove_within(
+    lean: [&LeanPatch<'_>; 2],
+    pred: Predictor,
+    x_range: [f64; 2],
+    need: [f64; 3],
+    window: Option<[Interval; 4]>,
+) -> Result<SegmentProof, Option<SegmentFailure>> {
     let j = pred.along;
     let free = others(j);
     let xi = hull(x_range[0], x_range[1]) - point(pred.x0);
@@ -554,14 +614,19 @@ pub(crate) fn prove_segment(
     let tau = xi - point(centre);
     // F and J_o along the predictor: Taylor coefficients at the centre, and over all of Ξ (for
     // the Lagrange remainders); both patches written around the predictor's point at the centre.
-    let at_centre: [Long; 4] = pred.series(point(centre), ORDER + 1);
+    let (sh_c, sh_o) = (pred.shifted(point(centre)), pred.shifted(xi));
+    let at_centre: [Long; 4] = pred.series(&sh_c, point(centre), ORDER + 1);
     let c = at_centre.each_ref().map(|s| s.coeff(0).mid());
-    let (lp, lq) = (lean[0].centred(c[0], c[1]), lean[1].centred(c[2], c[3]));
+    let (wp, wq) = (window.map(|w| [w[0], w[1]]), window.map(|w| [w[2], w[3]]));
+    let (lp, lq) = (
+        lean[0].centred_within(c[0], c[1], wp),
+        lean[1].centred_within(c[2], c[3], wq),
+    );
     let pq_c = both_along(&lp, &lq, &at_centre);
-    let pq_o = both_along(&lp, &lq, &pred.series(xi, ORDER + 2));
+    let pq_o = both_along(&lp, &lq, &pred.series(&sh_o, xi, ORDER + 2));
     let (g_c, g_o) = (residual(&pq_c), residual(&pq_o));
-    let j_c = jacobian(&lp, &lq, &pred.series(point(centre), 3), &free);
-    let j_o = jacobian(&lp, &lq, &pred.series(xi, 4), &free);
+    let j_c = jacobian(&lp, &lq, &pred.series(&sh_c, point(centre), 3), &free);
+    let j_o = jacobian(&lp, &lq, &pred.series(&sh_o, xi, 4), &free);
     // The preconditioner follows the Jacobian along the segment: C(τ) = C0 + C1·τ + C2·τ², the
     // inverse of J0 + J1·τ + J2·τ² to second order (midpoints; any C(τ) is rigorous, this one
     // keeps I − C·J third order in τ).
@@ -583,7 +648,7 @@ pub(crate) fn prove_segment(
         .chain(a_over.iter().flatten())
         .any(|v| v.is_empty() || !v.inf().is_finite() || !v.sup().is_finite())
     {
-        return Err(SegmentFailure::Singular);
+        return Err(Some(SegmentFailure::Singular));
     }
     // The uniqueness box: room for twice the residual's image and for what must fit inside.
     let rad: [f64; 3] = std::array::from_fn(|r| {
@@ -601,6 +666,11 @@ pub(crate) fn prove_segment(
         model: [Interval::ENTIRE; 3],
     };
     let b = proof.tube_over(x_range[0], x_range[1]);
+    // Every evaluation of the forms below is on the tube or inside it (the predictor's range
+    // lies in it too).
+    if !(lp.covers(b[0], b[1]) && lq.covers(b[2], b[3])) {
+        return Err(None);
+    }
     // K = −C·g + (A − C·ΔJ(x))·x for the offsets x (ΔJ: the Jacobian's change off the
     // predictor, over the segment from 0 to x, inside Y and so inside B).
     // The second derivatives over the tube, once for every use below.
@@ -609,7 +679,7 @@ pub(crate) fn prove_segment(
     let k = image(&y).ok_or(SegmentFailure::Singular)?;
     let inside = (0..3).all(|r| k[r].interior(y[r]));
     if !inside {
-        return Err(SegmentFailure::NotContracting);
+        return Err(Some(SegmentFailure::NotContracting));
     }
     // Every zero in Y lies in K; the image of K encloses them too.
     if let Some(k2) = image(&k) {

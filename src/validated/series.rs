@@ -83,12 +83,16 @@ impl<const N: usize> SeriesN<N> {
 impl<const N: usize> Add for SeriesN<N> {
     type Output = Self;
     fn add(self, rhs: Self) -> Self {
-        let n = Self::len2(&self, &rhs);
-        let mut r = self;
-        for i in 0..n {
-            r.c[i] = self.coeff(i) + rhs.coeff(i);
+        // The longer operand's coefficients beyond the shorter's length stay as they are
+        // (adding an exact zero to an interval is exact).
+        let (mut r, short) = if self.len >= rhs.len {
+            (self, rhs)
+        } else {
+            (rhs, self)
+        };
+        for i in 0..short.len {
+            r.c[i] += short.c[i];
         }
-        r.len = n;
         r
     }
 }
