@@ -421,6 +421,15 @@ pub(crate) fn assemble(
     };
     let first = build(&[], false)?;
     if !missed(&first.edge) {
+        // Knots raised in multiplicity where every fine knot was already a break: more fine
+        // spans there usually do with fewer control points (S31/S32's first loop at 1e-7: 153
+        // control points, 13 knots of multiplicity 5 in a row).
+        if !first.raised.is_empty() {
+            let dense = build(&first.raised, false)?.edge;
+            if !missed(&dense) && dense.curve.points.len() < first.edge.curve.points.len() {
+                return Ok(dense);
+            }
+        }
         return Ok(first.edge);
     }
     let mut best = first.edge;
@@ -449,12 +458,14 @@ pub(crate) fn assemble(
     Ok(best)
 }
 
-/// An edge of [`assemble_with`], the links holding a span above the request (part, tube), and
-/// whether the request left more room above the floor than [`LEAST_ROOM`] (and is not below
+/// An edge of [`assemble_with`], the links holding a span above the request (part, tube), the
+/// links beside a raised knot, and whether the request left more room above the floor than [`LEAST_ROOM`] (and is not below
 /// the floor), so that aiming at the least room is another aim.
 struct Built {
     edge: Edge,
     stalled: Vec<(usize, usize)>,
+    /// The links (part, tube) next to an interior coarse knot of raised multiplicity.
+    raised: Vec<(usize, usize)>,
     least_room_differs: bool,
 }
 
@@ -627,9 +638,23 @@ fn assemble_with(
             }
         }
     }
+    let mut raised = Vec::new();
+    for (pi, (d, f)) in data.iter().zip(&fits).enumerate() {
+        let last = d.range.len();
+        for &(at, mult) in f.breaks.iter().filter(|b| b.1 > 1 && b.0 > 0 && b.0 < last) {
+            debug_assert!(mult > 1);
+            for m in [at - 1, at] {
+                let key = (pi, spans[d.range.start + m].tube);
+                if !raised.contains(&key) {
+                    raised.push(key);
+                }
+            }
+        }
+    }
     Ok(Built {
         edge: e,
         stalled,
+        raised,
         least_room_differs: requested.is_some_and(|r| floor <= r && goal > least),
     })
 }
