@@ -74,6 +74,28 @@ pub struct DotAcc {
     n: u32,
 }
 
+/// The smaller of `x` and `y` by one comparison (a single `minsd`; `f64::min`'s care for a NaN
+/// operand costs a compare and a blend more). A NaN can only come from a non-finite operand,
+/// which [`DotAcc::finish`] turns into the whole line anyway.
+#[inline(always)]
+fn min(x: f64, y: f64) -> f64 {
+    if x < y {
+        x
+    } else {
+        y
+    }
+}
+
+/// The larger of `x` and `y` by one comparison (see [`min`]).
+#[inline(always)]
+fn max(x: f64, y: f64) -> f64 {
+    if x > y {
+        x
+    } else {
+        y
+    }
+}
+
 impl DotAcc {
     /// An empty sum.
     #[inline]
@@ -86,9 +108,9 @@ impl DotAcc {
     pub fn add_prod(&mut self, x: Interval, y: Interval) {
         let (a, b, c, d) = (x.inf(), x.sup(), y.inf(), y.sup());
         let (p1, p2, p3, p4) = (a * c, a * d, b * c, b * d);
-        self.lo += p1.min(p2).min(p3.min(p4));
-        self.hi += p1.max(p2).max(p3.max(p4));
-        self.mag += a.abs().max(b.abs()) * c.abs().max(d.abs());
+        self.lo += min(min(p1, p2), min(p3, p4));
+        self.hi += max(max(p1, p2), max(p3, p4));
+        self.mag += max(a.abs(), b.abs()) * max(c.abs(), d.abs());
         // Any infinite or NaN bound (unbounded or empty operands) poisons this sum.
         self.check += a + b + c + d;
         self.n += 1;
