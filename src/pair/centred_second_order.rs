@@ -56,10 +56,11 @@ impl CentredSecondOrder for RationalBezierPatch {
         let mut differences = self.net_differences().iter();
         // Power coefficients at the centre: T_kl = C(m,k) C(n,l) Σ Δₛᵏ Δᵣˡ h_ij B_i^{m−k}(cs) B_j^{n−l}(cr).
         let mut t = vec![[z; 4]; (m + 1) * (n + 1)];
+        // The Bernstein values of every degree the sums need, each once.
+        let brs: Vec<Vec<T>> = (0..=n).map(|l| bernstein(n - l, cr)).collect();
         for k in 0..=m {
             let bs = bernstein(m - k, cs);
-            for l in 0..=n {
-                let br = bernstein(n - l, cr);
+            for (l, br) in brs.iter().enumerate() {
                 let mut acc = [z; 4];
                 for i in 0..=m - k {
                     for j in 0..=n - l {
