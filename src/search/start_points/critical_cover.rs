@@ -168,7 +168,9 @@ fn examine(
     let cq = parent.map(|i| point(i.mid()));
     let [pm, pms, pmt] = p.first_order(mp[0], mp[1]);
     let [qc, ..] = q.first_order(cq[0], cq[1]);
-    let [_, ps, pt] = p.first_order(xc[0], xc[1]);
+    // P's first and second partials over the cell, once for the graph's and the signs' tests.
+    let sp = p.second_order(xc[0], xc[1]);
+    let [_, ps, pt, ..] = sp;
     let [_, qu, qv] = q.first_order(parent[0], parent[1]);
     // Krawczyk image of G(σ, t, ·) over `parent`, for all (σ, t) in the cell.
     let gap: [Interval; 3] = std::array::from_fn(|k| pm[k] - qc[k]);
@@ -215,7 +217,6 @@ fn examine(
         1.0
     };
     let m: [f64; 3] = std::array::from_fn(|k| np[k] + flip * nq[k]);
-    let sp = p.second_order(xc[0], xc[1]);
     let sq = q.second_order(uv[0], uv[1]);
     let mut signed = false;
     if m.iter().all(|x| x.is_finite()) && m.iter().any(|&x| x != 0.0) {
