@@ -377,8 +377,8 @@ pub(super) fn graph_image(
     let cq = xq.map(|i| point(i.mid()));
     let [pm, ..] = p.first_order(mp[0], mp[1]);
     let [qc, ..] = q.first_order(cq[0], cq[1]);
-    let [_, ps, pt, ..] = p.second_order_centred(xp[0], xp[1], mp[0], mp[1]);
-    let [_, qu, qv, ..] = q.second_order_centred(xq[0], xq[1], cq[0], cq[1]);
+    let [_, ps, pt] = p.first_order_centred(xp[0], xp[1], mp[0], mp[1]);
+    let [_, qu, qv] = q.first_order_centred(xq[0], xq[1], cq[0], cq[1]);
     let gap: [Interval; 3] = std::array::from_fn(|k| pm[k] - qc[k]);
     let f: [Interval; 2] = std::array::from_fn(|i| dot_point(&e[i], &gap));
     let jp: [[Interval; 2]; 2] =

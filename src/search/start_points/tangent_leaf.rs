@@ -20,7 +20,6 @@ use super::project_onto_intersection;
 use crate::geometry::piece::Piece;
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::scalar::point;
-use crate::pair::centred_second_order::CentredSecondOrder;
 use crate::pair::field::ScalarSurface;
 use crate::pair::krawczyk::krawczyk_image_n;
 use crate::pair::newton::{refine, Constraint};
@@ -129,8 +128,8 @@ fn image(
     let pa = at(y[0], s);
     // Centred forms: the partials' terms cancel where the surfaces meet at a small angle, and
     // natural interval evaluation would lose that.
-    let [_, au, av, ..] = a.second_order_centred(pa[0], pa[1], pm[0], pm[1]);
-    let [_, bu, bv, ..] = b.second_order_centred(y[1], y[2], ym[1], ym[2]);
+    let [_, au, av] = a.first_order_centred(pa[0], pa[1], pm[0], pm[1]);
+    let [_, bu, bv] = b.first_order_centred(y[1], y[2], ym[1], ym[2]);
     let (a_fixed, a_free) = if index == 0 { (au, av) } else { (av, au) };
     let jac: [[Interval; 3]; 3] = std::array::from_fn(|r| [a_fixed[r], -bu[r], -bv[r]]);
     let c = Matrix3::from_fn(|r, k| jac[r][k].mid()).try_inverse()?;
