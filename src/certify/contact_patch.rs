@@ -216,13 +216,7 @@ impl ContactPatch<'_> {
         orders: [(usize, usize); K],
     ) -> [[T; 3]; K] {
         let (m, n) = (net.m, net.n);
-        let d = self.patch.domain();
-        let du = T::from_f64(d.u[1]) - T::from_f64(d.u[0]);
-        let dv = T::from_f64(d.v[1]) - T::from_f64(d.v[0]);
-        let cs = (cu - T::from_f64(d.u[0])) / du;
-        let cr = (cv - T::from_f64(d.v[0])) / dv;
-        let (ds, dr) = ((u - cu) / du, (v - cv) / dv);
-        let (ku, kv) = (T::one() / du, T::one() / dv);
+        let [[cs, cr], [ds, dr], [ku, kv]] = self.patch.centred_offsets(u, v, cu, cv);
         // Powers of the offsets, and each mixed monomial once (on demand).
         let mut ps = vec![T::one(); m + 1];
         let mut pr = vec![T::one(); n + 1];

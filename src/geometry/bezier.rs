@@ -370,6 +370,23 @@ impl RationalBezierPatch {
         }
     }
 
+    /// What a power form centred at `(cu, cv)` evaluates `(u, v)` with, in `S`: the centre's
+    /// normalised parameters `[cs, cr]`, the offsets `[ds, dr] = [(u − cu)/Δu, (v − cv)/Δv]`, and
+    /// the chain rule's factors `[1/Δu, 1/Δv]` (`Δ` the domain's sides).
+    pub(crate) fn centred_offsets<S: Scalar>(&self, u: S, v: S, cu: S, cv: S) -> [[S; 2]; 3] {
+        let d = &self.domain;
+        let du = S::from_f64(d.u[1]) - S::from_f64(d.u[0]);
+        let dv = S::from_f64(d.v[1]) - S::from_f64(d.v[0]);
+        [
+            [
+                (cu - S::from_f64(d.u[0])) / du,
+                (cv - S::from_f64(d.v[0])) / dv,
+            ],
+            [(u - cu) / du, (v - cv) / dv],
+            [S::one() / du, S::one() / dv],
+        ]
+    }
+
     /// The normalised parameters `(s, r) ∈ [0,1]²` of declared parameters `(u, v)`, in `S`.
     fn normalise<S: Scalar>(&self, u: S, v: S) -> (S, S, S, S) {
         let d = &self.domain;
@@ -476,14 +493,7 @@ impl RationalBezierPatch {
         diff: impl Fn(usize, usize, usize, usize) -> [S; 4],
     ) -> ([S; 3], [S; 3], S) {
         let [m, n] = self.degree;
-        let d = &self.domain;
-        let du = S::from_f64(d.u[1]) - S::from_f64(d.u[0]);
-        let dv = S::from_f64(d.v[1]) - S::from_f64(d.v[0]);
-        let cs = (cu - S::from_f64(d.u[0])) / du;
-        let cr = (cv - S::from_f64(d.v[0])) / dv;
-        let ds = (u - cu) / du;
-        let dr = (v - cv) / dv;
-        let (ku, kv) = (S::one() / du, S::one() / dv);
+        let [[cs, cr], [ds, dr], [ku, kv]] = self.centred_offsets(u, v, cu, cv);
         let z = S::zero();
         // Forward differences Δₛᵏ Δᵣˡ of the homogeneous net, then the coefficients T_kl.
         let mut t = vec![[z; 4]; (m + 1) * (n + 1)];

@@ -67,13 +67,7 @@ fn centred_orders<T: Scalar>(
     orders: usize,
 ) -> [[T; 3]; 6] {
     let [m, n] = patch.degree();
-    let d = patch.domain();
-    let du = T::from_f64(d.u[1]) - T::from_f64(d.u[0]);
-    let dv = T::from_f64(d.v[1]) - T::from_f64(d.v[0]);
-    let cs = (cu - T::from_f64(d.u[0])) / du;
-    let cr = (cv - T::from_f64(d.v[0])) / dv;
-    let (ds, dr) = ((u - cu) / du, (v - cv) / dv);
-    let (ku, kv) = (T::one() / du, T::one() / dv);
+    let [[cs, cr], [ds, dr], [ku, kv]] = patch.centred_offsets(u, v, cu, cv);
     let z = T::zero();
     // The net's forward differences, in the order of the loops below.
     let mut differences = patch.net_differences().iter();
