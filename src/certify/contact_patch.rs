@@ -22,30 +22,12 @@
 //! another point); only rounding and interval widths differ, and every coefficient is an
 //! outward-rounded enclosure.
 
+use crate::geometry::bernstein::{bernstein_products as bernstein, binomial};
 use crate::geometry::RationalBezierPatch;
 use crate::pair::centred_second_order::CentredSecondOrder;
 use crate::pair::field::ScalarSurface;
 use crate::Scalar;
 use inari::Interval;
-
-/// `C(n, k)` as an exact small float.
-pub(crate) fn binomial(n: usize, k: usize) -> f64 {
-    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
-}
-
-/// Bernstein values `B_i^d(t)`, `i = 0..=d`.
-pub(crate) fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
-    let mut a = vec![T::one(); d + 1];
-    let mut b = vec![T::one(); d + 1];
-    let one_minus = T::one() - t;
-    for i in 1..=d {
-        a[i] = a[i - 1] * t;
-        b[i] = b[i - 1] * one_minus;
-    }
-    (0..=d)
-        .map(|i| T::from_f64(binomial(d, i)) * a[i] * b[d - i])
-        .collect()
-}
 
 /// The forward differences of a patch's net: of its Cartesian net when it is polynomial
 /// ([`PowerNet::of`]), of its homogeneous net otherwise ([`PowerNet::homogeneous`]).

@@ -21,9 +21,11 @@
 //! cylinders 40 % of a chain's time was there); its second partials, formed once per link over
 //! a box, stay the patch's own.
 
-use crate::certify::contact_patch::{bernstein, binomial, PowerNet};
+use crate::certify::contact_patch::PowerNet;
+use crate::geometry::bernstein::{bernstein_products as bernstein, binomial};
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::imul::mul as imul;
+use crate::numeric::rounding::mul_dir;
 use crate::numeric::scalar::point;
 use crate::Scalar;
 use inari::Interval;
@@ -294,12 +296,13 @@ impl Taylor {
     /// negligible over `radius` ([`DROPPED`], [`UNSIGNED`]) but with a bound on them.
     fn derivative_forms(&self, x: usize, radius: Option<[f64; 2]>) -> [DerivativeForm; 6] {
         let (m, n, t) = (self.m, self.n, &self.coeffs[x]);
-        // ρᵏ: exact powers of two (or underflowed, covered by the bound's pad below).
+        // ρᵏ rounded upward (exact powers of two unless they underflow): upper bounds, so the
+        // products below only err by their own rounding.
         let [rs, rr] = radius.unwrap_or([1.0; 2]);
         let powers = |r: f64, d: usize| {
             let mut p = vec![1.0; d + 1];
             for k in 1..=d {
-                p[k] = p[k - 1] * r;
+                p[k] = mul_dir(p[k - 1], r, true);
             }
             p
         };
@@ -330,9 +333,10 @@ impl Taylor {
             }
             let (km, ln) = (m - a, n - b);
             let mut c = vec![point(0.0); (km + 1) * (ln + 1)];
-            // Σ over the dropped terms of |T|·falling·ρ_uᵏ·ρ_vˡ (non-negative terms) in
-            // round-to-nearest, then enlarged by the relative error of N such sums and products
-            // ((N + 2)·2⁻⁵³, with room to spare) and an underflow pad.
+            // Σ over the dropped terms of |T|·falling·ρ_uᵏ·ρ_vˡ (non-negative terms, the powers
+            // upper bounds) in round-to-nearest, then enlarged by the relative error of N such
+            // sums and products ((N + 2)·2⁻⁵³, with room to spare) and a pad for the absolute
+            // error of products that underflow (each below 2⁻¹⁰⁷⁵), as `DotAcc` bounds its sums.
             let (mut rest, mut terms) = (0.0, 0.0);
             for k in 0..=km {
                 for l in 0..=ln {

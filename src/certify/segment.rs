@@ -30,6 +30,7 @@
 //! wrapping; one Taylor form of `F` along a known polynomial and one interval Jacobian.
 
 use crate::certify::lean_patch::{Centred, LeanPatch};
+use crate::geometry::bernstein::binomial;
 use crate::numeric::imul::mul as imul;
 use crate::numeric::scalar::point;
 #[cfg(not(target_feature = "avx512f"))]
@@ -435,15 +436,15 @@ fn polynomial_range(h: &[Interval; ORDER + 2], tau: Interval) -> Interval {
     }
 }
 
-/// `C(n, k)` for `n, k ≤ ORDER + 1` (exact small integers).
+/// `C(n, k)` for `n, k ≤ ORDER + 1` (exact small integers; zero for `k > n`), tabled at compile
+/// time from [`binomial`].
 const BINOMIAL: [[f64; ORDER + 2]; ORDER + 2] = {
     let mut t = [[0.0; ORDER + 2]; ORDER + 2];
     let mut n = 0;
     while n < ORDER + 2 {
-        t[n][0] = 1.0;
-        let mut k = 1;
+        let mut k = 0;
         while k <= n {
-            t[n][k] = t[n - 1][k - 1] + t[n - 1][k];
+            t[n][k] = binomial(n, k);
             k += 1;
         }
         n += 1;

@@ -439,8 +439,7 @@ fn assemble_with(
     let mut raised = Vec::new();
     for (pi, (d, f)) in data.iter().zip(&fits).enumerate() {
         let last = d.range.len();
-        for &(at, mult) in f.breaks.iter().filter(|b| b.1 > 1 && b.0 > 0 && b.0 < last) {
-            debug_assert!(mult > 1);
+        for &(at, _) in f.breaks.iter().filter(|b| b.1 > 1 && b.0 > 0 && b.0 < last) {
             for m in [at - 1, at] {
                 let key = (pi, spans[d.range.start + m].tube);
                 if !raised.contains(&key) {

@@ -59,8 +59,30 @@ pub(crate) fn bernstein_values<S: Scalar>(deg: usize, t: S, b: &mut [S]) {
 }
 
 /// The binomial coefficient `C(n, k)` (exact in `f64` for the degrees of a patch).
-pub(crate) fn binomial(n: usize, k: usize) -> f64 {
-    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+pub(crate) const fn binomial(n: usize, k: usize) -> f64 {
+    let mut acc = 1.0;
+    let mut i = 0;
+    while i < k {
+        acc = acc * (n - i) as f64 / (i + 1) as f64;
+        i += 1;
+    }
+    acc
+}
+
+/// The Bernstein values `B_i^d(t) = C(d, i)·tⁱ·(1 − t)^{d−i}`, `i = 0..=d`, each formed as that
+/// product (the power form's centred coefficients are built from these; the in-place recurrence
+/// of [`bernstein_values`] gives the same values with other interval widths).
+pub(crate) fn bernstein_products<T: Scalar>(d: usize, t: T) -> Vec<T> {
+    let mut a = vec![T::one(); d + 1];
+    let mut b = vec![T::one(); d + 1];
+    let one_minus = T::one() - t;
+    for i in 1..=d {
+        a[i] = a[i - 1] * t;
+        b[i] = b[i - 1] * one_minus;
+    }
+    (0..=d)
+        .map(|i| T::from_f64(binomial(d, i)) * a[i] * b[d - i])
+        .collect()
 }
 
 /// The forward difference `Δₛᵏ Δᵣˡ` of a net at `(i, j)`: `Σ (−1)^{k−a+l−b} C(k,a) C(l,b) net(i+a, j+b)`.

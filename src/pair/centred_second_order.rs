@@ -7,7 +7,7 @@
 //! `(cu, cv)` the terms are powers of the small offsets `u − cu`, `v − cv`, as
 //! [`RationalBezierPatch::scaled_partials_centred`] does for first order.
 
-use crate::geometry::bernstein::binomial;
+use crate::geometry::bernstein::{bernstein_products as bernstein, binomial};
 use crate::geometry::RationalBezierPatch;
 use crate::pair::field::ScalarSurface;
 use crate::Scalar;
@@ -29,15 +29,6 @@ fn powers<T: Scalar>(x: T, d: usize) -> Vec<T> {
         out[i] = out[i - 1] * x;
     }
     out
-}
-
-/// Bernstein values `B_i^d(t)`, `i = 0..=d`.
-fn bernstein<T: Scalar>(d: usize, t: T) -> Vec<T> {
-    let a = powers(t, d);
-    let b = powers(T::one() - t, d);
-    (0..=d)
-        .map(|i| T::from_f64(binomial(d, i)) * a[i] * b[d - i])
-        .collect()
 }
 
 impl CentredSecondOrder for RationalBezierPatch {
