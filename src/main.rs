@@ -484,7 +484,7 @@ fn certificate_line(c: &BranchCertificate, tolerance: f64) -> String {
             } else {
                 "does NOT meet"
             };
-            format!(
+            let line = format!(
                 "    certified: {} steps, tolerance {:.3e} ({meets} {:.1e}), ends {} / {}, max width {:.3e}, {:.1} ms",
                 b.steps(),
                 b.certified_tolerance,
@@ -493,7 +493,18 @@ fn certificate_line(c: &BranchCertificate, tolerance: f64) -> String {
                 b.ends[1],
                 max_width,
                 ms
-            )
+            );
+            match &b.tolerance_limit {
+                Some(l) if b.certified_tolerance > tolerance => {
+                    let at = l.near.map(|x| format!("{:.6}", x.mid()));
+                    format!(
+                        "{line}\n    why: {} (near σ, t, u, v = {})",
+                        l.reason,
+                        at.join(", ")
+                    )
+                }
+                _ => line,
+            }
         }
         Err(e) => format!("    certification FAILED ({ms:.1} ms): {e}"),
     }

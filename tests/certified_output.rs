@@ -307,6 +307,7 @@ fn singular_and_close_branch_ends_become_box_events() {
             CertifiedEnd::CloseBranches { h: 1e-9, near },
         ],
         widths: vec![1e-13],
+        tolerance_limit: None,
     };
     let xyz_of = |_: &[Interval; 4]| Some([iv(1.0, 2.0), iv(3.0, 4.0), iv(5.0, 6.0)]);
     let events = ssitrace::io::result_json::certified_events_to_json(4, &cb, &xyz_of);

@@ -233,6 +233,24 @@ pub struct CertifiedBranch {
     /// parameters other than the fastest-moving one, after the contraction / re-anchoring when it
     /// is on. With it this stays near rounding level; without it, it grows along the branch.
     pub widths: Vec<f64>,
+    /// Where and why a cover chain kept a link wider than it aimed at, because shorter links
+    /// did not narrow it (the widest such link); `None` when every link met the aim, and on
+    /// Taylor-engine certificates. A cover chain whose tolerance is above the request always
+    /// has one.
+    pub tolerance_limit: Option<ToleranceLimit>,
+}
+
+/// Why a certified branch's tolerance is wider than the tracer aimed at, and where
+/// ([`CertifiedBranch::tolerance_limit`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ToleranceLimit {
+    /// What held the tube up: the surfaces' near tangency there (with the sine of the angle
+    /// between their normals) or the rounding of the coordinates.
+    pub reason: String,
+    /// The parameter box `(σ, t, u, v)` of that link.
+    pub near: [Interval; 4],
+    /// That link's proven model-space radius.
+    pub width: f64,
 }
 
 impl CertifiedBranch {

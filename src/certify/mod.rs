@@ -29,6 +29,8 @@ pub mod trace;
 pub use budget::StepBudget;
 pub use chain::{certify_chain, ChainOptions};
 pub use contact::{certify_contact, certify_contact_events, CertifiedContact, ContactOptions};
-pub use curve::{AlongParameter, CertifiedBranch, CertifiedEnd, EnclosureBox, TubePiece};
+pub use curve::{
+    AlongParameter, CertifiedBranch, CertifiedEnd, EnclosureBox, ToleranceLimit, TubePiece,
+};
 pub(crate) use segment::PREDICTOR_DEGREE;
 pub use trace::{certify_branch, certify_branch_profiled, CertifyOptions, TraceProfile};

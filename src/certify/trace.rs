@@ -231,6 +231,7 @@ pub fn certify_branch_profiled(
         certified_tolerance,
         ends: [first_end, forward.end],
         widths,
+        tolerance_limit: None,
     };
     Ok((branch, profile))
 }

@@ -427,6 +427,16 @@ pub fn certified_to_json(c: &CertifiedBranch, tubes: bool) -> Value {
     );
     obj.insert("max_width".into(), json!(max_width));
     obj.insert("arc_length_proven".into(), json!(c.arc_length_proven()));
+    if let Some(l) = &c.tolerance_limit {
+        obj.insert(
+            "tolerance_limit".into(),
+            json!({
+                "reason": l.reason,
+                "near": intervals_to_json(&l.near),
+                "width": l.width,
+            }),
+        );
+    }
     if tubes {
         obj.insert(
             "tubes".into(),

@@ -134,7 +134,11 @@ pub(crate) struct Figures {
     /// Certified boundary ends whose end box does not reach a side of that surface's domain.
     pub(crate) inconsistent_ends: usize,
     pub(crate) twice: usize,
+    /// Certificates above the requested tolerance that do not say why.
     pub(crate) above_tolerance: usize,
+    /// Certificates above the requested tolerance that say where and why (nearly tangent
+    /// surfaces, rounding): allowed, counted.
+    pub(crate) above_tolerance_stated: usize,
     pub(crate) unproven_ends: usize,
     /// Pairs whose search was not complete (undecided regions reported).
     pub(crate) incomplete_searches: usize,
@@ -235,12 +239,25 @@ pub(crate) fn compare(c: &Comparison<'_>, fig: &mut Figures) {
         match b.certified() {
             Some(cb) => {
                 if cb.certified_tolerance > c.required {
-                    fig.above_tolerance += 1;
-                    fig.notes.push(format!(
-                        "seed {seed} branch {}: tolerance {:e}",
-                        b.id(),
-                        cb.certified_tolerance
-                    ));
+                    match &cb.tolerance_limit {
+                        Some(l) => {
+                            fig.above_tolerance_stated += 1;
+                            fig.notes.push(format!(
+                                "seed {seed} branch {}: tolerance {:e}, why: {}",
+                                b.id(),
+                                cb.certified_tolerance,
+                                l.reason
+                            ));
+                        }
+                        None => {
+                            fig.above_tolerance += 1;
+                            fig.notes.push(format!(
+                                "seed {seed} branch {}: tolerance {:e} (no reason stated)",
+                                b.id(),
+                                cb.certified_tolerance
+                            ));
+                        }
+                    }
                 }
                 if cb
                     .ends
@@ -449,9 +466,9 @@ pub(crate) fn print_figures(fig: &Figures) {
     let worst = times.last().copied().unwrap_or(0.0);
     let total: f64 = times.iter().sum();
     println!(
-        "pairs {} branches {} reference points {} | soundness violations {} | missed {} | in undecided regions {} | arcs twice {} | above tolerance {} | unproven or singular ends {} | boundary ends off the boundary {} | not certified {} | time median {:.3} s worst {:.3} s",
+        "pairs {} branches {} reference points {} | soundness violations {} | missed {} | in undecided regions {} | arcs twice {} | above tolerance {} (with a stated reason {}) | unproven or singular ends {} | boundary ends off the boundary {} | not certified {} | time median {:.3} s worst {:.3} s",
         fig.pairs, fig.branches, fig.reference_points, fig.soundness_violations, fig.missed_points,
-        fig.in_undecided, fig.twice, fig.above_tolerance, fig.unproven_ends, fig.inconsistent_ends, fig.not_certified, median, worst
+        fig.in_undecided, fig.twice, fig.above_tolerance, fig.above_tolerance_stated, fig.unproven_ends, fig.inconsistent_ends, fig.not_certified, median, worst
     );
     let w = &fig.pairs_with;
     println!(
@@ -508,7 +525,7 @@ pub(crate) fn fresh_base() -> u64 {
 }
 
 /// What every pair must satisfy: no certified claim is false, no certificate misses the
-/// requested tolerance. Fresh seeds and the soak check this; the rarer topology failures that a
+/// requested tolerance without saying where and why. Fresh seeds and the soak check this; the rarer topology failures that a
 /// long soak may find are printed, not asserted, so a fresh seed cannot fail CI on a known open
 /// problem. The fixed seeds assert everything ([`assert_clean`]).
 pub(crate) fn assert_sound(fig: &Figures) {
@@ -521,12 +538,14 @@ pub(crate) fn assert_sound(fig: &Figures) {
     );
 }
 
-/// Everything: sound, complete, each arc once, every certificate within the tolerance.
+/// Everything: sound, complete, each arc once, every certificate within the tolerance (with
+/// or without a reason).
 pub(crate) fn assert_clean(fig: &Figures) {
     assert_eq!(fig.soundness_violations, 0, "{:?}", fig.notes);
     assert_eq!(fig.missed_points, 0, "{:?}", fig.notes);
     assert_eq!(fig.twice, 0, "{:?}", fig.notes);
     assert_eq!(fig.above_tolerance, 0, "{:?}", fig.notes);
+    assert_eq!(fig.above_tolerance_stated, 0, "{:?}", fig.notes);
     assert_eq!(fig.inconsistent_ends, 0, "{:?}", fig.notes);
     assert!(
         fig.reference_points > fig.pairs,

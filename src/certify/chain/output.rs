@@ -2,6 +2,7 @@
 
 use super::slice::tight_slice;
 use super::*;
+use crate::certify::curve::ToleranceLimit;
 use walker::Link;
 
 /// The certificate from the backward half's links (walked outwards from the start) and the
@@ -27,6 +28,18 @@ pub(super) fn assemble(
     tubes.extend(ft);
     let all = bwd.iter().chain(fwd);
     let certified_tolerance = all.clone().map(|l| l.radius_xyz).fold(0.0, f64::max);
+    // The widest link kept above the aim, with why.
+    let tolerance_limit = all
+        .clone()
+        .filter_map(|l| l.limit.as_ref().map(|r| (l, r)))
+        .max_by(|a, b| a.0.radius_xyz.total_cmp(&b.0.radius_xyz))
+        .map(|(l, reason)| ToleranceLimit {
+            reason: reason.describe(l.radius_xyz),
+            near: l
+                .proof
+                .box_over(l.cover_from.min(l.to), l.cover_from.max(l.to)),
+            width: l.radius_xyz,
+        });
     let widths = all
         .map(|l| l.proof.k.iter().map(|k| k.wid()).fold(0.0, f64::max))
         .collect();
@@ -39,6 +52,7 @@ pub(super) fn assemble(
         certified_tolerance,
         ends,
         widths,
+        tolerance_limit,
     })
 }
 

@@ -61,6 +61,70 @@ impl Walker<'_> {
         locate_singular_point_within(self.p, self.q, *x, tol, 1e-6, reach * scale, 50).is_some()
     }
 
+    /// Whether a link from `a` to `b`, which halving did not narrow, is held up by the
+    /// conditioning alone, so that keeping it is better than stopping: no box around the link
+    /// (widened by up to 1e-4 of the domains) has normals whose cross product contains zero;
+    /// or there is one (nearly tangent surfaces: on a torus 1e-8 from tangency a loop of radius
+    /// 1e-4 lies wholly inside it) but Gauss–Newton finds no point of `P = Q` with parallel
+    /// normals within that reach. Guidance only; the link's own proof is what is claimed, and
+    /// the certificate says why its tolerance is wider ([`Self::limit_reason`]).
+    pub(super) fn conditioning_only(&self, a: &[f64; 4], b: &[f64; 4]) -> bool {
+        self.singular_box(a, b, 1e-4).is_none() || !self.singular_point_near(b, 1e-4)
+    }
+
+    /// Why a link at `x` was kept although wider than the aim: the rounding of the
+    /// coordinates, or the angle between the surfaces' normals (its sine at `x`, an `f64`
+    /// estimate for the report).
+    pub(super) fn limit_at(&self, x: &[f64; 4], rounding: bool) -> LinkLimit {
+        if rounding {
+            return LinkLimit::Rounding;
+        }
+        let (a, b) = (self.p.derivs_f64(x[0], x[1]), self.q.derivs_f64(x[2], x[3]));
+        let cross3 = |u: [f64; 3], v: [f64; 3]| {
+            [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ]
+        };
+        let norm = |u: [f64; 3]| u.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let (np, nq) = (cross3(a.su, a.sv), cross3(b.su, b.sv));
+        LinkLimit::Conditioning {
+            sine: norm(cross3(np, nq)) / (norm(np) * norm(nq)),
+        }
+    }
+}
+
+/// Why a link was kept although wider than the chain's aim ([`Walker::limit_at`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum LinkLimit {
+    /// The tube is at the rounding level of the coordinates.
+    Rounding,
+    /// The surfaces are nearly tangent there (`sine` of the angle between the normals) and no
+    /// singular point is near: the residual's rounding over that sine sets the width.
+    Conditioning {
+        /// The sine at the link's start (an estimate).
+        sine: f64,
+    },
+}
+
+impl LinkLimit {
+    /// The reason reported for a link of model width `width`.
+    pub(super) fn describe(&self, width: f64) -> String {
+        match self {
+            LinkLimit::Rounding => {
+                format!("the tube ({width:.1e}) is at the rounding level of the coordinates")
+            }
+            LinkLimit::Conditioning { sine } => format!(
+                "nearly tangent surfaces (sine of the angle between the normals {sine:.1e}, no \
+                 singular point near): shorter links did not narrow the tube below {width:.1e}, \
+                 the rounding of the residual over that sine"
+            ),
+        }
+    }
+}
+
+impl Walker<'_> {
     /// Why no link could be proven between `a` and `b`: a singular box if the normals'
     /// cross product cannot be bounded away from zero on a box around them (widened by up to
     /// 1e-4 of the domains: a link fails some way before a singular point, where the proven

@@ -1,6 +1,7 @@
 //! The walk of one half of a cover chain: links between guide points, split where needed,
 //! joined without gaps, and the end where the half stops.
 
+use super::singular::LinkLimit;
 use super::*;
 use crate::certify::lean_patch::{costlier_side, LeanPatch};
 use std::cell::Cell;
@@ -28,6 +29,8 @@ pub(super) struct Link {
     pub(super) end_slice: [Interval; 4],
     /// Whether `end_slice` was narrowed by [`tight_slice`] (see `Walker::settle_end_slice`).
     pub(super) tightened: bool,
+    /// Why the link was kept although wider than the tolerance (`None`: it is not).
+    pub(super) limit: Option<LinkLimit>,
 }
 
 impl Link {
@@ -263,6 +266,7 @@ impl<'a> Walker<'a> {
             // pairs need it: a wide slice widens the next link's uniqueness box and the tube.
             end_slice: proof.box_over(to, to),
             tightened: false,
+            limit: None,
         })
     }
 
@@ -459,13 +463,15 @@ impl<'a> Walker<'a> {
                 // A short link that halving did not narrow: its width is rounding (a tolerance
                 // below rounding was asked for) or the conditioning away from any singular
                 // point; keep it (the certificate then reports a tolerance above the
-                // requested one instead of failing).
-                Attempt::TooWide(link)
+                // requested one, and why, instead of failing).
+                Attempt::TooWide(mut link)
                     if wider.is_some_and(|w| link.radius_xyz > 0.5 * w)
                         && (link.radius_xyz <= self.rounding_floor(&cur)
                             || (scaled_dist(&cur.x, &tgt.x, &self.scales) < FLOOR_LINK
-                                && self.singular_box(&cur.x, &tgt.x, 1e-4).is_none())) =>
+                                && self.conditioning_only(&cur.x, &tgt.x))) =>
                 {
+                    let rounding = link.radius_xyz <= self.rounding_floor(&cur);
+                    link.limit = Some(self.limit_at(&cur.x, rounding));
                     Some(link)
                 }
                 Attempt::TooWide(link) => {
