@@ -495,11 +495,9 @@ fn a_paraboloid_with_interior_knots_against_a_plane_is_one_closed_curve() {
     check_edge("paraboloid", &e[0], &scene.shells, &off, &truth);
 }
 
-#[test]
-fn four_quarter_cylinders_against_an_oblique_plane_are_one_closed_ellipse() {
-    // Four faces, each a quarter of x² + y² = 1, z ∈ [−1, 1] (one rational Bézier span), sharing
-    // their edges; the plane z = 0.3·x + 0.2·y + 0.1 cuts the ellipse
-    // (cos θ, sin θ, 0.3·cos θ + 0.2·sin θ + 0.1): one closed curve of four parts, not four.
+/// Four faces, each a quarter of x² + y² = 1, z ∈ [−1, 1] (one rational Bézier span, the
+/// quarter from angle kπ/2 to (k + 1)π/2), sharing their edges.
+fn quarter_cylinders() -> Vec<Value> {
     let c = UNIT_CIRCLE_NET;
     let quarter = |k: usize| {
         let mut points = Vec::new();
@@ -514,13 +512,21 @@ fn four_quarter_cylinders_against_an_oblique_plane_are_one_closed_ellipse() {
                "knots": [[0.0, 0.0, 0.0, 1.0, 1.0, 1.0], [0.0, 0.0, 1.0, 1.0]],
                "points": points, "weights": weights})
     };
+    (0..4).map(quarter).collect()
+}
+
+#[test]
+fn four_quarter_cylinders_against_an_oblique_plane_are_one_closed_ellipse() {
+    // Four faces, each a quarter of x² + y² = 1, z ∈ [−1, 1] (one rational Bézier span), sharing
+    // their edges; the plane z = 0.3·x + 0.2·y + 0.1 cuts the ellipse
+    // (cos θ, sin θ, 0.3·cos θ + 0.2·sin θ + 0.1): one closed curve of four parts, not four.
     let z = |x: f64, y: f64| 0.3 * x + 0.2 * y + 0.1;
     let oblique = plane(
         [-2.0, -2.0, z(-2.0, -2.0)],
         [4.0, 0.0, 1.2],
         [0.0, 4.0, 0.8],
     );
-    let scene = json!({"surfaces": [(0..4).map(quarter).collect::<Vec<_>>(), oblique],
+    let scene = json!({"surfaces": [quarter_cylinders(), oblique],
                        "options": {"method": "both"}});
     let (scene, report) = run(scene);
     closed_and_proven("quarter cylinders", &report);
@@ -539,4 +545,77 @@ fn four_quarter_cylinders_against_an_oblique_plane_are_one_closed_ellipse() {
     assert_eq!(e.len(), 1);
     assert!(e[0].closed);
     check_edge("quarter cylinders", &e[0], &scene.shells, &off, &truth);
+}
+
+/// The quarter cylinders against an oblique plane made of two faces that share the line
+/// `x = 0`: the ellipse crosses the plane's face edge exactly where it crosses the cylinder's
+/// face edges, at `(0, ±1)`. There each branch ends at a corner of its piece pair and the next
+/// one lies in the diagonally neighbouring pair (both faces change at once); the pairs beside
+/// the corner hold a branch of one point. The join across such a corner is proven on a chart
+/// that maps one face's parameters onto its neighbour's across the shared edge. Three ways of
+/// writing the plane's second face: the same way as the first, its shared edge running the
+/// other way, and over another parameter domain (a NURBS face on `[0, 2] × [0, 4]`). Each
+/// time: one closed curve of four parts, both corners proven (each box holding the exact
+/// corner point), the one-point branches absorbed, the edge within its tolerance of the
+/// ellipse both ways. (The corner proof used to accept only knot lines and seams the same way
+/// round: here both joins stayed unproven and the slivers were a curve of their own.)
+#[test]
+fn a_corner_across_face_edges_of_both_shells_is_joined_and_proven() {
+    // Dyadic coefficients: every control point is exact.
+    let z = |x: f64, y: f64| 0.25 * x + 0.125 * y + 0.0625;
+    let at = |x: f64, y: f64| json!([x, y, z(x, y)]);
+    let left = json!({"kind": "bezier", "degree": [1, 1],
+                      "points": [at(-2.0, -2.0), at(-2.0, 2.0), at(0.0, -2.0), at(0.0, 2.0)]});
+    let right_same = json!({"kind": "bezier", "degree": [1, 1],
+                            "points": [at(0.0, -2.0), at(0.0, 2.0), at(2.0, -2.0), at(2.0, 2.0)]});
+    let right_reversed = json!({"kind": "bezier", "degree": [1, 1],
+                                "points": [at(0.0, 2.0), at(0.0, -2.0), at(2.0, 2.0), at(2.0, -2.0)]});
+    let right_rescaled = json!({"kind": "nurbs", "degree": [1, 1],
+                                "knots": [[0.0, 0.0, 2.0, 2.0], [0.0, 0.0, 4.0, 4.0]],
+                                "points": [at(0.0, -2.0), at(0.0, 2.0), at(2.0, -2.0), at(2.0, 2.0)]});
+    let ellipse = |t: f64| [t.cos(), t.sin(), z(t.cos(), t.sin())];
+    for (what, right) in [
+        ("same way", right_same),
+        ("reversed", right_reversed),
+        ("rescaled", right_rescaled),
+    ] {
+        let scene = json!({"surfaces": [quarter_cylinders(), [left.clone(), right]],
+                           "options": {"method": "both"}});
+        let (scene, report) = run(scene);
+        closed_and_proven(what, &report);
+        let r = &report.result;
+        assert_eq!(r.curves.len(), 1, "{what}: one ellipse: {:?}", r.curves);
+        assert_eq!(r.curves[0].parts.len(), 4, "{what}");
+        let corners: Vec<_> = r.curves[0]
+            .joins
+            .iter()
+            .filter_map(|j| j.corner.as_ref())
+            .collect();
+        assert_eq!(corners.len(), 2, "{what}: {corners:?}");
+        for y in [1.0, -1.0] {
+            let exact = [0.0, y, z(0.0, y)];
+            let holding = corners
+                .iter()
+                .filter(|c| (0..3).all(|i| c.xyz[i].contains(exact[i])))
+                .count();
+            assert_eq!(holding, 1, "{what}: corner {exact:?}");
+        }
+        for c in &corners {
+            let diameter = c.xyz.iter().map(|x| x.wid()).fold(0.0, f64::max);
+            assert!(diameter < 1e-9, "{what}: {diameter:e}");
+        }
+        // Every branch is a part of the curve or absorbed by a corner.
+        let used: std::collections::HashSet<usize> = r.curves[0]
+            .parts
+            .iter()
+            .map(|p| p.branch)
+            .chain(corners.iter().flat_map(|c| c.absorbed.iter().copied()))
+            .collect();
+        assert_eq!(used.len(), r.branch_count(), "{what}");
+        let off = |p: &[f64; 3]| dist3(p, &ellipse(p[1].atan2(p[0])));
+        let e = edges(what, &scene, &report);
+        assert_eq!(e.len(), 1, "{what}");
+        assert!(e[0].closed, "{what}");
+        check_edge(what, &e[0], &scene.shells, &off, &around(ellipse));
+    }
 }

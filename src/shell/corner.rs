@@ -1,5 +1,6 @@
-//! Joins across a corner of the piece pair: a curve that crosses a knot line or seam of one
-//! surface exactly where it crosses one of the other (both pieces change at once).
+//! Joins across a corner of the piece pair: a curve that crosses a shared edge of one surface
+//! (a knot line, a seam, or the edge of two faces) exactly where it crosses one of the other
+//! (both pieces change at once).
 //!
 //! The two branches that meet there belong to diagonally neighbouring pairs `(a₁, b₁)` and
 //! `(a₂, b₂)`; the two pairs beside the corner, `(a₁, b₂)` and `(a₂, b₁)`, hold at most a sliver
@@ -8,9 +9,11 @@
 //! of the join module does not apply. Instead:
 //!
 //! 1. **A chart round the corner.** Each surface's two pieces are written in the parameters of
-//!    the first, the second shifted across the shared side (a knot line needs no shift; a
-//!    periodic seam shifts by the period). On the union of the two domains the stitched map is
-//!    the surface itself: continuous, and continuously differentiable on each piece.
+//!    the first, the second through an affine map across the shared side ([`ChartMap`]: the
+//!    edge's normalised parameter kept, reversed when the edge runs the other way, and the
+//!    chart continued past the side onto the second piece). On the union of the two domains
+//!    the stitched map is the surface itself: continuous (the pieces are the same curve on the
+//!    edge at the same normalised parameter), and continuously differentiable on each piece.
 //! 2. **The corner box.** For each branch, walking its chain of enclosure boxes inwards from its
 //!    certified end at the corner, the boxes up to the first one strictly inside both of its
 //!    pieces' domains hold the chain's curve from there on, so the point where the branch's
@@ -52,18 +55,109 @@ pub struct CornerJoin {
     pub absorbed: Vec<usize>,
 }
 
-/// Two neighbouring pieces of one surface written in the first one's parameters: the second's
-/// parameters are the chart's plus `shift`.
+/// Two neighbouring pieces of one surface written in the first one's parameters (the chart):
+/// the second through its [`ChartMap`].
 pub(super) struct Stitched<'a> {
-    pieces: [(&'a RationalBezierPatch, [f64; 2]); 2],
+    first: &'a RationalBezierPatch,
+    second: (&'a RationalBezierPatch, ChartMap),
+}
+
+/// One parameter of a piece as an affine function of one chart coordinate: the chart segment
+/// `[a, b]` onto the piece's `[c, e]` (`a ↦ c`, `b ↦ e`; `e < c` when the edge runs the other
+/// way). The map is that exact real function; it is evaluated in intervals, so every image
+/// encloses the exact one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Segment {
+    /// The chart coordinate it follows (0 or 1).
+    src: usize,
+    a: f64,
+    b: f64,
+    c: f64,
+    e: f64,
+}
+
+impl Segment {
+    /// `c + (x − a)·(e − c)/(b − a)`, enclosed.
+    fn forward(&self, x: Interval) -> Interval {
+        point(self.c) + (x - point(self.a)) * self.factor()
+    }
+
+    /// `a + (y − c)·(b − a)/(e − c)`, enclosed.
+    fn back(&self, y: Interval) -> Interval {
+        let inverse = (point(self.b) - point(self.a)) / (point(self.e) - point(self.c));
+        point(self.a) + (y - point(self.c)) * inverse
+    }
+
+    /// `(e − c)/(b − a)`: the derivative of the piece's parameter by the chart coordinate.
+    fn factor(&self) -> Interval {
+        (point(self.e) - point(self.c)) / (point(self.b) - point(self.a))
+    }
+}
+
+/// The affine map from a corner's chart (the parameters of the piece on one side of a shared
+/// edge) to the parameters of the piece across it: along the edge, the edge's normalised
+/// parameter is the same on both sides (reversed when the link is); across it, the chart
+/// continues past the side to a far bound `F`, and `[side, F]` maps onto the second piece's
+/// range from its side inwards. On the edge the two pieces are the same rational Bézier curve
+/// at the same normalised parameter ([`super::edges`]), so the stitched map is continuous, and
+/// being affine the maps keep it continuously differentiable on each piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct ChartMap {
+    /// The second piece's `u` and `v`.
+    coords: [Segment; 2],
+}
+
+impl ChartMap {
+    /// The identity (no second piece to map: a pair whose pieces did not change).
+    pub(super) fn identity() -> ChartMap {
+        let seg = |src| Segment {
+            src,
+            a: 0.0,
+            b: 1.0,
+            c: 0.0,
+            e: 1.0,
+        };
+        ChartMap {
+            coords: [seg(0), seg(1)],
+        }
+    }
+
+    /// The second piece's parameters of the chart box `x`.
+    fn forward(&self, x: [Interval; 2]) -> [Interval; 2] {
+        self.coords.map(|s| s.forward(x[s.src]))
+    }
+
+    /// The chart box of the second piece's parameters `y`.
+    fn back(&self, y: [Interval; 2]) -> [Interval; 2] {
+        let mut out = [Interval::ENTIRE; 2];
+        for (k, s) in self.coords.iter().enumerate() {
+            out[s.src] = s.back(y[k]);
+        }
+        out
+    }
+
+    /// The second piece's domain in the chart (exact: its ends are the segments' `a`, `b`).
+    fn chart_domain(&self) -> Option<[Interval; 2]> {
+        let mut out = [Interval::ENTIRE; 2];
+        for s in &self.coords {
+            out[s.src] = Interval::try_from((s.a.min(s.b), s.a.max(s.b))).ok()?;
+        }
+        Some(out)
+    }
 }
 
 impl Stitched<'_> {
     /// The domain of piece `k` in the chart.
     fn chart_domain(&self, k: usize) -> Option<[Interval; 2]> {
-        let (p, shift) = self.pieces[k];
-        let d = p.domain();
-        Some([interval_sub(d.u, shift[0])?, interval_sub(d.v, shift[1])?])
+        if k == 0 {
+            let d = self.first.domain();
+            Some([
+                Interval::try_from((d.u[0], d.u[1])).ok()?,
+                Interval::try_from((d.v[0], d.v[1])).ok()?,
+            ])
+        } else {
+            self.second.1.chart_domain()
+        }
     }
 
     /// Whether the chart box `x` lies in the union of the two pieces' domains (which is a
@@ -79,12 +173,6 @@ impl Stitched<'_> {
     }
 }
 
-/// `[lo − s, hi − s]`, rounded outward.
-fn interval_sub(range: [f64; 2], s: f64) -> Option<Interval> {
-    let r = Interval::try_from((range[0], range[1])).ok()?;
-    Some(r - point(s))
-}
-
 impl BoxSurface for Stitched<'_> {
     /// The hull of the pieces' enclosures over the parts of `u × v` in their domains (the whole
     /// line if the box meets neither).
@@ -98,24 +186,33 @@ impl BoxSurface for Stitched<'_> {
             if cu.is_empty() || cv.is_empty() {
                 continue;
             }
-            let (p, shift) = self.pieces[k];
-            // Back in the piece's parameters, clipped to its domain (the shift is rounded
-            // outward; the domain is exact).
-            let pd = p.domain();
-            let (Ok(du), Ok(dv)) = (
-                Interval::try_from((pd.u[0], pd.u[1])),
-                Interval::try_from((pd.v[0], pd.v[1])),
-            ) else {
-                continue;
+            let e = if k == 0 {
+                self.first.first_derivs(cu, cv)
+            } else {
+                // In the piece's parameters, clipped to its domain (the map is enclosed; the
+                // domain is exact); the partials by the chart's coordinates by the chain rule.
+                let (p, map) = self.second;
+                let pd = p.domain();
+                let (Ok(du), Ok(dv)) = (
+                    Interval::try_from((pd.u[0], pd.u[1])),
+                    Interval::try_from((pd.v[0], pd.v[1])),
+                ) else {
+                    continue;
+                };
+                let [pu, pv] = map.forward([cu, cv]);
+                let (pu, pv) = (pu.intersection(du), pv.intersection(dv));
+                if pu.is_empty() || pv.is_empty() {
+                    continue;
+                }
+                let [s, su, sv] = p.first_derivs(pu, pv);
+                let mut e = [s, s, s];
+                for (i, d) in [su, sv].into_iter().enumerate() {
+                    let seg = map.coords[i];
+                    let f = seg.factor();
+                    e[1 + seg.src] = d.map(|c| c * f);
+                }
+                e
             };
-            let (pu, pv) = (
-                (cu + point(shift[0])).intersection(du),
-                (cv + point(shift[1])).intersection(dv),
-            );
-            if pu.is_empty() || pv.is_empty() {
-                continue;
-            }
-            let e = p.first_derivs(pu, pv);
             out = Some(match out {
                 None => e,
                 Some(o) => {
@@ -127,39 +224,70 @@ impl BoxSurface for Stitched<'_> {
     }
 }
 
-/// The shift taking the chart (the parameters of the piece on `link.from`) to those of the
-/// piece on `link.to`: a knot line or a seam of one face between opposite sides, the edge
-/// parameter running the same way over the same range, the shift exact in `f64`. `None` for
-/// anything else (a face edge, a reversed or rescaled seam, an inexact shift): no corner proof
-/// is tried there.
-pub(super) fn chart_shift(link: &EdgeLink, from: &Domain, to: &Domain) -> Option<[f64; 2]> {
-    if link.kind == EdgeKind::FaceEdge || link.reversed {
-        return None;
-    }
+/// The map taking the chart (the parameters of the piece on `link.from`, domain `from`) to
+/// those of the piece on `link.to` (domain `to`) across their shared edge ([`ChartMap`]): a
+/// knot line, a seam (the same or the reverse way) or a face edge, between any two sides. The
+/// chart's far bound across the edge is the side's value plus the second piece's width there
+/// (in `f64`; any bound on the right side would do, the map is defined by it). `None` for a
+/// degenerate side.
+pub(super) fn chart_map(link: &EdgeLink, from: &Domain, to: &Domain) -> Option<ChartMap> {
     let (k1, v1) = side_coordinate(from, link.from.side);
     let (k2, v2) = side_coordinate(to, link.to.side);
-    let opposite = link.from.side / 2 == link.to.side / 2 && link.from.side != link.to.side;
-    if k1 != k2 || !opposite {
+    let [a0, a1] = along_range(from, link.from.side);
+    let [b0, b1] = along_range(to, link.to.side);
+    let (c, e) = if link.reversed { (b1, b0) } else { (b0, b1) };
+    let along = Segment {
+        src: 1 - k1,
+        a: a0,
+        b: a1,
+        c,
+        e,
+    };
+    // Across: from the side inwards on the second piece; past the side outwards in the chart.
+    let inner = if link.to.side.is_multiple_of(2) {
+        if k2 == 0 {
+            to.u[1]
+        } else {
+            to.v[1]
+        }
+    } else if k2 == 0 {
+        to.u[0]
+    } else {
+        to.v[0]
+    };
+    let width = (inner - v2).abs();
+    let outwards = if link.from.side.is_multiple_of(2) {
+        -1.0
+    } else {
+        1.0
+    };
+    let far = v1 + outwards * width;
+    let across = Segment {
+        src: k1,
+        a: v1,
+        b: far,
+        c: v2,
+        e: inner,
+    };
+    let ok = |s: &Segment| {
+        s.a != s.b && s.c != s.e && [s.a, s.b, s.c, s.e].iter().all(|x| x.is_finite())
+    };
+    if !(ok(&along) && ok(&across)) {
         return None;
     }
-    if along_range(from, link.from.side) != along_range(to, link.to.side) {
-        return None;
+    let mut coords = [along, across];
+    if k2 == 0 {
+        coords.swap(0, 1);
     }
-    // The shift must be exact: rounded, the two pieces' domains would overlap or leave a gap
-    // in the chart, and the stitched map would not be one continuous function there.
-    let d = v2 - v1;
-    if v1 + d != v2 || v2 - d != v1 {
-        return None;
-    }
-    let mut shift = [0.0; 2];
-    shift[k1] = d;
-    Some(shift)
+    // `coords[i]` gives the second piece's parameter i: along is its 1 − k2, across its k2.
+    Some(ChartMap { coords })
 }
 
-/// The parameter box of `y` (in a pair's own parameters) in the chart of the corner, the two
-/// surfaces' parameters shifted by `shift`.
-fn to_chart(y: &ParamBox, shift: [[f64; 2]; 2]) -> ParamBox {
-    std::array::from_fn(|i| y[i] - point(shift[i / 2][i % 2]))
+/// The parameter box of `y` (in a pair's own parameters) in the chart of the corner, each
+/// surface's parameters mapped back through its [`ChartMap`].
+fn to_chart(y: &ParamBox, maps: [ChartMap; 2]) -> ParamBox {
+    let [a, b] = [maps[0].back([y[0], y[1]]), maps[1].back([y[2], y[3]])];
+    [a[0], a[1], b[0], b[1]]
 }
 
 /// Whether the box `y` lies strictly inside both domains.
@@ -212,7 +340,7 @@ pub(super) fn exit_boxes(
 
 /// The proof of a corner join (see the module documentation): `x` and `y` are the two
 /// branches' exit boxes, `x` in the chart (the first pair's parameters), `y` in the second
-/// pair's own; `shift` takes the chart to the second pair's parameters; `a`, `b` are the
+/// pair's own; `maps` take the chart to the second pair's parameters; `a`, `b` are the
 /// stitched surfaces; `sides` are the coordinate (of `(σ, t, u, v)`) and chart value of the
 /// side crossed on each surface. Returns the box holding the curve between the two branches'
 /// parts, and its model-space image.
@@ -221,10 +349,10 @@ pub(super) fn prove(
     b: &Stitched<'_>,
     x: &ParamBox,
     y: &ParamBox,
-    shift: [[f64; 2]; 2],
+    maps: [ChartMap; 2],
     sides: [(usize, f64); 2],
 ) -> Result<(ParamBox, [Interval; 3]), &'static str> {
-    let y = to_chart(y, shift);
+    let y = to_chart(y, maps);
     let hull: ParamBox = std::array::from_fn(|i| x[i].convex_hull(y[i]));
     // One arc in K0: a graph over coordinate j, proven slice by slice. K0 is the hull widened
     // across j only (along j the exit boxes already reach past both crossings; widened there,
@@ -233,7 +361,7 @@ pub(super) fn prove(
     // order of their extent (relative to the pieces' domains), the two longest only.
     let extent = |i: usize| {
         let s = if i < 2 { a } else { b };
-        let d = s.pieces[0].0.domain();
+        let d = s.first.domain();
         let size = if i.is_multiple_of(2) {
             d.u[1] - d.u[0]
         } else {
@@ -373,25 +501,25 @@ fn pad_one(r: &mut Interval, fraction: f64) -> Result<(), &'static str> {
 }
 
 /// Whether every point of `points` (a pair's own parameters) lies in the chart box `k` once
-/// shifted by `shift`.
-pub(super) fn all_inside(points: &[[f64; 4]], k: &ParamBox, shift: [[f64; 2]; 2]) -> bool {
+/// mapped back through `maps`.
+pub(super) fn all_inside(points: &[[f64; 4]], k: &ParamBox, maps: [ChartMap; 2]) -> bool {
     points.iter().all(|p| {
-        (0..4).all(|i| {
-            let c = point(p[i]) - point(shift[i / 2][i % 2]);
-            c.subset(k[i])
-        })
+        let y: ParamBox = std::array::from_fn(|i| point(p[i]));
+        let c = to_chart(&y, maps);
+        (0..4).all(|i| c[i].subset(k[i]))
     })
 }
 
 /// The two stitched surfaces of a corner: surface `s`'s pieces `first` and `second`, the
-/// second shifted by `shift`.
+/// second through `map`.
 pub(super) fn stitched<'a>(
     first: &'a RationalBezierPatch,
     second: &'a RationalBezierPatch,
-    shift: [f64; 2],
+    map: ChartMap,
 ) -> Stitched<'a> {
     Stitched {
-        pieces: [(first, [0.0, 0.0]), (second, shift)],
+        first,
+        second: (second, map),
     }
 }
 
@@ -414,8 +542,8 @@ pub(super) struct CornerCandidate {
 pub(super) struct CornerProof {
     pub(super) k: ParamBox,
     pub(super) xyz: [Interval; 3],
-    /// Per surface, the shift from the chart to the second pair's piece.
-    pub(super) shift: [[f64; 2]; 2],
+    /// Per surface, the map from the chart to the second pair's piece.
+    pub(super) maps: [ChartMap; 2],
     /// `[[face, piece] of A, [face, piece] of B]` of the first and of the second pair.
     pub(super) pieces: [[[usize; 2]; 2]; 2],
 }
@@ -494,10 +622,10 @@ fn prove_pair(
     let unproven = |reason| (Err(reason), None);
     let (q1, q2) = (patches(a, b, p[0]), patches(a, b, p[1]));
     let (Some(sa), Some(sb)) = (
-        chart_shift(l[0], &q1[0].domain(), &q2[0].domain()),
-        chart_shift(l[1], &q1[1].domain(), &q2[1].domain()),
+        chart_map(l[0], &q1[0].domain(), &q2[0].domain()),
+        chart_map(l[1], &q1[1].domain(), &q2[1].domain()),
     ) else {
-        return unproven("a corner across a face edge or a reversed seam is not proven");
+        return unproven("a side at the corner is degenerate");
     };
     let (Some(c1), Some(c2)) = (s[0].certificate, s[1].certificate) else {
         return unproven("an end at the corner is not certified");
@@ -523,7 +651,7 @@ fn prove_pair(
             Some(CornerProof {
                 k,
                 xyz,
-                shift: [sa, sb],
+                maps: [sa, sb],
                 pieces: [
                     [
                         [p[0].faces[0], p[0].pieces[0]],
@@ -550,10 +678,11 @@ pub(super) fn absorbed(
 ) -> Vec<usize> {
     let [[a1, b1], [a2, b2]] = proof.pieces;
     let mut out = Vec::new();
-    // (a₁, b₂): B shifted; (a₂, b₁): A shifted.
-    for (pa, pb, shift) in [
-        (a1, b2, [[0.0, 0.0], proof.shift[1]]),
-        (a2, b1, [proof.shift[0], [0.0, 0.0]]),
+    // (a₁, b₂): B mapped; (a₂, b₁): A mapped.
+    let same = ChartMap::identity();
+    for (pa, pb, maps) in [
+        (a1, b2, [same, proof.maps[1]]),
+        (a2, b1, [proof.maps[0], same]),
     ] {
         let Some(&k) = by_pair.get(&([pa[0], pb[0]], [pa[1], pb[1]])) else {
             continue;
@@ -565,7 +694,7 @@ pub(super) fn absorbed(
                 .iter()
                 .map(|c| [c.p[0], c.p[1], c.q[0], c.q[1]])
                 .collect();
-            if !pts.is_empty() && all_inside(&pts, &proof.k, shift) {
+            if !pts.is_empty() && all_inside(&pts, &proof.k, maps) {
                 out.push(first_branch[k] + i);
             }
         }
