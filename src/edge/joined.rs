@@ -615,15 +615,9 @@ mod tests {
     use crate::{intersect, Method, Options};
 
     /// The plane `z = 0` and the paraboloid `z = (s − ½)² + (t − ½)² − ⅜`, both over the unit
-    /// square (every control point exact in `f64`): the circle of radius `√⅜` round `(½, ½)`
-    /// crosses every side of the square at `½ ± √⅛`. Every arc is cut at both sides it leaves
-    /// through; the cut's proven range (on the cut link, or the next one) must hold the true
-    /// crossing (enclosed in interval arithmetic). (These chains end with a link to a Newton
-    /// point just outside the square, so the ranges are at rounding level already and the
-    /// crossing's Krawczyk narrowing does not apply; the shell tests exercise it: the cube's
-    /// cut shares.)
-    #[test]
-    fn a_cut_holds_the_true_crossing_of_the_side() {
+    /// square (every control point exact in `f64`), and their intersection: the circle of
+    /// radius `√⅜` round `(½, ½)`, at the same parameters on both.
+    fn plane_and_bowl() -> (RationalBezierPatch, RationalBezierPatch) {
         let plane = RationalBezierPatch::from_f64_points(
             [1, 1],
             &[
@@ -643,6 +637,19 @@ mod tests {
             })
             .collect();
         let bowl = RationalBezierPatch::from_f64_points([2, 2], &net, None, Domain::UNIT).unwrap();
+        (plane, bowl)
+    }
+
+    /// The plane `z = 0` and the paraboloid `z = (s − ½)² + (t − ½)² − ⅜`, both over the unit
+    /// square (every control point exact in `f64`): the circle of radius `√⅜` round `(½, ½)`
+    /// crosses every side of the square at `½ ± √⅛`. Every arc is cut at both sides it leaves
+    /// through; the cut's proven range (on the cut link, or the next one) must hold the true
+    /// crossing (enclosed in interval arithmetic). (These chains end with a link to a Newton
+    /// point just outside the square, so the ranges are at rounding level already and the
+    /// crossing's Krawczyk narrowing does not apply: the next test exercises it.)
+    #[test]
+    fn a_cut_holds_the_true_crossing_of_the_side() {
+        let (plane, bowl) = plane_and_bowl();
         let opts = Options {
             method: Method::Validated,
             ..Options::default()
@@ -691,5 +698,67 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The crossing's Krawczyk narrowing (`Side::crossing_slice`) on a side that the chain
+    /// crosses inside a link, not at a link's end: on the plane and the paraboloid's circle,
+    /// the side `x_b = c` through the middle of a link (`b` one of P's parameters other than
+    /// the link's along one, `c` the reported curve's value there). The narrowed range must
+    /// hold the true crossing (from the closed form, in interval arithmetic), and be far
+    /// narrower than the half link it was narrowed from.
+    #[test]
+    fn the_narrowed_crossing_of_a_side_holds_the_true_one() {
+        let (plane, bowl) = plane_and_bowl();
+        let opts = Options {
+            method: Method::Validated,
+            ..Options::default()
+        };
+        let r = intersect(&plane, &bowl, &opts).expect("runs");
+        let mut checked = 0;
+        for br in &r.branches {
+            let cert = br.certified().expect("certified");
+            let segs = super::super::chain_segs(cert, false);
+            for seg in segs.iter().skip(1).step_by(3) {
+                let t = &cert.tubes[seg.tube];
+                let j = t.along.expect("a cover chain").index;
+                let b = if j % 2 == 0 { 1 } else { 0 };
+                let y = reparametrised(&t.coeffs, seg.ta, seg.tb);
+                let (mid, ahead) = (eval_mid(&y, 0.5), eval_mid(&y, 0.6));
+                let side = Side {
+                    cert,
+                    b,
+                    bound: mid[b],
+                    out_sign: (ahead[b] - mid[b]).signum(),
+                };
+                let gap = tau_range(seg, 0.25, 0.75);
+                let Some(c) =
+                    side.crossing_slice([&plane, &bowl], (seg, &y, [0.25, 0.75]), None, gap)
+                else {
+                    continue;
+                };
+                // The true crossing: x_b = c on the circle, the other parameter on the side of
+                // ½ the reported curve is on; x_j is that one (j and b differ in parity).
+                let off = (point(0.375) - (point(mid[b]) - point(0.5)).sqr()).sqrt();
+                let other = if mid[1 - b] > 0.5 {
+                    point(0.5) + off
+                } else {
+                    point(0.5) - off
+                };
+                let tau = (other - point(t.coeffs[0][j])) * point(t.coeffs[1][j]);
+                assert!(
+                    !c.on_cut.disjoint(tau),
+                    "link {}: the narrowed range {:?} misses the crossing {tau:?}",
+                    seg.tube,
+                    c.on_cut
+                );
+                assert!(
+                    c.on_cut.wid() < 1e-6 * gap.wid(),
+                    "{:?} from {gap:?}",
+                    c.on_cut
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 8, "only {checked} crossings narrowed");
     }
 }

@@ -55,17 +55,28 @@ pub(crate) fn duplicate_branches(
     dropped
 }
 
-/// The marched points a copy must hold: all but an end point on a domain boundary. That point is
-/// the exit itself; a chain that proves the same exit stops with its last link across the
-/// boundary, but the link's range in its along parameter can end just short of the point (in a
-/// parameter that moves slowly there).
+/// The marched points a copy must hold: all but an end point on a domain boundary or at a
+/// singular point, when two or more points are left. A boundary point is the exit itself; a
+/// chain that proves the same exit stops with its last link across the boundary, but the
+/// link's range in its along parameter can end just short of the point (in a parameter that
+/// moves slowly there). A singular end point is where the marcher located a node; where the
+/// surfaces are only nearly tangent (two curves passing close, like the two branches of a
+/// hyperbola) it is the point of closest approach between them, on neither curve, and the
+/// chain of the branch that goes on along the true curve passes beside it.
 fn inner_points(b: &Branch) -> &[CurvePoint] {
     let n = b.points.len();
     if n <= 2 {
         return &b.points;
     }
-    let boundary = |e: &EndReason| matches!(e, EndReason::Boundary { .. });
-    let lo = usize::from(boundary(&b.ends[0]));
-    let hi = n - usize::from(boundary(&b.ends[1]));
+    let skipped = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
+    let lo = usize::from(skipped(&b.ends[0]));
+    let hi = n - usize::from(skipped(&b.ends[1]));
+    if hi < lo + 2 {
+        // Too few would be left: keep the singular end's point.
+        let boundary = |e: &EndReason| matches!(e, EndReason::Boundary { .. });
+        let lo = usize::from(boundary(&b.ends[0]));
+        let hi = n - usize::from(boundary(&b.ends[1]));
+        return &b.points[lo..hi];
+    }
     &b.points[lo..hi]
 }

@@ -2,7 +2,7 @@
 //! march, the conditioning that holds links up near one, and the proven singular box a half
 //! ends with.
 
-use super::walker::{scaled_dist, Node, Walker};
+use super::walker::{scaled_dist, LinkLimit, Node, Walker};
 use super::*;
 use crate::pair::branch_point::locate_singular_point_within;
 
@@ -91,35 +91,6 @@ impl Walker<'_> {
         let (np, nq) = (cross3(a.su, a.sv), cross3(b.su, b.sv));
         LinkLimit::Conditioning {
             sine: norm(cross3(np, nq)) / (norm(np) * norm(nq)),
-        }
-    }
-}
-
-/// Why a link was kept although wider than the chain's aim ([`Walker::limit_at`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum LinkLimit {
-    /// The tube is at the rounding level of the coordinates.
-    Rounding,
-    /// The surfaces are nearly tangent there (`sine` of the angle between the normals) and no
-    /// singular point is near: the residual's rounding over that sine sets the width.
-    Conditioning {
-        /// The sine at the link's start (an estimate).
-        sine: f64,
-    },
-}
-
-impl LinkLimit {
-    /// The reason reported for a link of model width `width`.
-    pub(super) fn describe(&self, width: f64) -> String {
-        match self {
-            LinkLimit::Rounding => {
-                format!("the tube ({width:.1e}) is at the rounding level of the coordinates")
-            }
-            LinkLimit::Conditioning { sine } => format!(
-                "nearly tangent surfaces (sine of the angle between the normals {sine:.1e}, no \
-                 singular point near): shorter links did not narrow the tube below {width:.1e}, \
-                 the rounding of the residual over that sine"
-            ),
         }
     }
 }

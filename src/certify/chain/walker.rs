@@ -1,7 +1,6 @@
 //! The walk of one half of a cover chain: links between guide points, split where needed,
 //! joined without gaps, and the end where the half stops.
 
-use super::singular::LinkLimit;
 use super::*;
 use crate::certify::lean_patch::{costlier_side, LeanPatch};
 use std::cell::Cell;
@@ -36,6 +35,35 @@ pub(super) struct Link {
 impl Link {
     fn end_slice(&self) -> [Interval; 4] {
         self.end_slice
+    }
+}
+
+/// Why a link was kept although wider than the chain's aim (`Walker::limit_at`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum LinkLimit {
+    /// The tube is at the rounding level of the coordinates.
+    Rounding,
+    /// The surfaces are nearly tangent there (`sine` of the angle between the normals) and no
+    /// singular point is near: the residual's rounding over that sine sets the width.
+    Conditioning {
+        /// The sine at the link's start (an estimate).
+        sine: f64,
+    },
+}
+
+impl LinkLimit {
+    /// The reason reported for a link of model width `width`.
+    pub(super) fn describe(&self, width: f64) -> String {
+        match self {
+            LinkLimit::Rounding => {
+                format!("the tube ({width:.1e}) is at the rounding level of the coordinates")
+            }
+            LinkLimit::Conditioning { sine } => format!(
+                "nearly tangent surfaces (sine of the angle between the normals {sine:.1e}, no \
+                 singular point near): shorter links did not narrow the tube below {width:.1e}, \
+                 the rounding of the residual over that sine"
+            ),
+        }
     }
 }
 
