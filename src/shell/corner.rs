@@ -9,7 +9,7 @@
 //! of the join module does not apply. Instead:
 //!
 //! 1. **A chart round the corner.** Each surface's two pieces are written in the parameters of
-//!    the first, the second through an affine map across the shared side ([`ChartMap`]: the
+//!    the first, the second through an affine map across the shared side (`ChartMap`: the
 //!    edge's normalised parameter kept, reversed when the edge runs the other way, and the
 //!    chart continued past the side onto the second piece). On the union of the two domains
 //!    the stitched map is the surface itself: continuous (the pieces are the same curve on the

@@ -67,7 +67,7 @@ impl Walker<'_> {
     /// or there is one (nearly tangent surfaces: on a torus 1e-8 from tangency a loop of radius
     /// 1e-4 lies wholly inside it) but Gauss–Newton finds no point of `P = Q` with parallel
     /// normals within that reach. Guidance only; the link's own proof is what is claimed, and
-    /// the certificate says why its tolerance is wider ([`Self::limit_reason`]).
+    /// the certificate says why its tolerance is wider ([`Self::limit_at`]).
     pub(super) fn conditioning_only(&self, a: &[f64; 4], b: &[f64; 4]) -> bool {
         self.singular_box(a, b, 1e-4).is_none() || !self.singular_point_near(b, 1e-4)
     }
@@ -93,9 +93,7 @@ impl Walker<'_> {
             sine: norm(cross3(np, nq)) / (norm(np) * norm(nq)),
         }
     }
-}
 
-impl Walker<'_> {
     /// Why no link could be proven between `a` and `b`: a singular box if the normals'
     /// cross product cannot be bounded away from zero on a box around them (widened by up to
     /// 1e-4 of the domains: a link fails some way before a singular point, where the proven

@@ -43,8 +43,9 @@ impl Link {
 pub(super) enum LinkLimit {
     /// The tube is at the rounding level of the coordinates.
     Rounding,
-    /// The surfaces are nearly tangent there (`sine` of the angle between the normals) and no
-    /// singular point is near: the residual's rounding over that sine sets the width.
+    /// The crossing is ill-conditioned there, usually nearly tangent surfaces (`sine` of the
+    /// angle between the normals), and no singular point is near: the residual's rounding over
+    /// that sine sets the width.
     Conditioning {
         /// The sine at the link's start (an estimate).
         sine: f64,
@@ -59,9 +60,14 @@ impl LinkLimit {
                 format!("the tube ({width:.1e}) is at the rounding level of the coordinates")
             }
             LinkLimit::Conditioning { sine } => format!(
-                "nearly tangent surfaces (sine of the angle between the normals {sine:.1e}, no \
-                 singular point near): shorter links did not narrow the tube below {width:.1e}, \
-                 the rounding of the residual over that sine"
+                "{} (sine of the angle between the normals {sine:.1e}, no singular point \
+                 near): shorter links did not narrow the tube below {width:.1e}, the rounding \
+                 of the residual over that sine",
+                if *sine < 1e-2 {
+                    "nearly tangent surfaces"
+                } else {
+                    "an ill-conditioned crossing"
+                }
             ),
         }
     }
