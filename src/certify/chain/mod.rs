@@ -144,7 +144,16 @@ pub fn certify_chain(
         xs.pop();
     }
     if xs.len() < 2 {
-        return Err(fail("the marched branch has fewer than two points", start));
+        let reason = if b.points.len() < 2 {
+            "the marched branch has fewer than two points"
+        } else {
+            // Several marched points, one point of the curve: e.g. at a corner of the piece
+            // pair, where the curve only passes through the corner (a proven corner join of
+            // the shell absorbs the branch).
+            "the marched branch is a single point of the curve (e.g. where the curve passes \
+             through a corner of the piece pair): no arc to certify"
+        };
+        return Err(fail(reason, start));
     }
     if closed {
         if let Some(c) = closed_chain(p, q, &xs, opts) {
