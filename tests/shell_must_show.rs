@@ -15,6 +15,7 @@
 
 mod common;
 
+use common::scenes::scene_path;
 use common::spline::{dist3, dist_to_spline, samples};
 use common::surfaces::UNIT_CIRCLE_NET;
 use serde_json::{json, Value};
@@ -23,7 +24,7 @@ use ssitrace::io::scene::ShellScene;
 use ssitrace::march::branch::EndReason;
 use ssitrace::pipeline::{run_shells, RunOptions, ShellRunReport};
 use ssitrace::shell::Face;
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 /// Rounding slack of evaluating the splines and the truth in f64.
 const SLACK: f64 = 1e-12;
@@ -617,5 +618,113 @@ fn a_corner_across_face_edges_of_both_shells_is_joined_and_proven() {
         assert_eq!(e.len(), 1, "{what}");
         assert!(e[0].closed, "{what}");
         check_edge(what, &e[0], &scene.shells, &off, &around(ellipse));
+    }
+}
+
+/// The standard NURBS sphere (degree 2×2, the 9×5 net of `scenes/nurbs_sphere_plane.json`:
+/// knot lines on the meridians at 90°, 180° and 270°, the seam at 0°, and the equator) against
+/// planes through its centre that meet the equator where a meridian knot line or the seam
+/// crosses it: `y = z` through `(±1, 0, 0)` (the seam's and the 180° meridian's crossings) and
+/// `x = z` through `(0, ±1, 0)`. There the curve passes through a point where four pieces of
+/// the sphere meet, inside the plane's one piece: the branches on either side lie in pairs of
+/// diagonally opposite pieces, and the pairs beside the corner hold a one-point branch. The
+/// join across such a corner is proven on a chart of the four pieces round it (the face's own
+/// parameters, shifted by the period across the seam). Each time: one closed great circle of
+/// four parts, both corners proven (each box holding the exact corner point), every branch a
+/// part or absorbed, the edge within its tolerance of the circle both ways. (Before: two open
+/// curves with unproven joins.)
+#[test]
+fn a_great_circle_through_knot_line_crossings_of_a_nurbs_sphere_is_one_closed_curve() {
+    let text = std::fs::read_to_string(scene_path("nurbs_sphere_plane.json")).expect("scene");
+    let scene: Value = serde_json::from_str(&text).expect("json");
+    let sphere = scene["surfaces"][0].clone();
+    // The plane's name, control points, the circle and the two corners it passes through.
+    type Case = (
+        &'static str,
+        [[f64; 3]; 4],
+        fn(f64) -> [f64; 3],
+        [[f64; 3]; 2],
+    );
+    let cases: [Case; 2] = [
+        (
+            "y = z",
+            [
+                [-2.0, -2.0, -2.0],
+                [-2.0, 2.0, 2.0],
+                [2.0, -2.0, -2.0],
+                [2.0, 2.0, 2.0],
+            ],
+            |t| [t.cos(), t.sin() * FRAC_1_SQRT_2, t.sin() * FRAC_1_SQRT_2],
+            [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]],
+        ),
+        (
+            "x = z",
+            [
+                [-2.0, -2.0, -2.0],
+                [-2.0, 2.0, -2.0],
+                [2.0, -2.0, 2.0],
+                [2.0, 2.0, 2.0],
+            ],
+            |t| [t.sin() * FRAC_1_SQRT_2, t.cos(), t.sin() * FRAC_1_SQRT_2],
+            [[0.0, 1.0, 0.0], [0.0, -1.0, 0.0]],
+        ),
+    ];
+    for (what, points, circle, corners_at) in cases {
+        let plane = json!({"kind": "bezier", "degree": [1, 1], "points": points});
+        let (scene, report) = run(json!({"surfaces": [sphere.clone(), plane],
+                                         "options": {"method": "both"}}));
+        closed_and_proven(what, &report);
+        let res = &report.result;
+        assert_eq!(res.curves.len(), 1, "{what}: one circle: {:?}", res.curves);
+        assert_eq!(res.curves[0].parts.len(), 4, "{what}");
+        let corners: Vec<_> = res.curves[0]
+            .joins
+            .iter()
+            .filter_map(|j| j.corner.as_ref())
+            .collect();
+        assert_eq!(corners.len(), 2, "{what}: {corners:?}");
+        for exact in corners_at {
+            let holding = corners
+                .iter()
+                .filter(|c| (0..3).all(|i| c.xyz[i].contains(exact[i])))
+                .count();
+            assert_eq!(holding, 1, "{what}: corner {exact:?}");
+        }
+        for c in &corners {
+            let diameter = c.xyz.iter().map(|x| x.wid()).fold(0.0, f64::max);
+            assert!(diameter < 1e-9, "{what}: {diameter:e}");
+        }
+        let used: std::collections::HashSet<usize> = res.curves[0]
+            .parts
+            .iter()
+            .map(|p| p.branch)
+            .chain(corners.iter().flat_map(|c| c.absorbed.iter().copied()))
+            .collect();
+        assert_eq!(used.len(), res.branch_count(), "{what}");
+        // An upper bound on the distance to the unit circle in the plane: the distance to the
+        // plane `a` and to the unit sphere `r` give at most `√(a² + (r + a)²) ≤ 2a + r`.
+        let normal = {
+            let [a, b, c] = [circle(0.0), circle(1.0), circle(2.0)];
+            let (u, v) = (
+                [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+                [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+            );
+            let n = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ];
+            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            n.map(|x| x / l)
+        };
+        let off = |p: &[f64; 3]| {
+            let along = p[0] * normal[0] + p[1] * normal[1] + p[2] * normal[2];
+            let radial = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0;
+            2.0 * along.abs() + radial.abs()
+        };
+        let e = edges(what, &scene, &report);
+        assert_eq!(e.len(), 1, "{what}");
+        assert!(e[0].closed, "{what}");
+        check_edge(what, &e[0], &scene.shells, &off, &around(circle));
     }
 }

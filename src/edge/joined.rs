@@ -17,10 +17,11 @@
 //! growing geometrically away from the crossing, so `T` can be as narrow as the radius allows.
 //! The true arc over `T` is the cut's share of the tolerance (see [`super`]). Every join must be
 //! [`JoinStatus::Proven`]: the two parts' true end points are then one point on the side. At a
-//! join across a corner of the piece pair (both pieces change) each part is cut where it first
-//! leaves its pieces' domains (the side, of either surface, whose proven crossing range starts
-//! first: before it the chain is inside both), and the true arc between the two parts lies in
-//! the join's corner box, whose diameter adds to the cut's share.
+//! join across a corner of the piece pair (both pieces change, or two sides of one surface's
+//! piece at a corner of its own pieces) each part is cut where it first leaves its pieces'
+//! domains (the side whose proven crossing range starts first: before it the chain is inside
+//! both), and the true arc between the two parts lies in the join's corner box, whose diameter
+//! adds to the cut's share.
 
 use super::poly::{eval, eval_mid, reparametrised, taylor_shift, Poly};
 use super::{assemble, chain_segs, check_chain, Cut, Edge, EdgeError, Part, Seg};
@@ -167,7 +168,7 @@ pub(super) fn cut_ends(
     let boundary = |e: &CertifiedEnd| matches!(e, CertifiedEnd::Boundary { .. });
     let cut = |segs: &mut Vec<Seg>, end: &CertifiedEnd, m: MustCut| match m {
         Some(Some(corner)) => cut_at_corner(cert, segs, end, pq, branch, corner),
-        _ => cut_at_side(cert, segs, end, pq, branch).map(|(c, _)| c),
+        _ => cut_at_side(cert, segs, end, pq, branch, None).map(|(c, _)| c),
     };
     if must[0].is_some() || boundary(ends[0]) {
         flip(segs);
@@ -181,9 +182,10 @@ pub(super) fn cut_ends(
     Ok(cuts)
 }
 
-/// [`cut_at_side`] at a join across a corner of the piece pair: the chain's end (a boundary
-/// end, of either surface) is cut at the side of P and at the side of Q (on copies), and the cut
-/// whose proven range starts first along the chain is kept. Before that start the chain is
+/// [`cut_at_side`] at a join across a corner: the chain's end (a boundary end, of either
+/// surface) is cut at every side it lies beyond (on copies: the side of P and of Q across a
+/// corner of the piece pair, two sides of one surface across a corner of its own pieces), and
+/// the cut whose proven range starts first along the chain is kept. Before that start the chain is
 /// strictly inside both domains (each cut proves its own side), so the part is the true curve
 /// up to its cut; the corner box's diameter `corner` is the cut's extra share.
 fn cut_at_corner(
@@ -200,19 +202,62 @@ fn cut_at_corner(
             reason: "the part's end at the corner is not a proven boundary end".into(),
         });
     }
-    // Both sides must be cut: the earlier cut's claim (inside both domains before it) rests
-    // on the other side's cut proving the chain inside its domain up to its own range.
+    // Every side the chain's end lies beyond must be cut (one of each surface across a corner
+    // of the piece pair, two of one surface across a corner of its own pieces): the earliest
+    // cut's claim (inside the domains before it) rests on the other cuts proving the chain
+    // inside up to their own ranges.
     let mut cuts = Vec::with_capacity(2);
     for surface in 0..2 {
-        let mut mine = segs.clone();
-        let boundary = CertifiedEnd::Boundary { surface };
-        let (c, at) = cut_at_side(cert, &mut mine, &boundary, pq, branch)?;
-        cuts.push((mine, c, at));
+        for coord in 0..2 {
+            if !ends_beyond(cert, segs, pq, surface, coord) {
+                continue;
+            }
+            let mut mine = segs.clone();
+            let boundary = CertifiedEnd::Boundary { surface };
+            let (c, at) = cut_at_side(cert, &mut mine, &boundary, pq, branch, Some(coord))?;
+            cuts.push((mine, c, at));
+        }
     }
-    let first = usize::from((cuts[1].2 .0, cuts[1].2 .1) < (cuts[0].2 .0, cuts[0].2 .1));
+    let first = (0..cuts.len())
+        .min_by(|&i, &j| {
+            let (a, b) = (cuts[i].2, cuts[j].2);
+            (a.0, a.1)
+                .partial_cmp(&(b.0, b.1))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+        .ok_or_else(|| EdgeError::Trim {
+            branch,
+            reason: "the part's end at the corner lies inside both pieces".into(),
+        })?;
     let (mine, c, _) = cuts.swap_remove(first);
     *segs = mine;
     Ok(Cut { corner, ..c })
+}
+
+/// Whether the reported end of the chain `segs` lies beyond a side of coordinate `coord` (0
+/// for `u`, 1 for `v`) of `surface`'s piece (guidance: which sides to cut at).
+fn ends_beyond(
+    cert: &CertifiedBranch,
+    segs: &[Seg],
+    pq: [&RationalBezierPatch; 2],
+    surface: usize,
+    coord: usize,
+) -> bool {
+    let Some(last) = segs.last() else {
+        return false;
+    };
+    let end = eval_mid(
+        &reparametrised(&cert.tubes[last.tube].coeffs, last.ta, last.tb),
+        1.0,
+    );
+    let d = pq[surface].domain();
+    let (lo, hi) = if coord == 0 {
+        (d.u[0], d.u[1])
+    } else {
+        (d.v[0], d.v[1])
+    };
+    let x = end[2 * surface + coord];
+    x < lo || x > hi
 }
 
 /// The segments run the other way.
@@ -237,6 +282,7 @@ fn cut_at_side(
     end: &CertifiedEnd,
     pq: [&RationalBezierPatch; 2],
     branch: usize,
+    only: Option<usize>,
 ) -> Result<(Cut, (usize, f64)), EdgeError> {
     let fail = |reason: &str| EdgeError::Trim {
         branch,
@@ -253,8 +299,9 @@ fn cut_at_side(
     let poly_of = |s: &Seg| reparametrised(&cert.tubes[s.tube].coeffs, s.ta, s.tb);
     let last = segs.last().ok_or_else(|| fail("no links"))?;
     let end_pt = eval_mid(&poly_of(last), 1.0);
-    // The side: the coordinate (and bound) the chain's end lies beyond.
+    // The side: the coordinate (and bound) the chain's end lies beyond (`only` that one).
     let (c, bound, out_sign) = (0..2)
+        .filter(|&i| only.is_none_or(|o| o == i))
         .find_map(|i| {
             let x = end_pt[coords[i]];
             if x < lo[i] {
@@ -609,156 +656,4 @@ fn smallest<T>(attempt: &mut impl FnMut(f64) -> Option<T>) -> Option<T> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::Domain;
-    use crate::{intersect, Method, Options};
-
-    /// The plane `z = 0` and the paraboloid `z = (s − ½)² + (t − ½)² − ⅜`, both over the unit
-    /// square (every control point exact in `f64`), and their intersection: the circle of
-    /// radius `√⅜` round `(½, ½)`, at the same parameters on both.
-    fn plane_and_bowl() -> (RationalBezierPatch, RationalBezierPatch) {
-        let plane = RationalBezierPatch::from_f64_points(
-            [1, 1],
-            &[
-                [0.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
-            ],
-            None,
-            Domain::UNIT,
-        )
-        .unwrap();
-        let b = [0.25, -0.25, 0.25];
-        let net: Vec<[f64; 3]> = (0..3)
-            .flat_map(|i| {
-                (0..3).map(move |j| [i as f64 / 2.0, j as f64 / 2.0, b[i] + b[j] - 0.375])
-            })
-            .collect();
-        let bowl = RationalBezierPatch::from_f64_points([2, 2], &net, None, Domain::UNIT).unwrap();
-        (plane, bowl)
-    }
-
-    /// The plane `z = 0` and the paraboloid `z = (s − ½)² + (t − ½)² − ⅜`, both over the unit
-    /// square (every control point exact in `f64`): the circle of radius `√⅜` round `(½, ½)`
-    /// crosses every side of the square at `½ ± √⅛`. Every arc is cut at both sides it leaves
-    /// through; the cut's proven range (on the cut link, or the next one) must hold the true
-    /// crossing (enclosed in interval arithmetic). (These chains end with a link to a Newton
-    /// point just outside the square, so the ranges are at rounding level already and the
-    /// crossing's Krawczyk narrowing does not apply: the next test exercises it.)
-    #[test]
-    fn a_cut_holds_the_true_crossing_of_the_side() {
-        let (plane, bowl) = plane_and_bowl();
-        let opts = Options {
-            method: Method::Validated,
-            ..Options::default()
-        };
-        let r = intersect(&plane, &bowl, &opts).expect("runs");
-        assert_eq!(r.branches.len(), 4, "four arcs inside the square");
-        let off = point(0.125).sqrt();
-        let (low, high) = (point(0.5) - off, point(0.5) + off);
-        for (i, br) in r.branches.iter().enumerate() {
-            let cert = br.certified().expect("certified");
-            let mut segs = super::super::chain_segs(cert, false);
-            let ends = [&cert.ends[0], &cert.ends[1]];
-            let cuts = cut_ends(cert, &mut segs, ends, [&plane, &bowl], i, [None; 2])
-                .expect("cut at both sides");
-            assert_eq!(cuts.len(), 2);
-            for c in &cuts {
-                let t = &cert.tubes[c.tube];
-                let j = t.along.expect("a cover chain").index;
-                // The side the cut crosses (from the reported curve there), and the true
-                // crossing on it; the plane's and the bowl's parameters agree along the curve.
-                let end = t.coeffs.iter().rev().fold([0.0; 4], |acc, k| {
-                    std::array::from_fn(|d| acc[d] * c.gap.mid() + k[d])
-                });
-                let truth = |x: f64| if x < 0.5 { low } else { high };
-                let crossing: [Interval; 4] = if (end[0] - 0.5).abs() > (end[1] - 0.5).abs() {
-                    let u = point(if end[0] < 0.5 { 0.0 } else { 1.0 });
-                    [u, truth(end[1]), u, truth(end[1])]
-                } else {
-                    let v = point(if end[1] < 0.5 { 0.0 } else { 1.0 });
-                    [truth(end[0]), v, truth(end[0]), v]
-                };
-                // The parameter range a `τ` range of a piece covers: `x_j = from + dir·τ`.
-                let covers = |piece: &crate::certify::TubePiece, tau: Interval| {
-                    point(piece.coeffs[0][j]) + point(piece.coeffs[1][j]) * tau
-                };
-                let on_cut = !covers(t, c.gap).disjoint(crossing[j]);
-                let on_next = c.next.is_some_and(|(n, range)| {
-                    let nt = &cert.tubes[n];
-                    nt.along.map(|a| a.index) == Some(j) && !covers(nt, range).disjoint(crossing[j])
-                });
-                assert!(
-                    on_cut || on_next,
-                    "arc {i}: crossing {crossing:?} outside the cut {:?} / {:?}",
-                    c.gap,
-                    c.next
-                );
-            }
-        }
-    }
-
-    /// The crossing's Krawczyk narrowing (`Side::crossing_slice`) on a side that the chain
-    /// crosses inside a link, not at a link's end: on the plane and the paraboloid's circle,
-    /// the side `x_b = c` through the middle of a link (`b` one of P's parameters other than
-    /// the link's along one, `c` the reported curve's value there). The narrowed range must
-    /// hold the true crossing (from the closed form, in interval arithmetic), and be far
-    /// narrower than the half link it was narrowed from.
-    #[test]
-    fn the_narrowed_crossing_of_a_side_holds_the_true_one() {
-        let (plane, bowl) = plane_and_bowl();
-        let opts = Options {
-            method: Method::Validated,
-            ..Options::default()
-        };
-        let r = intersect(&plane, &bowl, &opts).expect("runs");
-        let mut checked = 0;
-        for br in &r.branches {
-            let cert = br.certified().expect("certified");
-            let segs = super::super::chain_segs(cert, false);
-            for seg in segs.iter().skip(1).step_by(3) {
-                let t = &cert.tubes[seg.tube];
-                let j = t.along.expect("a cover chain").index;
-                let b = if j % 2 == 0 { 1 } else { 0 };
-                let y = reparametrised(&t.coeffs, seg.ta, seg.tb);
-                let (mid, ahead) = (eval_mid(&y, 0.5), eval_mid(&y, 0.6));
-                let side = Side {
-                    cert,
-                    b,
-                    bound: mid[b],
-                    out_sign: (ahead[b] - mid[b]).signum(),
-                };
-                let gap = tau_range(seg, 0.25, 0.75);
-                let Some(c) =
-                    side.crossing_slice([&plane, &bowl], (seg, &y, [0.25, 0.75]), None, gap)
-                else {
-                    continue;
-                };
-                // The true crossing: x_b = c on the circle, the other parameter on the side of
-                // ½ the reported curve is on; x_j is that one (j and b differ in parity).
-                let off = (point(0.375) - (point(mid[b]) - point(0.5)).sqr()).sqrt();
-                let other = if mid[1 - b] > 0.5 {
-                    point(0.5) + off
-                } else {
-                    point(0.5) - off
-                };
-                let tau = (other - point(t.coeffs[0][j])) * point(t.coeffs[1][j]);
-                assert!(
-                    !c.on_cut.disjoint(tau),
-                    "link {}: the narrowed range {:?} misses the crossing {tau:?}",
-                    seg.tube,
-                    c.on_cut
-                );
-                assert!(
-                    c.on_cut.wid() < 1e-6 * gap.wid(),
-                    "{:?} from {gap:?}",
-                    c.on_cut
-                );
-                checked += 1;
-            }
-        }
-        assert!(checked >= 8, "only {checked} crossings narrowed");
-    }
-}
+mod tests;

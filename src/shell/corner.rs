@@ -59,7 +59,9 @@ pub struct CornerJoin {
 /// the second through its [`ChartMap`].
 pub(super) struct Stitched<'a> {
     first: &'a RationalBezierPatch,
-    second: (&'a RationalBezierPatch, ChartMap),
+    /// The other pieces (one across an edge; three round a corner of the first piece, whose
+    /// domains and the first's tile a rectangle) with their maps.
+    others: Vec<(&'a RationalBezierPatch, ChartMap)>,
 }
 
 /// One parameter of a piece as an affine function of one chart coordinate: the chart segment
@@ -122,6 +124,20 @@ impl ChartMap {
         }
     }
 
+    /// The chart shifted by `d` onto a piece of domain `to` (its parameters the chart's plus
+    /// `d`), when the shift is exact in `f64` at the domain's ends (rounded, the pieces'
+    /// chart domains would overlap or leave a gap).
+    pub(super) fn shift(d: [f64; 2], to: &Domain) -> Option<ChartMap> {
+        let seg = |src: usize, [c, e]: [f64; 2]| {
+            let (a, b) = (c - d[src], e - d[src]);
+            (a + d[src] == c && b + d[src] == e && c - a == d[src] && e - b == d[src])
+                .then_some(Segment { src, a, b, c, e })
+        };
+        Some(ChartMap {
+            coords: [seg(0, to.u)?, seg(1, to.v)?],
+        })
+    }
+
     /// The second piece's parameters of the chart box `x`.
     fn forward(&self, x: [Interval; 2]) -> [Interval; 2] {
         self.coords.map(|s| s.forward(x[s.src]))
@@ -147,7 +163,7 @@ impl ChartMap {
 }
 
 impl Stitched<'_> {
-    /// The domain of piece `k` in the chart.
+    /// The domain of piece `k` (0 the first) in the chart.
     fn chart_domain(&self, k: usize) -> Option<[Interval; 2]> {
         if k == 0 {
             let d = self.first.domain();
@@ -156,20 +172,21 @@ impl Stitched<'_> {
                 Interval::try_from((d.v[0], d.v[1])).ok()?,
             ])
         } else {
-            self.second.1.chart_domain()
+            self.others.get(k - 1)?.1.chart_domain()
         }
     }
 
-    /// Whether the chart box `x` lies in the union of the two pieces' domains (which is a
-    /// rectangle: the pieces share a whole side).
+    /// Whether the chart box `x` lies in the union of the pieces' domains (which is a
+    /// rectangle: the pieces tile it).
     fn covers(&self, x: [Interval; 2]) -> bool {
-        let (Some(a), Some(b)) = (self.chart_domain(0), self.chart_domain(1)) else {
-            return false;
-        };
-        (0..2).all(|i| {
-            let hull = a[i].convex_hull(b[i]);
-            x[i].subset(hull)
-        })
+        let mut hull: Option<[Interval; 2]> = None;
+        for k in 0..=self.others.len() {
+            let Some(d) = self.chart_domain(k) else {
+                return false;
+            };
+            hull = Some(hull.map_or(d, |h| [h[0].convex_hull(d[0]), h[1].convex_hull(d[1])]));
+        }
+        hull.is_some_and(|h| (0..2).all(|i| x[i].subset(h[i])))
     }
 }
 
@@ -178,7 +195,7 @@ impl BoxSurface for Stitched<'_> {
     /// line if the box meets neither).
     fn box_first_order(&self, u: Interval, v: Interval) -> [[Interval; 3]; 3] {
         let mut out: Option<[[Interval; 3]; 3]> = None;
-        for k in 0..2 {
+        for k in 0..=self.others.len() {
             let Some(d) = self.chart_domain(k) else {
                 continue;
             };
@@ -191,7 +208,7 @@ impl BoxSurface for Stitched<'_> {
             } else {
                 // In the piece's parameters, clipped to its domain (the map is enclosed; the
                 // domain is exact); the partials by the chart's coordinates by the chain rule.
-                let (p, map) = self.second;
+                let (p, map) = self.others[k - 1];
                 let pd = p.domain();
                 let (Ok(du), Ok(dv)) = (
                     Interval::try_from((pd.u[0], pd.u[1])),
@@ -519,8 +536,17 @@ pub(super) fn stitched<'a>(
 ) -> Stitched<'a> {
     Stitched {
         first,
-        second: (second, map),
+        others: vec![(second, map)],
     }
+}
+
+/// A surface's piece `first` with the pieces `others` round it through their maps (none: the
+/// piece alone).
+pub(super) fn stitched_round<'a>(
+    first: &'a RationalBezierPatch,
+    others: Vec<(&'a RationalBezierPatch, ChartMap)>,
+) -> Stitched<'a> {
+    Stitched { first, others }
 }
 
 /// A candidate join across a corner, before matching.
@@ -542,10 +568,10 @@ pub(super) struct CornerCandidate {
 pub(super) struct CornerProof {
     pub(super) k: ParamBox,
     pub(super) xyz: [Interval; 3],
-    /// Per surface, the map from the chart to the second pair's piece.
-    pub(super) maps: [ChartMap; 2],
-    /// `[[face, piece] of A, [face, piece] of B]` of the first and of the second pair.
-    pub(super) pieces: [[[usize; 2]; 2]; 2],
+    /// The pairs beside the corner, whose branches lying in the box are slivers of its arc:
+    /// `[[face, piece] of A, [face, piece] of B]`, and per surface the map from the chart to
+    /// that pair's piece.
+    pub(super) beside: Vec<([[usize; 2]; 2], [ChartMap; 2])>,
 }
 
 /// Every candidate join across a corner: an end site on a side of both of its pieces, and one
@@ -648,20 +674,22 @@ fn prove_pair(
     match prove(&sta, &stb, &x, &y, [sa, sb], [(ka, va), (2 + kb, vb)]) {
         Ok((k, xyz)) => (
             Ok(()),
-            Some(CornerProof {
-                k,
-                xyz,
-                maps: [sa, sb],
-                pieces: [
-                    [
-                        [p[0].faces[0], p[0].pieces[0]],
-                        [p[0].faces[1], p[0].pieces[1]],
-                    ],
-                    [
-                        [p[1].faces[0], p[1].pieces[0]],
-                        [p[1].faces[1], p[1].pieces[1]],
-                    ],
-                ],
+            Some({
+                // (a₁, b₂): B mapped; (a₂, b₁): A mapped.
+                let same = ChartMap::identity();
+                let (a1, b1) = (
+                    [p[0].faces[0], p[0].pieces[0]],
+                    [p[0].faces[1], p[0].pieces[1]],
+                );
+                let (a2, b2) = (
+                    [p[1].faces[0], p[1].pieces[0]],
+                    [p[1].faces[1], p[1].pieces[1]],
+                );
+                CornerProof {
+                    k,
+                    xyz,
+                    beside: vec![([a1, b2], [same, sb]), ([a2, b1], [sa, same])],
+                }
             }),
         ),
         Err(reason) => unproven(reason),
@@ -676,14 +704,8 @@ pub(super) fn absorbed(
     by_pair: &HashMap<([usize; 2], [usize; 2]), usize>,
     first_branch: &[usize],
 ) -> Vec<usize> {
-    let [[a1, b1], [a2, b2]] = proof.pieces;
     let mut out = Vec::new();
-    // (a₁, b₂): B mapped; (a₂, b₁): A mapped.
-    let same = ChartMap::identity();
-    for (pa, pb, maps) in [
-        (a1, b2, [same, proof.maps[1]]),
-        (a2, b1, [proof.maps[0], same]),
-    ] {
+    for &([pa, pb], maps) in &proof.beside {
         let Some(&k) = by_pair.get(&([pa[0], pb[0]], [pa[1], pb[1]])) else {
             continue;
         };

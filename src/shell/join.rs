@@ -37,6 +37,7 @@ use inari::Interval;
 
 use super::corner::{self, CornerJoin};
 use super::edges::{along_range, shared_edges, side_coordinate, EdgeKind, EdgeLink, PieceSide};
+use super::own_corner;
 use super::sites::{certified_exit, end_site, marched_gap, patches, EndSite};
 pub use super::sites::{BranchEnd, MARCH_JOIN_TOLERANCE, SIDE_TOLERANCE};
 use super::{Face, PieceIntersection};
@@ -185,7 +186,10 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
             }
         }
     }
-    let corners = corner::candidates(a, b, pairs, &sites, &links, &by_pair);
+    let mut corners = corner::candidates(a, b, pairs, &sites, &links, &by_pair);
+    corners.extend(own_corner::candidates(
+        a, b, pairs, &sites, &links, &by_pair,
+    ));
     for (n, c) in corners.iter().enumerate() {
         let [x, y] = c.sites;
         let status = match c.status {

@@ -17,6 +17,7 @@
 pub mod corner;
 pub mod edges;
 pub mod join;
+mod own_corner;
 mod sites;
 
 use rayon::prelude::*;

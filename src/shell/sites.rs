@@ -41,6 +41,9 @@ pub(super) struct EndSite<'a> {
     pub(super) side: PieceSide,
     /// The side of the other surface's piece the end point is also on (a corner of the pair).
     pub(super) corner: Option<PieceSide>,
+    /// The other side of the same piece the end point is also on (a corner of the piece, where
+    /// four pieces of one face meet), when it is on no side of the other surface's piece.
+    pub(super) own_corner: Option<PieceSide>,
     /// The marched end point.
     pub(super) point: CurvePoint,
     /// The certified exit, when the branch is certified and its exit could be proven.
@@ -123,12 +126,25 @@ pub(super) fn end_site<'a>(
         piece: pi.pieces[other],
         side: s,
     });
+    // The perpendicular sides of the same piece.
+    let across = if side.side < 2 { [2, 3] } else { [0, 1] };
+    let own_corner = corner.is_none().then_some(()).and_then(|()| {
+        across.into_iter().find_map(|sd| {
+            let (k, value) = side_coordinate(&dom, sd);
+            ((x[k] - value).abs() <= SIDE_TOLERANCE * size).then_some(PieceSide {
+                face: pi.faces[surface],
+                piece: pi.pieces[surface],
+                side: sd,
+            })
+        })
+    });
     Some(EndSite {
         at,
         pair,
         surface,
         side,
         corner,
+        own_corner,
         point,
         exit,
         tolerance: traced.certified_tolerance(),
