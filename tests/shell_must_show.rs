@@ -548,6 +548,37 @@ fn four_quarter_cylinders_against_an_oblique_plane_are_one_closed_ellipse() {
     check_edge("quarter cylinders", &e[0], &scene.shells, &off, &truth);
 }
 
+/// The one curve of `report` has one corner join at each point of `exact`, whose box holds
+/// that point and is below 1e-9 across, and every branch is a part of it or absorbed by a
+/// corner.
+fn check_corners(what: &str, report: &ShellRunReport, exact: &[[f64; 3]]) {
+    let r = &report.result;
+    let corners: Vec<_> = r.curves[0]
+        .joins
+        .iter()
+        .filter_map(|j| j.corner.as_ref())
+        .collect();
+    assert_eq!(corners.len(), exact.len(), "{what}: {corners:?}");
+    for at in exact {
+        let holding = corners
+            .iter()
+            .filter(|c| (0..3).all(|i| c.xyz[i].contains(at[i])))
+            .count();
+        assert_eq!(holding, 1, "{what}: corner {at:?}");
+    }
+    for c in &corners {
+        let diameter = c.xyz.iter().map(|x| x.wid()).fold(0.0, f64::max);
+        assert!(diameter < 1e-9, "{what}: {diameter:e}");
+    }
+    let used: std::collections::HashSet<usize> = r.curves[0]
+        .parts
+        .iter()
+        .map(|p| p.branch)
+        .chain(corners.iter().flat_map(|c| c.absorbed.iter().copied()))
+        .collect();
+    assert_eq!(used.len(), r.branch_count(), "{what}");
+}
+
 /// The quarter cylinders against an oblique plane made of two faces that share the line
 /// `x = 0`: the ellipse crosses the plane's face edge exactly where it crosses the cylinder's
 /// face edges, at `(0, ±1)`. There each branch ends at a corner of its piece pair and the next
@@ -587,32 +618,8 @@ fn a_corner_across_face_edges_of_both_shells_is_joined_and_proven() {
         let r = &report.result;
         assert_eq!(r.curves.len(), 1, "{what}: one ellipse: {:?}", r.curves);
         assert_eq!(r.curves[0].parts.len(), 4, "{what}");
-        let corners: Vec<_> = r.curves[0]
-            .joins
-            .iter()
-            .filter_map(|j| j.corner.as_ref())
-            .collect();
-        assert_eq!(corners.len(), 2, "{what}: {corners:?}");
-        for y in [1.0, -1.0] {
-            let exact = [0.0, y, z(0.0, y)];
-            let holding = corners
-                .iter()
-                .filter(|c| (0..3).all(|i| c.xyz[i].contains(exact[i])))
-                .count();
-            assert_eq!(holding, 1, "{what}: corner {exact:?}");
-        }
-        for c in &corners {
-            let diameter = c.xyz.iter().map(|x| x.wid()).fold(0.0, f64::max);
-            assert!(diameter < 1e-9, "{what}: {diameter:e}");
-        }
-        // Every branch is a part of the curve or absorbed by a corner.
-        let used: std::collections::HashSet<usize> = r.curves[0]
-            .parts
-            .iter()
-            .map(|p| p.branch)
-            .chain(corners.iter().flat_map(|c| c.absorbed.iter().copied()))
-            .collect();
-        assert_eq!(used.len(), r.branch_count(), "{what}");
+        let exact = [1.0, -1.0].map(|y| [0.0, y, z(0.0, y)]);
+        check_corners(what, &report, &exact);
         let off = |p: &[f64; 3]| dist3(p, &ellipse(p[1].atan2(p[0])));
         let e = edges(what, &scene, &report);
         assert_eq!(e.len(), 1, "{what}");
@@ -677,30 +684,7 @@ fn a_great_circle_through_knot_line_crossings_of_a_nurbs_sphere_is_one_closed_cu
         let res = &report.result;
         assert_eq!(res.curves.len(), 1, "{what}: one circle: {:?}", res.curves);
         assert_eq!(res.curves[0].parts.len(), 4, "{what}");
-        let corners: Vec<_> = res.curves[0]
-            .joins
-            .iter()
-            .filter_map(|j| j.corner.as_ref())
-            .collect();
-        assert_eq!(corners.len(), 2, "{what}: {corners:?}");
-        for exact in corners_at {
-            let holding = corners
-                .iter()
-                .filter(|c| (0..3).all(|i| c.xyz[i].contains(exact[i])))
-                .count();
-            assert_eq!(holding, 1, "{what}: corner {exact:?}");
-        }
-        for c in &corners {
-            let diameter = c.xyz.iter().map(|x| x.wid()).fold(0.0, f64::max);
-            assert!(diameter < 1e-9, "{what}: {diameter:e}");
-        }
-        let used: std::collections::HashSet<usize> = res.curves[0]
-            .parts
-            .iter()
-            .map(|p| p.branch)
-            .chain(corners.iter().flat_map(|c| c.absorbed.iter().copied()))
-            .collect();
-        assert_eq!(used.len(), res.branch_count(), "{what}");
+        check_corners(what, &report, &corners_at);
         // An upper bound on the distance to the unit circle in the plane: the distance to the
         // plane `a` and to the unit sphere `r` give at most `√(a² + (r + a)²) ≤ 2a + r`.
         let normal = {

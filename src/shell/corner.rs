@@ -355,6 +355,29 @@ pub(super) fn exit_boxes(
     None
 }
 
+/// The exit boxes ([`exit_boxes`]) of the two sites `s` at a corner, each in its pair's own
+/// parameters (`q`: the pairs' pieces), or why there are none.
+pub(super) fn both_exits(
+    s: [&EndSite; 2],
+    q: [[&RationalBezierPatch; 2]; 2],
+) -> Result<(ParamBox, ParamBox), &'static str> {
+    let (Some(c1), Some(c2)) = (s[0].certificate, s[1].certificate) else {
+        return Err("an end at the corner is not certified");
+    };
+    let near = |pt: &CurvePoint| [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+    let (d1, d2) = (
+        [q[0][0].domain(), q[0][1].domain()],
+        [q[1][0].domain(), q[1][1].domain()],
+    );
+    match (
+        exit_boxes(c1, near(&s[0].point), [&d1[0], &d1[1]]),
+        exit_boxes(c2, near(&s[1].point), [&d2[0], &d2[1]]),
+    ) {
+        (Some(x), Some(y)) => Ok((x, y)),
+        _ => Err("a certified end does not leave its pieces at the corner"),
+    }
+}
+
 /// The proof of a corner join (see the module documentation): `x` and `y` are the two
 /// branches' exit boxes, `x` in the chart (the first pair's parameters), `y` in the second
 /// pair's own; `maps` take the chart to the second pair's parameters; `a`, `b` are the
@@ -653,20 +676,11 @@ fn prove_pair(
     ) else {
         return unproven("a side at the corner is degenerate");
     };
-    let (Some(c1), Some(c2)) = (s[0].certificate, s[1].certificate) else {
-        return unproven("an end at the corner is not certified");
+    let (x, y) = match both_exits(s, [q1, q2]) {
+        Ok(b) => b,
+        Err(reason) => return unproven(reason),
     };
-    let near = |pt: &CurvePoint| [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
-    let (d1, d2) = (
-        [q1[0].domain(), q1[1].domain()],
-        [q2[0].domain(), q2[1].domain()],
-    );
-    let (Some(x), Some(y)) = (
-        exit_boxes(c1, near(&s[0].point), [&d1[0], &d1[1]]),
-        exit_boxes(c2, near(&s[1].point), [&d2[0], &d2[1]]),
-    ) else {
-        return unproven("a certified end does not leave its pieces at the corner");
-    };
+    let d1 = [q1[0].domain(), q1[1].domain()];
     let sta = stitched(q1[0], q2[0], sa);
     let stb = stitched(q1[1], q2[1], sb);
     let (ka, va) = side_coordinate(&d1[0], l[0].from.side);

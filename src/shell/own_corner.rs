@@ -15,13 +15,12 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::corner::{exit_boxes, prove, stitched_round, ChartMap, CornerCandidate, CornerProof};
+use super::corner::{both_exits, prove, stitched_round, ChartMap, CornerCandidate, CornerProof};
 use super::edges::{along_range, side_coordinate, EdgeKind, EdgeLink, PieceSide};
 use super::sites::{marched_gap, patches, EndSite};
 use super::{Face, PieceIntersection};
 use crate::geometry::bezier::RationalBezierPatch;
 use crate::geometry::surface::Domain;
-use crate::march::branch::CurvePoint;
 
 /// The exact shift taking the parameters of the piece on `link.from` (domain `from`) to those
 /// of the piece on `link.to` (domain `to`): a knot line or a seam of one face between opposite
@@ -189,9 +188,6 @@ fn prove_own(
     if !p[0].result.options.method.certifies() {
         return unproven("the method does not certify");
     }
-    let (Some(c1), Some(c2)) = (s[0].certificate, s[1].certificate) else {
-        return unproven("an end at the corner is not certified");
-    };
     let sf = s[0].surface;
     let (q1, q2) = (patches(a, b, p[0]), patches(a, b, p[1]));
     let maps: Vec<ChartMap> = (0..3)
@@ -200,17 +196,11 @@ fn prove_own(
     if maps.len() != 3 {
         return unproven("a piece round the corner is not shifted exactly");
     }
-    let near = |pt: &CurvePoint| [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
-    let (d1, d2) = (
-        [q1[0].domain(), q1[1].domain()],
-        [q2[0].domain(), q2[1].domain()],
-    );
-    let (Some(x), Some(y)) = (
-        exit_boxes(c1, near(&s[0].point), [&d1[0], &d1[1]]),
-        exit_boxes(c2, near(&s[1].point), [&d2[0], &d2[1]]),
-    ) else {
-        return unproven("a certified end does not leave its piece at the corner");
+    let (x, y) = match both_exits(s, [q1, q2]) {
+        Ok(b) => b,
+        Err(reason) => return unproven(reason),
     };
+    let d1 = [q1[0].domain(), q1[1].domain()];
     let round = stitched_round(q1[sf], (0..3).map(|i| (r.patches[i], maps[i])).collect());
     let alone = stitched_round(q1[1 - sf], Vec::new());
     let same = ChartMap::identity();
