@@ -128,16 +128,17 @@ pub(super) fn end_site<'a>(
     });
     // The perpendicular sides of the same piece.
     let across = if side.side < 2 { [2, 3] } else { [0, 1] };
-    let own_corner = corner.is_none().then_some(()).and_then(|()| {
-        across.into_iter().find_map(|sd| {
+    let own_corner = across
+        .into_iter()
+        .filter(|_| corner.is_none())
+        .find_map(|sd| {
             let (k, value) = side_coordinate(&dom, sd);
             ((x[k] - value).abs() <= SIDE_TOLERANCE * size).then_some(PieceSide {
                 face: pi.faces[surface],
                 piece: pi.pieces[surface],
                 side: sd,
             })
-        })
-    });
+        });
     Some(EndSite {
         at,
         pair,
