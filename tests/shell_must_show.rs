@@ -712,3 +712,54 @@ fn a_great_circle_through_knot_line_crossings_of_a_nurbs_sphere_is_one_closed_cu
         check_edge(what, &e[0], &scene.shells, &off, &around(circle));
     }
 }
+
+/// A plane of four quadrant faces meeting at the origin, each written another way (the
+/// standard parametrisation, its axes swapped, both reversed, and a NURBS face over
+/// `[0, 2] × [0, 4]`), against the paraboloid `z = (x − cx)² + (y − cy)² − (cx² + cy²)`
+/// (a biquadratic Bézier patch over `[−1, 1]²`, every control point exact): the circle round
+/// `(cx, cy)` through the origin crosses there from one face to the diagonally opposite one, a
+/// point where four faces meet across face edges. The join across it is proven on a chart of
+/// the four faces (each mapped affinely across the edge it shares, and the diagonal face
+/// reached both ways round with the same map). Two circles, one through each pair of
+/// opposite faces: one closed curve each, the corner proven (its box holds the origin), the
+/// one-point branches absorbed, the edge within its tolerance of the circle both ways.
+#[test]
+fn a_curve_through_a_vertex_where_four_faces_meet_is_one_closed_curve() {
+    let p = |x: f64, y: f64| json!([x, y, 0.0]);
+    let bilinear = |c: [Value; 4]| json!({"kind": "bezier", "degree": [1, 1], "points": c});
+    let quadrants = vec![
+        bilinear([p(0.0, 0.0), p(0.0, 1.0), p(1.0, 0.0), p(1.0, 1.0)]),
+        bilinear([p(0.0, 0.0), p(-1.0, 0.0), p(0.0, 1.0), p(-1.0, 1.0)]),
+        bilinear([p(0.0, 0.0), p(0.0, -1.0), p(-1.0, 0.0), p(-1.0, -1.0)]),
+        json!({"kind": "nurbs", "degree": [1, 1], "knots": [[0.0, 0.0, 2.0, 2.0], [0.0, 0.0, 4.0, 4.0]],
+               "points": [p(0.0, -1.0), p(0.0, 0.0), p(1.0, -1.0), p(1.0, 0.0)]}),
+    ];
+    for (cx, cy) in [(0.25, 0.125), (-0.25, 0.125)] {
+        let what = format!("circle round ({cx}, {cy})");
+        // (x − c)² over x = −1 + 2s in Bernstein form: (1 + c)², c² − 1, (1 − c)².
+        let bern = |c: f64| [(1.0 + c) * (1.0 + c), c * c - 1.0, (1.0 - c) * (1.0 - c)];
+        let (bx, by) = (bern(cx), bern(cy));
+        let r2 = cx * cx + cy * cy;
+        let net: Vec<Value> = (0..3)
+            .flat_map(|i| {
+                (0..3).map(move |j| json!([i as f64 - 1.0, j as f64 - 1.0, bx[i] + by[j] - r2]))
+            })
+            .collect();
+        let bowl = json!({"kind": "bezier", "degree": [2, 2], "points": net});
+        let (scene, report) = run(json!({"surfaces": [quadrants.clone(), bowl],
+                                         "options": {"method": "both"}}));
+        closed_and_proven(&what, &report);
+        assert_eq!(report.result.curves.len(), 1, "{what}");
+        check_corners(&what, &report, &[[0.0, 0.0, 0.0]]);
+        let r = r2.sqrt();
+        let circle = |t: f64| [cx + r * t.cos(), cy + r * t.sin(), 0.0];
+        let off = |q: &[f64; 3]| {
+            let d = ((q[0] - cx).powi(2) + (q[1] - cy).powi(2)).sqrt();
+            (d - r).abs() + q[2].abs()
+        };
+        let e = edges(&what, &scene, &report);
+        assert_eq!(e.len(), 1, "{what}");
+        assert!(e[0].closed, "{what}");
+        check_edge(&what, &e[0], &scene.shells, &off, &around(circle));
+    }
+}

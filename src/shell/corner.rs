@@ -32,7 +32,8 @@ use std::collections::HashMap;
 
 use inari::Interval;
 
-use super::edges::{along_range, side_coordinate, EdgeKind, EdgeLink};
+use super::chart::{chart_map, ChartMap};
+use super::edges::{side_coordinate, EdgeKind, EdgeLink};
 use super::sites::{marched_gap, patches, EndSite, Zero};
 use super::{Face, PieceIntersection};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
@@ -62,104 +63,6 @@ pub(super) struct Stitched<'a> {
     /// The other pieces (one across an edge; three round a corner of the first piece, whose
     /// domains and the first's tile a rectangle) with their maps.
     others: Vec<(&'a RationalBezierPatch, ChartMap)>,
-}
-
-/// One parameter of a piece as an affine function of one chart coordinate: the chart segment
-/// `[a, b]` onto the piece's `[c, e]` (`a ↦ c`, `b ↦ e`; `e < c` when the edge runs the other
-/// way). The map is that exact real function; it is evaluated in intervals, so every image
-/// encloses the exact one.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Segment {
-    /// The chart coordinate it follows (0 or 1).
-    src: usize,
-    a: f64,
-    b: f64,
-    c: f64,
-    e: f64,
-}
-
-impl Segment {
-    /// `c + (x − a)·(e − c)/(b − a)`, enclosed.
-    fn forward(&self, x: Interval) -> Interval {
-        point(self.c) + (x - point(self.a)) * self.factor()
-    }
-
-    /// `a + (y − c)·(b − a)/(e − c)`, enclosed.
-    fn back(&self, y: Interval) -> Interval {
-        let inverse = (point(self.b) - point(self.a)) / (point(self.e) - point(self.c));
-        point(self.a) + (y - point(self.c)) * inverse
-    }
-
-    /// `(e − c)/(b − a)`: the derivative of the piece's parameter by the chart coordinate.
-    fn factor(&self) -> Interval {
-        (point(self.e) - point(self.c)) / (point(self.b) - point(self.a))
-    }
-}
-
-/// The affine map from a corner's chart (the parameters of the piece on one side of a shared
-/// edge) to the parameters of the piece across it: along the edge, the edge's normalised
-/// parameter is the same on both sides (reversed when the link is); across it, the chart
-/// continues past the side to a far bound `F`, and `[side, F]` maps onto the second piece's
-/// range from its side inwards. On the edge the two pieces are the same rational Bézier curve
-/// at the same normalised parameter ([`super::edges`]), so the stitched map is continuous, and
-/// being affine the maps keep it continuously differentiable on each piece.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct ChartMap {
-    /// The second piece's `u` and `v`.
-    coords: [Segment; 2],
-}
-
-impl ChartMap {
-    /// The identity (no second piece to map: a pair whose pieces did not change).
-    pub(super) fn identity() -> ChartMap {
-        let seg = |src| Segment {
-            src,
-            a: 0.0,
-            b: 1.0,
-            c: 0.0,
-            e: 1.0,
-        };
-        ChartMap {
-            coords: [seg(0), seg(1)],
-        }
-    }
-
-    /// The chart shifted by `d` onto a piece of domain `to` (its parameters the chart's plus
-    /// `d`), when the shift is exact in `f64` at the domain's ends (rounded, the pieces'
-    /// chart domains would overlap or leave a gap).
-    pub(super) fn shift(d: [f64; 2], to: &Domain) -> Option<ChartMap> {
-        let seg = |src: usize, [c, e]: [f64; 2]| {
-            let (a, b) = (c - d[src], e - d[src]);
-            (a + d[src] == c && b + d[src] == e && c - a == d[src] && e - b == d[src])
-                .then_some(Segment { src, a, b, c, e })
-        };
-        Some(ChartMap {
-            coords: [seg(0, to.u)?, seg(1, to.v)?],
-        })
-    }
-
-    /// The second piece's parameters of the chart box `x`.
-    fn forward(&self, x: [Interval; 2]) -> [Interval; 2] {
-        self.coords.map(|s| s.forward(x[s.src]))
-    }
-
-    /// The chart box of the second piece's parameters `y`.
-    fn back(&self, y: [Interval; 2]) -> [Interval; 2] {
-        let mut out = [Interval::ENTIRE; 2];
-        for (k, s) in self.coords.iter().enumerate() {
-            out[s.src] = s.back(y[k]);
-        }
-        out
-    }
-
-    /// The second piece's domain in the chart (exact: its ends are the segments' `a`, `b`).
-    fn chart_domain(&self) -> Option<[Interval; 2]> {
-        let mut out = [Interval::ENTIRE; 2];
-        for s in &self.coords {
-            out[s.src] = Interval::try_from((s.a.min(s.b), s.a.max(s.b))).ok()?;
-        }
-        Some(out)
-    }
 }
 
 impl Stitched<'_> {
@@ -224,9 +127,8 @@ impl BoxSurface for Stitched<'_> {
                 let [s, su, sv] = p.first_derivs(pu, pv);
                 let mut e = [s, s, s];
                 for (i, d) in [su, sv].into_iter().enumerate() {
-                    let seg = map.coords[i];
-                    let f = seg.factor();
-                    e[1 + seg.src] = d.map(|c| c * f);
+                    let (src, f) = map.chain_factor(i);
+                    e[1 + src] = d.map(|c| c * f);
                 }
                 e
             };
@@ -239,65 +141,6 @@ impl BoxSurface for Stitched<'_> {
         }
         out.unwrap_or([[Interval::ENTIRE; 3]; 3])
     }
-}
-
-/// The map taking the chart (the parameters of the piece on `link.from`, domain `from`) to
-/// those of the piece on `link.to` (domain `to`) across their shared edge ([`ChartMap`]): a
-/// knot line, a seam (the same or the reverse way) or a face edge, between any two sides. The
-/// chart's far bound across the edge is the side's value plus the second piece's width there
-/// (in `f64`; any bound on the right side would do, the map is defined by it). `None` for a
-/// degenerate side.
-pub(super) fn chart_map(link: &EdgeLink, from: &Domain, to: &Domain) -> Option<ChartMap> {
-    let (k1, v1) = side_coordinate(from, link.from.side);
-    let (k2, v2) = side_coordinate(to, link.to.side);
-    let [a0, a1] = along_range(from, link.from.side);
-    let [b0, b1] = along_range(to, link.to.side);
-    let (c, e) = if link.reversed { (b1, b0) } else { (b0, b1) };
-    let along = Segment {
-        src: 1 - k1,
-        a: a0,
-        b: a1,
-        c,
-        e,
-    };
-    // Across: from the side inwards on the second piece; past the side outwards in the chart.
-    let inner = if link.to.side.is_multiple_of(2) {
-        if k2 == 0 {
-            to.u[1]
-        } else {
-            to.v[1]
-        }
-    } else if k2 == 0 {
-        to.u[0]
-    } else {
-        to.v[0]
-    };
-    let width = (inner - v2).abs();
-    let outwards = if link.from.side.is_multiple_of(2) {
-        -1.0
-    } else {
-        1.0
-    };
-    let far = v1 + outwards * width;
-    let across = Segment {
-        src: k1,
-        a: v1,
-        b: far,
-        c: v2,
-        e: inner,
-    };
-    let ok = |s: &Segment| {
-        s.a != s.b && s.c != s.e && [s.a, s.b, s.c, s.e].iter().all(|x| x.is_finite())
-    };
-    if !(ok(&along) && ok(&across)) {
-        return None;
-    }
-    let mut coords = [along, across];
-    if k2 == 0 {
-        coords.swap(0, 1);
-    }
-    // `coords[i]` gives the second piece's parameter i: along is its 1 − k2, across its k2.
-    Some(ChartMap { coords })
 }
 
 /// The parameter box of `y` (in a pair's own parameters) in the chart of the corner, each
@@ -670,10 +513,8 @@ fn prove_pair(
     }
     let unproven = |reason| (Err(reason), None);
     let (q1, q2) = (patches(a, b, p[0]), patches(a, b, p[1]));
-    let (Some(sa), Some(sb)) = (
-        chart_map(l[0], &q1[0].domain(), &q2[0].domain()),
-        chart_map(l[1], &q1[1].domain(), &q2[1].domain()),
-    ) else {
+    let (Some(sa), Some(sb)) = (chart_map(l[0], q1[0], q2[0]), chart_map(l[1], q1[1], q2[1]))
+    else {
         return unproven("a side at the corner is degenerate");
     };
     let (x, y) = match both_exits(s, [q1, q2]) {

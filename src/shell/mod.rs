@@ -14,6 +14,7 @@
 //! to end across knot lines, periodic seams and edges shared by two faces ([`join`]): the
 //! result also lists one [`JoinedCurve`] per connected curve, each join proven or flagged.
 
+mod chart;
 pub mod corner;
 pub mod edges;
 pub mod join;

@@ -1,48 +1,28 @@
 //! Joins across a corner of one surface's own pieces: a curve through a point where four
-//! pieces of one face meet (two knot lines crossing, or a knot line and a periodic seam), at a
-//! point inside the other surface's piece. The great circle of a NURBS sphere in a plane
-//! through its centre and a knot-line crossing of the equator does this.
+//! pieces of one surface meet (two knot lines crossing, a knot line and a periodic seam, or a
+//! vertex of four faces of a shell), at a point inside the other surface's piece. The great
+//! circle of a NURBS sphere in a plane through its centre and a knot-line crossing of the
+//! equator does this.
 //!
 //! The two branches that meet there belong to the pairs of diagonally opposite pieces `a₁` and
 //! `a₂` of that surface with the other surface's piece `b`; the pairs of the two pieces beside
 //! the corner, `a_x` (across the first side) and `a_y` (across the second), hold at most a
 //! sliver (the corner point). The proof is the one of [`super::corner`] with the chart made of
-//! all four pieces of the face round the corner: the face's own parameters, the pieces across a
-//! periodic seam shifted by the period (exactly, in `f64`). Only knot lines and seams the same
-//! way round are taken (the four pieces are then one surface in one parametrisation, and the
-//! piece diagonally across is reached with the same shift either way round the corner); the
+//! all four pieces round the corner: `a₁`'s parameters, `a_x` and `a_y` mapped across the edge
+//! each shares with `a₁` ([`super::chart::chart_map`]), and `a₂` through both, checked to be
+//! the same piece with its sides on the corner's lines either way round, so that the four tile
+//! a rectangle of the chart and the stitched map is continuous across all four edges. The
 //! other surface is its one piece.
 
 use std::collections::{HashMap, HashSet};
 
-use super::corner::{both_exits, prove, stitched_round, ChartMap, CornerCandidate, CornerProof};
-use super::edges::{along_range, side_coordinate, EdgeKind, EdgeLink, PieceSide};
+use super::chart::{chart_map, ChartMap};
+use super::corner::{both_exits, prove, stitched_round, CornerCandidate, CornerProof};
+use super::edges::{side_coordinate, EdgeKind, EdgeLink, PieceSide};
 use super::sites::{marched_gap, patches, EndSite};
 use super::{Face, PieceIntersection};
 use crate::geometry::bezier::RationalBezierPatch;
 use crate::geometry::surface::Domain;
-
-/// The exact shift taking the parameters of the piece on `link.from` (domain `from`) to those
-/// of the piece on `link.to` (domain `to`): a knot line or a seam of one face between opposite
-/// sides, the edge parameter running the same way over the same range. `None` otherwise.
-fn exact_shift(link: &EdgeLink, from: &Domain, to: &Domain) -> Option<[f64; 2]> {
-    if link.kind == EdgeKind::FaceEdge || link.reversed {
-        return None;
-    }
-    let (k1, v1) = side_coordinate(from, link.from.side);
-    let (k2, v2) = side_coordinate(to, link.to.side);
-    let opposite = link.from.side / 2 == link.to.side / 2 && link.from.side != link.to.side;
-    if k1 != k2 || !opposite || along_range(from, link.from.side) != along_range(to, link.to.side) {
-        return None;
-    }
-    let d = v2 - v1;
-    if v1 + d != v2 || v2 - d != v1 {
-        return None;
-    }
-    let mut shift = [0.0; 2];
-    shift[k1] = d;
-    Some(shift)
-}
 
 /// The links of `links` (sorted by their `from` side) from `side`.
 fn from_side(links: &[EdgeLink], side: PieceSide) -> impl Iterator<Item = &EdgeLink> {
@@ -50,33 +30,64 @@ fn from_side(links: &[EdgeLink], side: PieceSide) -> impl Iterator<Item = &EdgeL
     links[first..].iter().take_while(move |e| e.from == side)
 }
 
-/// The four pieces round a corner of piece `a₁` of one surface, with their shifts from `a₁`'s
-/// parameters.
+/// The four pieces round a corner of piece `a₁` of one surface, with the maps from `a₁`'s
+/// parameters (the chart) to theirs.
 struct Round<'a> {
     /// `a_x`, `a_y` (across the site's first and second side) and `a₂` (diagonally across).
     pieces: [PieceSide; 3],
-    shifts: [[f64; 2]; 3],
+    maps: [ChartMap; 3],
     patches: [&'a RationalBezierPatch; 3],
     edges: [EdgeKind; 2],
 }
 
-/// The pieces round the corner of the site's piece at its sides `sides`, when each is reached
-/// across a knot line or seam with an exact shift and the diagonal piece is the same both ways
-/// round.
+/// The side of the piece with domain `d` at which its parameter `i` takes the value `v` (an
+/// end of its range).
+fn side_at(d: &Domain, i: usize, v: f64) -> Option<usize> {
+    let r = if i == 0 { d.u } else { d.v };
+    if v == r[0] {
+        Some(2 * i)
+    } else if v == r[1] {
+        Some(2 * i + 1)
+    } else {
+        None
+    }
+}
+
+/// The pieces round the corner of the site's piece `a₁` at its sides `sides`: `a_x` and
+/// `a_y` across them, and `a₂` across the side of `a_x` that continues the second side and
+/// across the side of `a_y` that continues the first (the same piece both ways). `a₂`'s map
+/// takes each chart coordinate across the edge it crosses first and then along the next
+/// ([`ChartMap::composed`]), and must put the corner's lines on `a₂`'s sides at the two edges
+/// it shares with `a_x` and `a_y`: then the four pieces tile a rectangle of the chart and
+/// the stitched map is continuous across all four edges.
 fn round<'a>(faces: &'a [Face], links: &[EdgeLink], sides: [PieceSide; 2]) -> Vec<Round<'a>> {
     let piece = |ps: &PieceSide| &faces[ps.face].pieces()[ps.piece];
     let dom = |ps: &PieceSide| piece(ps).domain();
+    let d1 = dom(&sides[0]);
+    let (k1, v1) = side_coordinate(&d1, sides[0].side);
+    let (k2, v2) = side_coordinate(&d1, sides[1].side);
     let mut out = Vec::new();
     for l1 in from_side(links, sides[0]) {
         for l3 in from_side(links, sides[1]) {
             let (ax, ay) = (l1.to, l3.to);
-            let ax_side = PieceSide {
-                side: sides[1].side,
-                ..ax
-            };
-            let ay_side = PieceSide {
-                side: sides[0].side,
-                ..ay
+            let found = (|| {
+                let m1 = chart_map(l1, piece(&sides[0]), piece(&ax))?;
+                let m3 = chart_map(l3, piece(&sides[0]), piece(&ay))?;
+                // The sides of a_x and a_y through the corner, continuing a₁'s other side.
+                let (jx, wx) = m1.end_image(k2, v2)?;
+                let (jy, wy) = m3.end_image(k1, v1)?;
+                let ax_side = PieceSide {
+                    side: side_at(&dom(&ax), jx, wx)?,
+                    ..ax
+                };
+                let ay_side = PieceSide {
+                    side: side_at(&dom(&ay), jy, wy)?,
+                    ..ay
+                };
+                Some((m1, m3, jx, jy, ax_side, ay_side))
+            })();
+            let Some((m1, m3, jx, jy, ax_side, ay_side)) = found else {
+                continue;
             };
             for l2 in from_side(links, ax_side) {
                 for l4 in from_side(links, ay_side) {
@@ -84,23 +95,25 @@ fn round<'a>(faces: &'a [Face], links: &[EdgeLink], sides: [PieceSide; 2]) -> Ve
                     if (a2.face, a2.piece) != (l4.to.face, l4.to.piece) {
                         continue;
                     }
-                    let shifts = (|| {
-                        let dx = exact_shift(l1, &dom(&sides[0]), &dom(&ax))?;
-                        let dy = exact_shift(l3, &dom(&sides[1]), &dom(&ay))?;
-                        let dxa = exact_shift(l2, &dom(&ax), &dom(&a2))?;
-                        let dya = exact_shift(l4, &dom(&ay), &dom(&a2))?;
-                        let d2: [f64; 2] = std::array::from_fn(|i| dx[i] + dxa[i]);
-                        let same = (0..2).all(|i| {
-                            d2[i] - dx[i] == dxa[i]
-                                && d2[i] == dy[i] + dya[i]
-                                && d2[i] - dy[i] == dya[i]
-                        });
-                        same.then_some([dx, dy, d2])
+                    let d2 = dom(&a2);
+                    let m2 = (|| {
+                        let m2 = chart_map(l2, piece(&ax), piece(&a2))?;
+                        let m4 = chart_map(l4, piece(&ay), piece(&a2))?;
+                        // a_x's parameter along l₂ is the one across l₁ (1 − jx); the one of
+                        // a₂ it becomes, along l₂, is fixed on l₄'s side. Likewise round a_y.
+                        let (i2, _) = side_coordinate(&d2, l4.to.side);
+                        let (i4, _) = side_coordinate(&d2, l2.to.side);
+                        let map =
+                            ChartMap::composed([(&m1, 1 - jx, &m2, i2), (&m3, 1 - jy, &m4, i4)])?;
+                        // The corner's lines land on a₂'s sides at l₂ and l₄.
+                        let at_l2 = map.end_image(k2, v2)? == side_coordinate(&d2, l2.to.side);
+                        let at_l4 = map.end_image(k1, v1)? == side_coordinate(&d2, l4.to.side);
+                        (at_l2 && at_l4).then_some(map)
                     })();
-                    if let Some(shifts) = shifts {
+                    if let Some(m2) = m2 {
                         out.push(Round {
                             pieces: [ax, ay, a2],
-                            shifts,
+                            maps: [m1, m3, m2],
                             patches: [piece(&ax), piece(&ay), piece(&a2)],
                             edges: [l1.kind, l3.kind],
                         });
@@ -190,12 +203,7 @@ fn prove_own(
     }
     let sf = s[0].surface;
     let (q1, q2) = (patches(a, b, p[0]), patches(a, b, p[1]));
-    let maps: Vec<ChartMap> = (0..3)
-        .filter_map(|i| ChartMap::shift(r.shifts[i], &r.patches[i].domain()))
-        .collect();
-    if maps.len() != 3 {
-        return unproven("a piece round the corner is not shifted exactly");
-    }
+    let maps = r.maps;
     let (x, y) = match both_exits(s, [q1, q2]) {
         Ok(b) => b,
         Err(reason) => return unproven(reason),
