@@ -400,6 +400,15 @@ fn shell_summary(
         r.branch_count(),
         seconds * 1e3
     );
+    // Branches a proven corner join covers (shell-wide numbers, as the joins number them).
+    let absorbed: std::collections::HashSet<usize> = r
+        .curves
+        .iter()
+        .flat_map(|c| &c.joins)
+        .filter_map(|j| j.corner.as_ref())
+        .flat_map(|c| c.absorbed.iter().copied())
+        .collect();
+    let mut g = 0;
     for p in &r.pairs {
         if p.result.branches.is_empty() && p.result.is_complete() {
             continue;
@@ -420,15 +429,37 @@ fn shell_summary(
             let b = &traced.marched;
             let _ = writeln!(
                 out,
-                "    branch: {} to {}, {} points",
+                "    branch {g}: {} to {}, {} points",
                 b.ends[0],
                 b.ends[1],
                 b.points.len()
             );
-            if let Some(c) = &traced.certificate {
+            if absorbed.contains(&g) {
+                let _ = writeln!(
+                    out,
+                    "      a sliver of a curve at a corner of pieces, covered by its proven corner join"
+                );
+            } else if let Some(c) = &traced.certificate {
                 let _ = writeln!(out, "  {}", certificate_line(c, opts.required_tolerance));
             }
+            g += 1;
         }
+    }
+    for (k, c) in r.curves.iter().enumerate() {
+        let proven = c.joins.iter().filter(|j| j.status.is_proven()).count();
+        let corners = c.joins.iter().filter(|j| j.corner.is_some()).count();
+        let tolerance = c
+            .certified_tolerance
+            .map_or("not certified as a whole".to_string(), |t| {
+                format!("certified tolerance {t:.3e}")
+            });
+        let _ = writeln!(
+            out,
+            "  curve {k}: {}, {} part(s), {tolerance}; joins: {proven} of {} proven ({corners} across corners)",
+            if c.closed { "closed" } else { "open" },
+            c.parts.len(),
+            c.joins.len(),
+        );
     }
     out
 }

@@ -82,7 +82,9 @@ pub struct Join {
     /// marched points).
     pub gap: f64,
     /// For a join across a corner of the piece pair (both pieces change: `edge` is the first
-    /// surface's edge), what it crosses and covers ([`super::corner`]); `None` otherwise.
+    /// surface's edge) or of one surface's own pieces (four pieces of it meet there: `edge` and
+    /// the corner's `second_edge` are both that surface's), what it crosses and covers
+    /// ([`super::corner`]); `None` otherwise.
     pub corner: Option<CornerJoin>,
 }
 
