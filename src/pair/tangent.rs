@@ -97,6 +97,23 @@ impl CurveFrame {
     }
 }
 
+/// `sin²` of the angle between the normals of `p` at `(σ, t)` and of `q` at `(u, v)`, for
+/// `y = (σ, t, u, v)`: 1 for perpendicular surfaces, 0 at tangency or where a normal vanishes.
+/// A floating-point estimate, for choices and reports only (no bound is claimed from it).
+pub fn normals_sine_sqr<S1, S2>(p: &S1, q: &S2, y: &[f64; 4]) -> f64
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (np, nq) = (p.derivs(y[0], y[1]).normal(), q.derivs(y[2], y[3]).normal());
+    let s = np.cross(&nq).norm_squared() / (np.norm_squared() * nq.norm_squared());
+    if s.is_finite() {
+        s
+    } else {
+        0.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

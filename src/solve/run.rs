@@ -21,6 +21,7 @@ use crate::error::{Error, Result};
 use crate::geometry::RationalBezierPatch;
 use crate::march::branch::{Branch, BranchStatus};
 use crate::march::MarchOptions;
+use crate::pair::tangent::normals_sine_sqr;
 use crate::topology::branch_ends::{check_branch_ends, BranchEndCheck};
 use crate::topology::graph::trace_graph;
 use crate::topology::intersect::intersect as march_all;
@@ -311,27 +312,6 @@ fn certify_within(
     }
 }
 
-/// `sin²` of the angle between the normals of P and Q at `y`: 1 for perpendicular surfaces,
-/// 0 at tangency (a floating-point estimate, used only to pick a start point).
-fn transversality(p: &RationalBezierPatch, q: &RationalBezierPatch, y: &[f64; 4]) -> f64 {
-    let (a, b) = (p.derivs_f64(y[0], y[1]), q.derivs_f64(y[2], y[3]));
-    let cross = |u: [f64; 3], v: [f64; 3]| {
-        [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ]
-    };
-    let n2 = |u: [f64; 3]| u.iter().map(|x| x * x).sum::<f64>();
-    let (np, nq) = (cross(a.su, a.sv), cross(b.su, b.sv));
-    let s = n2(cross(np, nq)) / (n2(np) * n2(nq));
-    if s.is_finite() {
-        s
-    } else {
-        0.0
-    }
-}
-
 /// The start point of a certified trace: the middle point of the marched branch, unless a point
 /// at a quarter or a third of the way is at least twice as transversal.
 fn choose_start(p: &RationalBezierPatch, q: &RationalBezierPatch, b: &Branch) -> Option<[f64; 4]> {
@@ -344,10 +324,10 @@ fn choose_start(p: &RationalBezierPatch, q: &RationalBezierPatch, b: &Branch) ->
         [c.p[0], c.p[1], c.q[0], c.q[1]]
     };
     let middle = at(n / 2);
-    let mut best = (middle, 2.0 * transversality(p, q, &middle));
+    let mut best = (middle, 2.0 * normals_sine_sqr(p, q, &middle));
     for i in [n / 4, n / 3, 2 * n / 3, 3 * n / 4] {
         let y = at(i);
-        let s = transversality(p, q, &y);
+        let s = normals_sine_sqr(p, q, &y);
         if s > best.1 {
             best = (y, s);
         }

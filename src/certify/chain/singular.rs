@@ -5,6 +5,7 @@
 use super::walker::{scaled_dist, LinkLimit, Node, Walker};
 use super::*;
 use crate::pair::branch_point::locate_singular_point_within;
+use crate::pair::tangent::normals_sine_sqr;
 
 impl Walker<'_> {
     /// How long a link from `node` can be when the march ended at a singular point: a link
@@ -79,18 +80,8 @@ impl Walker<'_> {
         if rounding {
             return LinkLimit::Rounding;
         }
-        let (a, b) = (self.p.derivs_f64(x[0], x[1]), self.q.derivs_f64(x[2], x[3]));
-        let cross3 = |u: [f64; 3], v: [f64; 3]| {
-            [
-                u[1] * v[2] - u[2] * v[1],
-                u[2] * v[0] - u[0] * v[2],
-                u[0] * v[1] - u[1] * v[0],
-            ]
-        };
-        let norm = |u: [f64; 3]| u.iter().map(|c| c * c).sum::<f64>().sqrt();
-        let (np, nq) = (cross3(a.su, a.sv), cross3(b.su, b.sv));
         LinkLimit::Conditioning {
-            sine: norm(cross3(np, nq)) / (norm(np) * norm(nq)),
+            sine: normals_sine_sqr(self.p, self.q, x).sqrt(),
         }
     }
 

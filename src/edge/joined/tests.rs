@@ -1,12 +1,16 @@
 //! Tests of the cuts at joins: the true crossings of a side, against a closed form.
 use super::*;
 use crate::geometry::Domain;
-use crate::{intersect, Method, Options};
+use crate::{intersect, Method, Options, SurfaceIntersection};
 
 /// The plane `z = 0` and the paraboloid `z = (s − ½)² + (t − ½)² − ⅜`, both over the unit
 /// square (every control point exact in `f64`), and their intersection: the circle of
-/// radius `√⅜` round `(½, ½)`, at the same parameters on both.
-fn plane_and_bowl() -> (RationalBezierPatch, RationalBezierPatch) {
+/// radius `√⅜` round `(½, ½)`, at the same parameters on both, certified.
+fn plane_and_bowl() -> (
+    RationalBezierPatch,
+    RationalBezierPatch,
+    SurfaceIntersection,
+) {
     let plane = RationalBezierPatch::from_f64_points(
         [1, 1],
         &[
@@ -24,7 +28,12 @@ fn plane_and_bowl() -> (RationalBezierPatch, RationalBezierPatch) {
         .flat_map(|i| (0..3).map(move |j| [i as f64 / 2.0, j as f64 / 2.0, b[i] + b[j] - 0.375]))
         .collect();
     let bowl = RationalBezierPatch::from_f64_points([2, 2], &net, None, Domain::UNIT).unwrap();
-    (plane, bowl)
+    let opts = Options {
+        method: Method::Validated,
+        ..Options::default()
+    };
+    let r = intersect(&plane, &bowl, &opts).expect("runs");
+    (plane, bowl, r)
 }
 
 /// The plane `z = 0` and the paraboloid `z = (s − ½)² + (t − ½)² − ⅜`, both over the unit
@@ -36,12 +45,7 @@ fn plane_and_bowl() -> (RationalBezierPatch, RationalBezierPatch) {
 /// crossing's Krawczyk narrowing does not apply: the next test exercises it.)
 #[test]
 fn a_cut_holds_the_true_crossing_of_the_side() {
-    let (plane, bowl) = plane_and_bowl();
-    let opts = Options {
-        method: Method::Validated,
-        ..Options::default()
-    };
-    let r = intersect(&plane, &bowl, &opts).expect("runs");
+    let (plane, bowl, r) = plane_and_bowl();
     assert_eq!(r.branches.len(), 4, "four arcs inside the square");
     let off = point(0.125).sqrt();
     let (low, high) = (point(0.5) - off, point(0.5) + off);
@@ -95,12 +99,7 @@ fn a_cut_holds_the_true_crossing_of_the_side() {
 /// narrower than the half link it was narrowed from.
 #[test]
 fn the_narrowed_crossing_of_a_side_holds_the_true_one() {
-    let (plane, bowl) = plane_and_bowl();
-    let opts = Options {
-        method: Method::Validated,
-        ..Options::default()
-    };
-    let r = intersect(&plane, &bowl, &opts).expect("runs");
+    let (plane, bowl, r) = plane_and_bowl();
     let mut checked = 0;
     for br in &r.branches {
         let cert = br.certified().expect("certified");
