@@ -16,164 +16,16 @@
 mod common;
 
 use common::scenes::scene_path;
-use common::spline::{dist3, dist_to_spline, samples};
+use common::shell_checks::{
+    around, check_edge, closed_and_proven, cylinder, edges, half_sqrt2, plane, run,
+};
+use common::spline::dist3;
 use common::surfaces::UNIT_CIRCLE_NET;
 use serde_json::{json, Value};
-use ssitrace::edge::{edges_of_shells, Edge};
 use ssitrace::io::scene::ShellScene;
 use ssitrace::march::branch::EndReason;
-use ssitrace::pipeline::{run_shells, RunOptions, ShellRunReport};
-use ssitrace::shell::Face;
+use ssitrace::pipeline::ShellRunReport;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
-
-/// Rounding slack of evaluating the splines and the truth in f64.
-const SLACK: f64 = 1e-12;
-
-/// An interval `[lo, hi]` as the scene format writes it.
-fn iv(lo: f64, hi: f64) -> Value {
-    json!([lo, hi])
-}
-
-/// `√2/2` enclosed (the nearest `f64` widened by an ulp each way).
-fn half_sqrt2() -> Value {
-    let h = std::f64::consts::FRAC_1_SQRT_2;
-    iv(h.next_down(), h.next_up())
-}
-
-/// A full NURBS cylinder of radius `r` about the coordinate axis `axis`, the axis coordinate in
-/// `[-len, len]`: the standard nine-point circle of four quarters (degree 2, weights 1 and
-/// `√2/2`) times a line (degree 1). With `turn = [c, s]` (a rational rotation, `c² + s² = 1`),
-/// the circle's control points are turned by that angle, so its joints (knot lines and seam)
-/// move off the coordinate axes; the turned coordinates are intervals of width 2e-15 round
-/// the `f64` products, which enclose the exact ones.
-fn cylinder(axis: usize, r: f64, len: f64, turn: Option<[f64; 2]>) -> Value {
-    let circle = UNIT_CIRCLE_NET;
-    let coord = |v: f64| match turn {
-        None => json!(r * v),
-        Some(_) => iv(r * v - 1e-15, r * v + 1e-15),
-    };
-    let mut points = Vec::new();
-    let mut weights = Vec::new();
-    for (k, &(a, b)) in circle.iter().enumerate() {
-        let (a, b) = match turn {
-            None => (a, b),
-            Some([c, s]) => (a * c - b * s, a * s + b * c),
-        };
-        for h in [-len, len] {
-            let mut p = vec![json!(0.0); 3];
-            p[axis] = json!(h);
-            p[(axis + 1) % 3] = coord(a);
-            p[(axis + 2) % 3] = coord(b);
-            points.push(Value::Array(p));
-            weights.push(if k % 2 == 1 { half_sqrt2() } else { json!(1.0) });
-        }
-    }
-    let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0, 4.0];
-    json!({"kind": "nurbs", "degree": [2, 1], "knots": [knots, [0.0, 0.0, 1.0, 1.0]],
-           "points": points, "weights": weights})
-}
-
-/// The bilinear patch spanned by `origin + a·e1 + b·e2`, `a, b ∈ [0, 1]`.
-fn plane(origin: [f64; 3], e1: [f64; 3], e2: [f64; 3]) -> Value {
-    let at = |a: f64, b: f64| -> Vec<f64> {
-        (0..3).map(|k| origin[k] + a * e1[k] + b * e2[k]).collect()
-    };
-    json!({"kind": "bezier", "degree": [1, 1],
-           "points": [at(0.0, 0.0), at(0.0, 1.0), at(1.0, 0.0), at(1.0, 1.0)]})
-}
-
-fn run(scene: Value) -> (ShellScene, ShellRunReport) {
-    let scene = ShellScene::from_json_value(&scene).expect("scene");
-    let opts = RunOptions::from_scene_options(&scene.options);
-    let report = run_shells(&scene, &opts).expect("runs");
-    (scene, report)
-}
-
-/// Checks the edge `e` both ways against a closed-form curve: `off(x)` bounds the distance
-/// from `x` to it, `truth` are dense points of the part of it the edge covers. Also its
-/// p-curves' images on the faces of `shells`. Returns the worst distances (curve to truth,
-/// truth to curve).
-fn check_edge(
-    what: &str,
-    e: &Edge,
-    shells: &[Vec<Face>; 2],
-    off: &dyn Fn(&[f64; 3]) -> f64,
-    truth: &[[f64; 3]],
-) -> (f64, f64) {
-    let tol = e.edge_tolerance;
-    // Within the requested tolerance (the default, 1e-9), and fewer control points than the
-    // link-by-link construction (five per link).
-    assert!(
-        tol <= 1e-9,
-        "{what}: tolerance {tol:e} above the requested 1e-9"
-    );
-    assert!(
-        e.curve.points.len() < 5 * e.links,
-        "{what}: {} control points for {} links",
-        e.curve.points.len(),
-        e.links
-    );
-    // Samples, without repeats (a span of nearly zero length gives many copies of one point,
-    // which would hide the neighbours the foot-point search brackets with).
-    let (mut ss, mut pts) = (Vec::new(), Vec::<[f64; 3]>::new());
-    for s in samples(&e.curve, 64) {
-        let x = e.curve.eval(s);
-        if pts.last().is_none_or(|l| dist3(l, &x) > 1e-12) {
-            ss.push(s);
-            pts.push(x);
-        }
-    }
-    let there = pts.iter().map(off).fold(0.0, f64::max);
-    assert!(
-        there <= tol + SLACK,
-        "{what}: a curve point {there:e} off the truth (tolerance {tol:e})"
-    );
-    let back = truth
-        .iter()
-        .map(|x| dist_to_spline(&e.curve, &ss, &pts, x))
-        .fold(0.0, f64::max);
-    assert!(
-        back <= tol + SLACK,
-        "{what}: a true point {back:e} off the curve (tolerance {tol:e})"
-    );
-    for c in &e.pcurves {
-        assert!(c.image_tolerance <= tol);
-        let piece = &shells[c.surface][c.face].pieces()[c.piece];
-        for s in samples(&c.curve, 32) {
-            let [a, b] = c.curve.eval(s);
-            let d = off(&piece.point_f64(a, b));
-            assert!(
-                d <= c.image_tolerance + SLACK,
-                "{what}: p-curve on surface {} face {} at s = {s}: {d:e} > {:e}",
-                c.surface,
-                c.face,
-                c.image_tolerance
-            );
-        }
-    }
-    eprintln!(
-        "{what}: {} control points, {} p-curves ({} control points each on average), \
-         {} links, tolerance {tol:.2e}; curve to truth {there:.2e}, truth to curve {back:.2e}",
-        e.curve.points.len(),
-        e.pcurves.len(),
-        e.pcurves
-            .iter()
-            .map(|c| c.curve.points.len())
-            .sum::<usize>()
-            / e.pcurves.len().max(1),
-        e.links
-    );
-    (there, back)
-}
-
-/// Every curve of the report has an edge; returns them.
-fn edges(what: &str, scene: &ShellScene, report: &ShellRunReport) -> Vec<Edge> {
-    let [a, b] = &scene.shells;
-    edges_of_shells(a, b, &report.result)
-        .into_iter()
-        .map(|(k, e)| e.unwrap_or_else(|err| panic!("{what}: curve {k}: {err}")))
-        .collect()
-}
 
 /// The edges of two unit cylinders about z and x: open, from near one node to near the other,
 /// within their tolerance of the ellipses (cos φ, sin φ, ±cos φ) both ways (the truth sampled
@@ -200,23 +52,6 @@ fn check_ellipse_arcs(what: &str, scene: &ShellScene, report: &ShellRunReport) {
             .collect();
         check_edge(&format!("{what}: arc {k}"), e, &scene.shells, &off, &truth);
     }
-}
-
-/// Every joined curve is closed, its joins proven and its tolerance at most 1e-9.
-fn closed_and_proven(what: &str, report: &ShellRunReport) {
-    let r = &report.result;
-    assert!(r.is_complete(), "{what}: search incomplete");
-    for c in &r.curves {
-        assert!(c.closed, "{what}: an open curve {c:?}");
-        let tol = c.certified_tolerance.expect("certified, joins proven");
-        assert!(tol <= 1e-9, "{what}: {tol:e}");
-    }
-}
-
-/// 4 000 points of a closed curve `t ↦ c(t)`, `t ∈ [0, 2π)`, evenly in `t`: the true curve the
-/// edges are checked against.
-fn around(c: impl Fn(f64) -> [f64; 3]) -> Vec<[f64; 3]> {
-    (0..4000).map(|m| c(2.0 * PI * m as f64 / 4000.0)).collect()
 }
 
 #[test]

@@ -38,6 +38,18 @@ pub struct PatchDerivs<S> {
     pub svv: [S; 3],
 }
 
+/// The net indices `i*(n+1)+j` of side `side` of a net of degree `[m, n]` (`u = u0`, `u = u1`,
+/// `v = v0`, `v = v1`), in order along it.
+pub(crate) fn side_indices(degree: [usize; 2], side: usize) -> Vec<usize> {
+    let [m, n] = degree;
+    match side {
+        0 => (0..=n).collect(),
+        1 => (0..=n).map(|j| m * (n + 1) + j).collect(),
+        2 => (0..=m).map(|i| i * (n + 1)).collect(),
+        _ => (0..=m).map(|i| i * (n + 1) + n).collect(),
+    }
+}
+
 /// A tensor-product rational Bézier patch of degree `(m, n)`, both at least 1, on a declared
 /// parameter domain, with a homogeneous interval control net.
 ///
@@ -55,6 +67,8 @@ pub struct RationalBezierPatch {
     /// that writing the patch out reproduces the input exactly.
     cartesian: Option<Vec<[Interval; 4]>>,
     domain: Domain,
+    /// [`RationalBezierPatch::collapsed_sides`].
+    collapsed: [Option<[f64; 3]>; 4],
     /// [`RationalBezierPatch::net_differences`], formed on first use.
     differences: std::sync::OnceLock<Vec<[Interval; 4]>>,
 }
@@ -69,6 +83,7 @@ impl PartialEq for RationalBezierPatch {
             && self.mid == other.mid
             && self.cartesian == other.cartesian
             && self.domain == other.domain
+            && self.collapsed == other.collapsed
     }
 }
 
@@ -203,6 +218,14 @@ impl RationalBezierPatch {
             .map(|&[x, y, z, w]| [x * w, y * w, z * w, w])
             .collect();
         let mut patch = Self::assemble(degree, homogeneous, domain)?;
+        patch.collapsed = std::array::from_fn(|side| {
+            let row = side_indices(degree, side);
+            let first = &points[row[0]];
+            let exact = |p: &[Interval; 3]| p.iter().all(|x| x.inf() == x.sup());
+            (row.iter()
+                .all(|&k| exact(&points[k]) && points[k] == *first))
+            .then(|| first.map(|x| x.inf()))
+        });
         patch.cartesian = Some(cartesian);
         Ok(patch)
     }
@@ -301,6 +324,7 @@ impl RationalBezierPatch {
             mid,
             cartesian: None,
             domain,
+            collapsed: [None; 4],
             differences: std::sync::OnceLock::new(),
         })
     }
@@ -313,6 +337,22 @@ impl RationalBezierPatch {
     /// The declared parameter domain.
     pub fn domain(&self) -> Domain {
         self.domain
+    }
+
+    /// The sides the patch collapses to a single point (a pole), each with that point, indexed
+    /// `u = u0`, `u = u1`, `v = v0`, `v = v1`: the control points of that side's row are one
+    /// exact point (given so, or known so from the NURBS surface the patch was cut from), so
+    /// the patch maps the whole side exactly to it.
+    pub fn collapsed_sides(&self) -> [Option<[f64; 3]>; 4] {
+        self.collapsed
+    }
+
+    /// The patch with sides `sides` marked as collapsed to their points (see
+    /// [`Self::collapsed_sides`]). Only for a caller that knows the side is exactly one point
+    /// (the NURBS decomposition, from its boundary rows): the search relies on it.
+    pub(crate) fn with_collapsed_sides(mut self, sides: [Option<[f64; 3]>; 4]) -> Self {
+        self.collapsed = sides;
+        self
     }
 
     /// The homogeneous interval control net `(w·x, w·y, w·z, w)`, index `i*(n+1)+j`.
@@ -766,5 +806,16 @@ impl ParametricSurface for RationalBezierPatch {
 
     fn point(&self, u: f64, v: f64) -> Vec3 {
         vec3(self.point_f64(u, v))
+    }
+
+    fn poles(&self) -> Vec<Vec3> {
+        let mut out: Vec<Vec3> = Vec::new();
+        for x in self.collapsed.iter().flatten() {
+            let x = vec3(*x);
+            if !out.contains(&x) {
+                out.push(x);
+            }
+        }
+        out
     }
 }

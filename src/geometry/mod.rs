@@ -6,6 +6,7 @@ pub mod bezier;
 pub mod enclosure;
 pub mod nurbs;
 pub mod piece;
+pub(crate) mod pole;
 pub mod power;
 pub mod surface;
 

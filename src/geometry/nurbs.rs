@@ -223,6 +223,8 @@ impl NurbsSurface {
         let (kv, rows) = refine(&self.knots[1], q, rows);
         let su = span_starts(&ku, p, nu2);
         let sv = span_starts(&kv, q, rows[0].len());
+        let poles = self.poles();
+        let dom = self.domain();
         let mut out = Vec::with_capacity(su.len() * sv.len());
         for &(iu, a0, a1) in &su {
             for &(iv, b0, b1) in &sv {
@@ -236,14 +238,52 @@ impl NurbsSurface {
                     u: [a0, a1],
                     v: [b0, b1],
                 };
-                out.push(RationalBezierPatch::from_homogeneous(
-                    [p, q],
-                    piece,
-                    domain,
-                )?);
+                // A side of the piece on a side of the surface that collapses to a point.
+                let on = [
+                    a0 == dom.u[0],
+                    a1 == dom.u[1],
+                    b0 == dom.v[0],
+                    b1 == dom.v[1],
+                ];
+                let collapsed = std::array::from_fn(|k| poles[k].filter(|_| on[k]));
+                out.push(
+                    RationalBezierPatch::from_homogeneous([p, q], piece, domain)?
+                        .with_collapsed_sides(collapsed),
+                );
             }
         }
         Ok(out)
+    }
+
+    /// The sides of the surface (`u = u_p`, `u = u_nu`, `v = v_q`, `v = v_nv`) that it maps to
+    /// one point, with that point: the knot vector is clamped at that end (so the side is the
+    /// curve of the boundary row of control points) and the row's points are one exact point.
+    fn poles(&self) -> [Option<[f64; 3]>; 4] {
+        let [p, q] = self.degree;
+        let [nu, nv] = self.count;
+        std::array::from_fn(|side| {
+            let (dir, upper) = (side / 2, side % 2 == 1);
+            let (knots, deg) = (&self.knots[dir], [p, q][dir]);
+            let clamped = if upper {
+                let end = knots.len() - 1;
+                knots[end - deg..].iter().all(|&t| t == knots[end])
+            } else {
+                knots[..=deg].iter().all(|&t| t == knots[0])
+            };
+            let row: Vec<usize> = match (dir, upper) {
+                (0, false) => (0..nv).collect(),
+                (0, true) => (0..nv).map(|j| (nu - 1) * nv + j).collect(),
+                (_, false) => (0..nu).map(|i| i * nv).collect(),
+                (_, true) => (0..nu).map(|i| i * nv + nv - 1).collect(),
+            };
+            let first = self.points[row[0]];
+            let exact = |x: &[Interval; 3]| x.iter().all(|c| c.inf() == c.sup());
+            (clamped
+                && row
+                    .iter()
+                    .all(|&k| exact(&self.points[k]) && self.points[k] == first))
+            .then(|| first.map(|c| c.inf()))
+        })
     }
 }
 

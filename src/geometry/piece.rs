@@ -121,6 +121,33 @@ impl Piece {
         (len > 0.0 && len.is_finite()).then(|| c.map(|v| v / len))
     }
 
+    /// A piece with the given net (index `i*(n+1)+j`, homogeneous) over the normalised box
+    /// `s × r`; `polynomial` when every weight is exactly 1.
+    pub(crate) fn from_net(
+        s: [f64; 2],
+        r: [f64; 2],
+        degree: [usize; 2],
+        net: Vec<[Interval; 4]>,
+        polynomial: bool,
+    ) -> Self {
+        Piece::new(s, r, degree, net, polynomial)
+    }
+
+    /// The homogeneous interval net, index `i*(n+1)+j`.
+    pub(crate) fn net(&self) -> &[[Interval; 4]] {
+        &self.net
+    }
+
+    /// The sides of the patch (`u = u0`, `u = u1`, `v = v0`, `v = v1`) this piece touches.
+    pub(crate) fn touches(&self) -> [bool; 4] {
+        [
+            self.s[0] == 0.0,
+            self.s[1] == 1.0,
+            self.r[0] == 0.0,
+            self.r[1] == 1.0,
+        ]
+    }
+
     /// Degrees (0 in the fixed direction of a face).
     pub fn degree(&self) -> [usize; 2] {
         self.degree

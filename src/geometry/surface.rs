@@ -77,6 +77,11 @@ pub trait ParametricSurface {
     fn point(&self, u: f64, v: f64) -> Vec3 {
         self.derivs(u, v).p
     }
+    /// The points whole sides of the domain map to (poles, where `S_u × S_v` vanishes along
+    /// the side), each once; none by default.
+    fn poles(&self) -> Vec<Vec3> {
+        Vec::new()
+    }
 }
 
 impl<T: ParametricSurface + ?Sized> ParametricSurface for &T {
@@ -88,6 +93,9 @@ impl<T: ParametricSurface + ?Sized> ParametricSurface for &T {
     }
     fn point(&self, u: f64, v: f64) -> Vec3 {
         (**self).point(u, v)
+    }
+    fn poles(&self) -> Vec<Vec3> {
+        (**self).poles()
     }
 }
 

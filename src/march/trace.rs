@@ -225,17 +225,25 @@ impl StepLimit {
 /// curve `L` is an angle (the arc is `L·R`), and taking the cap for `L` itself would shrink the
 /// step twice over (on a tiny loop of nearly tangent surfaces, radius 1e-3 and a sine of 1e-4,
 /// the march crawled at 1e-7 a step and stopped at the point limit a third of the way round).
-fn step_limit(prev: Option<&Node>, cur: &Node, opts: &MarchOptions) -> StepLimit {
+fn step_limit(prev: Option<&Node>, cur: &Node, opts: &MarchOptions, poles: &[Vec3]) -> StepLimit {
+    // Near a pole the parameters turn fast however smooth the curve is in space (a curve
+    // passing at distance ρ from a sphere's pole sweeps half a turn of u within a few ρ): the
+    // arc is capped at half the distance to the pole, a geometric approach that a pass
+    // close by survives.
+    let near_pole = poles
+        .iter()
+        .map(|x| 0.5 * (cur.frame.xyz - x).norm())
+        .fold(f64::INFINITY, f64::min);
     let mut limit = StepLimit {
         step: opts.step,
-        cap: f64::INFINITY,
+        cap: near_pole,
         approaching: false,
     };
     if let Some(pv) = prev {
         let chord = (cur.frame.xyz - pv.frame.xyz).norm();
         let rate = (pv.frame.sine - cur.frame.sine) / chord;
         if cur.frame.sine < opts.watch_sine && rate > 0.0 {
-            limit.cap = 0.5 * cur.frame.sine / rate;
+            limit.cap = limit.cap.min(0.5 * cur.frame.sine / rate);
             // At this rate the sine vanishes within a hundred chords: heading into a
             // singular point (on a tiny loop the sine is small but constant, its rate
             // rounding noise, and the predicted zero far away).
@@ -335,6 +343,7 @@ where
     S2: ParametricSurface + ?Sized,
 {
     let (dp, dq) = (p.domain(), q.domain());
+    let poles: Vec<Vec3> = p.poles().into_iter().chain(q.poles()).collect();
     let mut half = Half {
         nodes: Vec::new(),
         end: EndReason::PointLimit,
@@ -352,7 +361,7 @@ where
             half.end = EndReason::PointLimit;
             return half;
         }
-        let limit = step_limit(prev.as_ref(), &cur, opts);
+        let limit = step_limit(prev.as_ref(), &cur, opts, &poles);
         let pred = predict_capped(prev.as_ref(), &cur, opts, limit);
 
         if let Some((target, prior)) = closure.filter(|_| half.nodes.len() >= 2) {

@@ -18,6 +18,14 @@
 //! from the points where it crosses a face of `B_P` or of `B_Q` (Sederberg–Meyers / Hohmeyer loop
 //! detection, here in the "some plane is crossed monotonically" form).
 //!
+//! **Poles.** On a piece touching a side its patch collapses to one point `X` (a sphere's
+//! pole), `N_P` vanishes on that side, so no enclosure of it excludes zero. There `N_P` is used
+//! through a positive multiple `Ñ_P` with a limit on the side ([`crate::geometry::pole`]): the
+//! criterion with `Ñ_P` gives (i) and (ii) off the side, and the side lies on the boundary of
+//! the box pair, so a component wholly inside the pair is still a closed curve where the
+//! argument holds. Components through `X` end on the side, which is a patch boundary: the
+//! boundary search answers for them (it settles the side only where `X` is proven off Q).
+//!
 //! **Enclosures.** The partials of each piece are bounded from its interval Bernstein net
 //! ([`Piece::partials`]): with the net `(X_ij, w_ij)` over the box, `X_s ∈ m·hull{ΔX}`,
 //! `S_s = (X_s·w − X·w_s)/w²` bounded term by term (exactly `X_s` for a polynomial patch). The
@@ -41,6 +49,7 @@
 //! (S31/S32: 3067 → 611 pairs); each candidate is verified in interval arithmetic.
 
 use crate::geometry::piece::Piece;
+use crate::geometry::pole::collapsed_normal;
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::vec3::{cross, dot, norm3};
 use inari::Interval;
@@ -117,7 +126,16 @@ pub fn loop_test(
             None
         }
     };
-    let (enp, enq) = (plain(pp, &dp, &dp_c.p), plain(pq, &dq, &dq_c.p));
+    // A piece at a side its patch collapses to a point (a pole) has no normal there; the
+    // positive multiple of it that has a limit takes its place (`geometry::pole`).
+    let (pole_p, pole_q) = (at_pole(p, pp), at_pole(q, pq));
+    let (enp, enq) = (
+        pole_p.unwrap_or_else(|| plain(pp, &dp, &dp_c.p)),
+        pole_q.unwrap_or_else(|| plain(pq, &dq, &dq_c.p)),
+    );
+    if pole_p.is_some() || pole_q.is_some() {
+        graph_like = true;
+    }
     if let (Some(enp), Some(enq)) = (enp, enq) {
         // Candidates: the frame rows, then the point of the box enclosing `N_P × N_Q` nearest
         // to the origin (when the box excludes the origin, every tangent in it makes a positive
@@ -188,6 +206,24 @@ pub fn loop_test(
     LoopTest {
         proof: None,
         spread,
+    }
+}
+
+/// For a piece touching exactly one side its patch collapses to a point: the enclosure of a
+/// positive multiple of its normal there (`Some(None)` if it cannot be formed, or if the piece
+/// touches two such sides). `None` for a piece touching none.
+fn at_pole(patch: &RationalBezierPatch, piece: &Piece) -> Option<Option<[Interval; 3]>> {
+    let touches = piece.touches();
+    let sides: Vec<(usize, [f64; 3])> = patch
+        .collapsed_sides()
+        .iter()
+        .enumerate()
+        .filter_map(|(k, x)| x.filter(|_| touches[k]).map(|x| (k, x)))
+        .collect();
+    match sides.as_slice() {
+        [] => None,
+        [(side, x)] => Some(collapsed_normal(piece, *side, *x)),
+        _ => Some(None),
     }
 }
 

@@ -2,4 +2,5 @@
 //! left undecided. Sub-patch pairs are proven disjoint or free of closed loops.
 
 pub mod loop_exclusion;
+mod point_exclusion;
 pub mod start_points;

@@ -37,12 +37,13 @@ use crate::geometry::piece::Piece;
 use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
 use crate::pair::curve_surface::{settle_box, BoxVerdict};
 use crate::pair::newton::{refine, Constraint};
+use crate::search::point_exclusion::point_off_patch;
 use faces::Needs;
 use faces::{face_search, face_searches_ahead};
 use inari::Interval;
 use nalgebra::{Matrix3x4, Vector3};
 use node_region::NodeRegions;
-use pair_verdict::{classify_pair, PairVerdict};
+use pair_verdict::{classify_pair, separated_across, PairVerdict};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use tangent_leaf::{arc_through, leaf_point};
@@ -191,6 +192,13 @@ fn boundary_search(
     let mut jobs = Vec::new();
     for (a, b, swapped) in [(p, q, false), (q, p, true)] {
         for (fixed_index, upper) in [(0, false), (0, true), (1, false), (1, true)] {
+            // A side collapsed to a point proven off the other patch holds no boundary point.
+            let side = 2 * fixed_index + usize::from(upper);
+            if let Some(x) = a.collapsed_sides()[side] {
+                if point_off_patch(x, b) {
+                    continue;
+                }
+            }
             let edge = Piece::whole(a).face(fixed_index, upper);
             let problem = EdgeProblem {
                 a,
@@ -504,7 +512,10 @@ fn edge_search(
     let mut stack = vec![(a0, b0, leaf0)];
     while let Some((pa, pb, mut leaf)) = stack.pop() {
         let (ea, eb) = (pa.bounds(), pb.bounds());
-        if boxes_disjoint(&ea, &eb) {
+        // Also apart along a flat piece's normal: a boundary curve running beside a plane at
+        // a small distance (a sphere's meridian beside a plane parallel to its own) is settled
+        // without leaves as small as that distance.
+        if boxes_disjoint(&ea, &eb) || separated_across(&pa, &pb) {
             continue;
         }
         let (wa, wb) = (diameter(&ea), diameter(&eb));

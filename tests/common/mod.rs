@@ -13,5 +13,6 @@ pub(crate) mod odes;
 pub(crate) mod oracle;
 pub(crate) mod rng;
 pub(crate) mod scenes;
+pub(crate) mod shell_checks;
 pub(crate) mod spline;
 pub(crate) mod surfaces;

@@ -4,6 +4,8 @@
 
 use super::walker::{scaled_dist, LinkLimit, Node, Walker};
 use super::*;
+use crate::geometry::pole::pole_scaled_normal;
+use crate::geometry::RationalBezierPatch;
 use crate::pair::branch_point::locate_singular_point_within;
 use crate::pair::tangent::normals_sine_sqr;
 
@@ -127,9 +129,17 @@ impl Walker<'_> {
                 let w = pad * self.scales[i];
                 hull(a[i].min(b[i]) - w, a[i].max(b[i]) + w)
             });
-            let [_, ps, pt] = self.p.first_derivs(near[0], near[1]);
-            let [_, qu, qv] = self.q.first_derivs(near[2], near[3]);
-            let m = cross(&cross(&ps, &pt), &cross(&qu, &qv));
+            // Near a pole the normal itself vanishes; a positive multiple of it does not.
+            let normal = |s: &RationalBezierPatch, u: Interval, v: Interval| {
+                pole_scaled_normal(s, u, v).unwrap_or_else(|| {
+                    let [_, su, sv] = s.first_derivs(u, v);
+                    cross(&su, &sv)
+                })
+            };
+            let m = cross(
+                &normal(self.p, near[0], near[1]),
+                &normal(self.q, near[2], near[3]),
+            );
             if m.iter().all(|c| c.contains(0.0)) {
                 return Some(near);
             }

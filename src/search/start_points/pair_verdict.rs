@@ -123,7 +123,7 @@ const COVER_ABOVE: f64 = 1.0 / 64.0;
 /// face, as a plane far larger than its partner, is never split, and its axis-aligned box holds
 /// everything near it; along its normal a piece of the other surface that does not reach it is
 /// separated at once).
-fn separated_across(a: &Piece, b: &Piece) -> bool {
+pub(super) fn separated_across(a: &Piece, b: &Piece) -> bool {
     [a.corner_normal(), b.corner_normal()]
         .into_iter()
         .flatten()

@@ -1,0 +1,109 @@
+//! Curves passing close to the pole of a NURBS sphere (the standard 9×5 net, whose top and
+//! bottom rows of control points are one point each: the whole side `v = v_max` of every
+//! northern piece maps to the north pole, and likewise in the south).
+//!
+//! There `S_u × S_v` vanishes along the whole side, and a curve passing at distance `d` from
+//! the pole turns through half a turn of `u` within a few `d` of arc. The search's loop-free
+//! test, the marcher's step and the chain's singular-box test all use the normal; each now
+//! uses a positive multiple of it that stays away from zero at the pole
+//! (`geometry::pole`), the marcher approaches a pole in steps of half the distance to it, and
+//! the boundary search settles a collapsed side by proving the pole off the other surface.
+//!
+//! Each case is a plane `y = k·x + e` (exact: `k` any `f64`, `e` a power of two, so its four
+//! corners are exact), passing `e/√(1+k²)` from both poles, at angles off the knot lines; and
+//! the same with the sphere's axis turned onto x (coordinates permuted, exactly). Each must
+//! give a complete search and one closed curve, its joins proven, its edge within its
+//! tolerance (≤ 1e-9) of the circle both ways (within 1e-7 of the pole only the 3D curve:
+//! the p-curve's fit stalls there, and the edge says so). Before, every pass within 1e-3 of a pole left
+//! the search incomplete, at 1e-5 the curve came back open in pieces, at 1e-7 as some
+//! eighty uncertified fragments.
+
+mod common;
+
+use common::scenes::scene_path;
+use common::shell_checks::{around, check_edge_with, closed_and_proven, edges, run};
+use serde_json::{json, Value};
+
+/// The sphere of `scenes/nurbs_sphere_plane.json`, its coordinates taken in the order `axes`
+/// (`[0, 1, 2]` as written, pole on z; `[2, 0, 1]` puts the poles on x).
+fn sphere(axes: [usize; 3]) -> Value {
+    let text = std::fs::read_to_string(scene_path("nurbs_sphere_plane.json")).expect("scene");
+    let mut s: Value = serde_json::from_str(&text).expect("json");
+    let mut sphere = s["surfaces"][0].take();
+    for p in sphere["points"].as_array_mut().expect("points") {
+        let c = p.as_array().expect("point").clone();
+        *p = json!([c[axes[0]], c[axes[1]], c[axes[2]]]);
+    }
+    sphere
+}
+
+/// The exact plane `y = k·x + e` over `|x| ≤ 2`, `|z| ≤ 2`, its coordinates permuted like
+/// the sphere's.
+fn plane(k: f64, e: f64, axes: [usize; 3]) -> Value {
+    let corner = |x: f64, z: f64| {
+        let c = [x, k * x + e, z];
+        json!([c[axes[0]], c[axes[1]], c[axes[2]]])
+    };
+    json!({"kind": "bezier", "degree": [1, 1],
+           "points": [corner(-2.0, -2.0), corner(-2.0, 2.0), corner(2.0, -2.0), corner(2.0, 2.0)]})
+}
+
+#[test]
+fn great_circles_passing_close_to_the_poles_are_one_closed_curve_each() {
+    for axes in [[0, 1, 2], [2, 0, 1]] {
+        for k in [0.3, 1.0, -2.5] {
+            for m in [10, 17, 21] {
+                let e = 0.5f64.powi(m);
+                let what = format!("axes {axes:?}, y = {k}·x + 2^-{m}");
+                let (scene, report) = run(json!({"surfaces": [sphere(axes), plane(k, e, axes)]}));
+                closed_and_proven(&what, &report);
+                assert_eq!(report.result.curves.len(), 1, "{what}");
+                // Back in the sphere's own axes, the circle on the plane y = k·x + e.
+                let own = |p: &[f64; 3]| {
+                    let mut q = [0.0; 3];
+                    for (c, &a) in axes.iter().enumerate() {
+                        q[a] = p[c];
+                    }
+                    q
+                };
+                let l = (1.0 + k * k).sqrt();
+                let (centre, radius) = (
+                    [-k * e / (l * l), e / (l * l), 0.0],
+                    (1.0 - e * e / (l * l)).sqrt(),
+                );
+                // The distance to the circle: `h` across its plane, `ρ` from its axis.
+                let off = |p: &[f64; 3]| {
+                    let q = own(p);
+                    let d = [q[0] - centre[0], q[1] - centre[1], q[2]];
+                    let h = (d[1] - k * d[0]) / l;
+                    let rho = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - h * h)
+                        .max(0.0)
+                        .sqrt();
+                    (h * h + (rho - radius) * (rho - radius)).sqrt()
+                };
+                let circle = |t: f64| {
+                    let q = [
+                        centre[0] + radius * t.cos() / l,
+                        centre[1] + radius * k * t.cos() / l,
+                        radius * t.sin(),
+                    ];
+                    [q[axes[0]], q[axes[1]], q[axes[2]]]
+                };
+                let es = edges(&what, &scene, &report);
+                assert_eq!(es.len(), 1, "{what}");
+                assert!(es[0].closed, "{what}");
+                if m < 21 {
+                    check_edge_with(&what, &es[0], &scene.shells, &off, &around(circle), 8);
+                } else {
+                    // Within 1e-7 of the pole the sphere's p-curve turns too fast for the fit
+                    // (its bound stalls at a few 1e-8); the 3D curve still meets the request,
+                    // and the edge says why its tolerance does not.
+                    let e = &es[0];
+                    eprintln!("{what}: {:?}, {:?}", e.shortfall, e.bounds);
+                    assert!(e.bounds.curve_3d <= 1e-9, "{what}: {:?}", e.bounds);
+                    assert!(e.edge_tolerance <= 1e-9 || e.shortfall.is_some(), "{what}");
+                }
+            }
+        }
+    }
+}
