@@ -37,7 +37,7 @@ use common::rng::Rng;
 use inari::Interval;
 use ssitrace::geometry::{Domain, RationalBezierPatch};
 use ssitrace::{intersect, Method, Options, SurfaceIntersection};
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_PI_2, TAU};
 use std::time::Instant;
 
 /// The homogeneous 3×3 net of P (index `3i + j`, `i` along `u`), in intervals.
@@ -154,7 +154,12 @@ fn random_meridian(rng: &mut Rng, kind: Kind) -> Meridian {
 /// A piece of a surface of revolution of `kind`, moved by a random rotation and translation:
 /// its control points and weights (index `3i + j`).
 fn random_piece(rng: &mut Rng, kind: Kind) -> (Vec<[f64; 3]>, Vec<f64>) {
-    let (mer, mw) = random_meridian(rng, kind);
+    let mer = random_meridian(rng, kind);
+    swept(rng, mer)
+}
+
+/// The meridian swept along a random arc in `u`, moved by a random rotation and translation.
+fn swept(rng: &mut Rng, (mer, mw): Meridian) -> (Vec<[f64; 3]>, Vec<f64>) {
     let (t0, alpha) = (rng.uniform(0.0, TAU), rng.uniform(0.4, 2.5));
     let c = (0.5 * alpha).cos();
     let arc = [
@@ -255,20 +260,43 @@ fn random_pair(seed: u64) -> Pair {
     let kind = [Kind::Sphere, Kind::Cylinder, Kind::Cone, Kind::Torus][(seed % 4) as usize];
     let near_tangent = (seed / 4) % 2 == 1;
     let (points, weights) = random_piece(&mut rng, kind);
-    let p = RationalBezierPatch::from_f64_points(
-        [2, 2],
-        &points,
-        Some(&weights),
-        Domain::new(0.0, 1.0, 0.0, 1.0),
-    )
-    .expect("a valid piece");
+    pair_of(seed, rng, kind, near_tangent, points, weights)
+}
+
+/// A sphere piece reaching the pole (its last row of control points the pole itself, one
+/// exact point, so the piece knows the side collapses there) against a plane through a point
+/// of the piece `10^−k` (k uniform in [1, 7]) of its meridian's parameter from the pole, in a
+/// random direction: the curve passes the pole at about that distance times the meridian's
+/// length.
+fn polar_pair(seed: u64) -> Pair {
+    let mut rng = Rng::new(seed);
+    let r = rng.uniform(0.5, 2.0);
+    let f0 = rng.uniform(0.2, 1.2);
+    let (mut mer, mw) = circle_arc(0.0, r, f0, FRAC_PI_2 - f0);
+    mer[2] = [0.0, r];
+    let (points, weights) = swept(&mut rng, (mer, mw));
     let net = Net::new(&points, &weights);
-    // The plane's size: 2.5 times P's control-net diameter, round a point of P.
-    let diam = points
-        .iter()
-        .flat_map(|a| points.iter().map(move |b| sub(*a, *b)))
-        .map(|d| d.iter().map(|x| x * x).sum::<f64>().sqrt())
-        .fold(0.0, f64::max);
+    let (u0, t) = (rng.uniform(0.0, 1.0), 10f64.powf(-rng.uniform(1.0, 7.0)));
+    let n = unit(std::array::from_fn(|_| rng.uniform(-1.0, 1.0)));
+    let mut pair = pair_through(seed, &points, &weights, (n, net.point_f64(u0, 1.0 - t)));
+    assert!(
+        pair.p.collapsed_sides()[3].is_some(),
+        "seed {seed}: the pole's side is one exact point"
+    );
+    pair.label = format!("polar crossing {t:.1e} from the pole");
+    pair
+}
+
+/// The pair of the piece `points`, `weights` and a plane chosen by `rng` (see [`random_pair`]).
+fn pair_of(
+    seed: u64,
+    mut rng: Rng,
+    kind: Kind,
+    near_tangent: bool,
+    points: Vec<[f64; 3]>,
+    weights: Vec<f64>,
+) -> Pair {
+    let net = Net::new(&points, &weights);
     let (u0, v0) = (rng.uniform(0.1, 0.9), rng.uniform(0.1, 0.9));
     let x0 = net.point_f64(u0, v0);
     let (normal, tangent_point, near, label) = if near_tangent {
@@ -292,7 +320,34 @@ fn random_pair(seed: u64) -> Pair {
         let n = unit(std::array::from_fn(|_| rng.uniform(-1.0, 1.0)));
         ((n, x0), None, 0.02, format!("{kind:?} crossing"))
     };
-    let (n, centre) = normal;
+    let mut pair = pair_through(seed, &points, &weights, normal);
+    pair.tangent_point = tangent_point;
+    pair.near = near;
+    pair.label = label;
+    pair
+}
+
+/// The pair of the piece `points`, `weights` and the plane through `centre` with normal `n`
+/// (a square 2.5 times P's control-net diameter across); no tangent point, a crossing's `near`.
+fn pair_through(
+    seed: u64,
+    points: &[[f64; 3]],
+    weights: &[f64],
+    (n, centre): ([f64; 3], [f64; 3]),
+) -> Pair {
+    let p = RationalBezierPatch::from_f64_points(
+        [2, 2],
+        points,
+        Some(weights),
+        Domain::new(0.0, 1.0, 0.0, 1.0),
+    )
+    .expect("a valid piece");
+    let net = Net::new(points, weights);
+    let diam = points
+        .iter()
+        .flat_map(|a| points.iter().map(move |b| sub(*a, *b)))
+        .map(|d| d.iter().map(|x| x * x).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
     let e1 = unit(cross(
         n,
         if n[0].abs() < 0.6 {
@@ -313,9 +368,9 @@ fn random_pair(seed: u64) -> Pair {
         q,
         net,
         plane,
-        tangent_point,
-        near,
-        label,
+        tangent_point: None,
+        near: 0.02,
+        label: String::new(),
     }
 }
 
@@ -358,7 +413,14 @@ fn reference(pair: &Pair, margin: f64) -> Vec<RefPoint> {
 }
 
 fn check_pair(seed: u64, fig: &mut Figures) {
-    let pair = random_pair(seed);
+    check(seed, random_pair(seed), fig);
+}
+
+fn check_polar_pair(seed: u64, fig: &mut Figures) {
+    check(seed, polar_pair(seed), fig);
+}
+
+fn check(seed: u64, pair: Pair, fig: &mut Figures) {
     if let Ok(dir) = std::env::var("SSITRACE_ORACLE_SCENE_DIR") {
         let path = format!("{dir}/oracle_quadric_{seed}.json");
         std::fs::write(&path, &pair.scene).expect("scene written");
@@ -408,6 +470,28 @@ fn quadric_pieces_against_planes_fixed_seeds_1() {
 fn quadric_pieces_against_planes_fresh_seeds() {
     let base = fresh_base();
     assert_sound(&run((0..16).map(|k| base.wrapping_add(k))));
+}
+
+/// Sphere pieces reaching a pole against planes passing it at 1e-1 to 1e-7 of the meridian
+/// ([`polar_pair`]): the pole's side collapses to one point, where the normal vanishes.
+#[test]
+fn polar_sphere_pieces_against_planes() {
+    let fig = run_with_progress(0..60, 0, check_polar_pair);
+    assert_clean(&fig);
+}
+
+/// The soak of [`polar_pair`]s: as [`soak`], from `SSITRACE_ORACLE_FIRST` (default 3 000 000).
+#[test]
+#[ignore = "soak: run by hand, see the module doc"]
+fn polar_soak() {
+    let n = env_parse("SSITRACE_ORACLE_PAIRS").unwrap_or(10_000u64);
+    let first = env_parse("SSITRACE_ORACLE_FIRST").unwrap_or(3_000_000u64);
+    let every = env_parse("SSITRACE_ORACLE_PROGRESS").unwrap_or(0usize);
+    assert_sound(&run_with_progress(
+        first..first + n,
+        every,
+        check_polar_pair,
+    ));
 }
 
 /// The soak: `SSITRACE_ORACLE_PAIRS` pairs (default 10 000) from `SSITRACE_ORACLE_FIRST`

@@ -5,7 +5,7 @@
 use super::walker::{scaled_dist, LinkLimit, Node, Walker};
 use super::*;
 use crate::geometry::pole::pole_scaled_normal;
-use crate::geometry::RationalBezierPatch;
+use crate::geometry::{ParametricSurface, RationalBezierPatch};
 use crate::pair::branch_point::locate_singular_point_within;
 use crate::pair::tangent::normals_sine_sqr;
 
@@ -81,6 +81,19 @@ impl Walker<'_> {
     pub(super) fn limit_at(&self, x: &[f64; 4], rounding: bool) -> LinkLimit {
         if rounding {
             return LinkLimit::Rounding;
+        }
+        // Within 1e-6 of a model's size from a pole, the pole is what limits the link.
+        let at = [self.p.point(x[0], x[1]), self.q.point(x[2], x[3])];
+        for (surface, s) in [self.p, self.q].into_iter().enumerate() {
+            let size = s.model_width().max(f64::MIN_POSITIVE);
+            let distance = s
+                .poles()
+                .iter()
+                .map(|pole| (at[surface] - pole).norm())
+                .fold(f64::INFINITY, f64::min);
+            if distance < 1e-6 * size {
+                return LinkLimit::Pole { surface, distance };
+            }
         }
         LinkLimit::Conditioning {
             sine: normals_sine_sqr(self.p, self.q, x).sqrt(),

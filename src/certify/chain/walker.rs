@@ -50,6 +50,15 @@ pub(super) enum LinkLimit {
         /// The sine at the link's start (an estimate).
         sine: f64,
     },
+    /// The link passes close to a pole of a surface (a side its patch maps to one point, where
+    /// the parameters degenerate): the residual's rounding over the speed of the parameter
+    /// along the pole's side sets the width.
+    Pole {
+        /// Which surface (0 for P, 1 for Q).
+        surface: usize,
+        /// The model distance from the link's start to the pole (an estimate).
+        distance: f64,
+    },
 }
 
 impl LinkLimit {
@@ -68,6 +77,13 @@ impl LinkLimit {
                 } else {
                     "an ill-conditioned crossing"
                 }
+            ),
+            LinkLimit::Pole { surface, distance } => format!(
+                "a link starting {distance:.1e} from a pole of {} (a side its patch maps to one \
+                 point, where the parameters degenerate): shorter links did not narrow the \
+                 tube below {width:.1e}, the rounding of the residual over the parameters' \
+                 speed there",
+                ["P", "Q"][*surface]
             ),
         }
     }
@@ -728,6 +744,7 @@ impl<'a> Walker<'a> {
     /// Walks the marched points `xs` (the first one is the start) and handles the marched
     /// `end`.
     pub(super) fn walk(&mut self, xs: &[[f64; 4]], end: EndReason) -> CertifiedEnd {
+        let xs = &distinct(xs, &self.scales);
         let nodes = self.nodes(xs);
         if end == EndReason::Singular {
             self.toward_singular = xs.last().copied();
@@ -754,6 +771,25 @@ impl<'a> Walker<'a> {
             },
         }
     }
+}
+
+/// The marched points `xs` without the ones that repeat the point before them to rounding
+/// (scaled distance at most 1e-15; the march can land twice on one boundary point): no
+/// coordinate runs along such a pair, so no link between them can be proven. The first and
+/// the last point are kept (a repeat of the last replaces the point before it).
+fn distinct(xs: &[[f64; 4]], scales: &[f64; 4]) -> Vec<[f64; 4]> {
+    let mut out: Vec<[f64; 4]> = Vec::with_capacity(xs.len());
+    for (k, x) in xs.iter().enumerate() {
+        match out.last_mut() {
+            Some(last) if scaled_dist(last, x, scales) <= 1e-15 => {
+                if k + 1 == xs.len() && out.len() > 1 {
+                    *out.last_mut().expect("non-empty") = *x;
+                }
+            }
+            _ => out.push(*x),
+        }
+    }
+    out
 }
 
 /// Newton onto `P = Q` with parameter `j` held at `value`: to rounding level where it converges
