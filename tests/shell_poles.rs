@@ -23,6 +23,7 @@ mod common;
 use common::scenes::scene_path;
 use common::shell_checks::{around, check_edge_with, closed_and_proven, edges, run};
 use serde_json::{json, Value};
+use ssitrace::certify::CertifiedEnd;
 
 /// The sphere of `scenes/nurbs_sphere_plane.json`, its coordinates taken in the order `axes`
 /// (`[0, 1, 2]` as written, pole on z; `[2, 0, 1]` puts the poles on x).
@@ -106,4 +107,38 @@ fn great_circles_passing_close_to_the_poles_are_one_closed_curve_each() {
             }
         }
     }
+}
+
+/// A great circle through both poles (the plane `y = 0.3·x` holds the sphere's axis) is not
+/// certified through them: a chain cannot reach a pole, where the parameters degenerate, and
+/// a proof of the curve's passage is future work. But the run must say so: each branch that
+/// runs into a pole ends there on the march (within a few hundred points: no crawl to the
+/// point limit), its certified half ends unproven with the pole named, and the rest of each
+/// branch is certified within the tolerance. Before, the march ended "Newton failed" short of
+/// the pole or crawled to its 20 000-point limit, and the chains ended "close branches".
+#[test]
+fn a_great_circle_through_the_poles_ends_its_branches_there_and_says_why() {
+    let (_, report) = run(json!({"surfaces": [sphere([0, 1, 2]), plane(0.3, 0.0, [0, 1, 2])]}));
+    let res = &report.result;
+    let mut at_poles = 0;
+    for pair in &res.pairs {
+        for b in &pair.result.branches {
+            assert!(
+                b.marched.points.len() < 500,
+                "{} points",
+                b.marched.points.len()
+            );
+            let cert = b.certificate.as_ref().expect("certified");
+            let cert = cert.result.as_ref().expect("a certificate");
+            assert!(cert.certified_tolerance <= 1e-9);
+            for end in &cert.ends {
+                if let CertifiedEnd::Unproven { reason, .. } = end {
+                    assert!(reason.contains("runs into the pole"), "{reason}");
+                    at_poles += 1;
+                }
+            }
+        }
+    }
+    // Four branches (two meridian halves in each hemisphere's two pieces), each into one pole.
+    assert_eq!(at_poles, 4, "{res:#?}");
 }

@@ -40,7 +40,7 @@
 
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::pair_bounds as bounds;
-use crate::geometry::{ParametricSurface, Vec3};
+use crate::geometry::{Domain, ParametricSurface, Vec3};
 use crate::march::boundary::{
     boundary_surface_of, enters, land_on_boundary, onto_boundary, touching,
 };
@@ -200,6 +200,27 @@ fn predict(
     }
 }
 
+/// A march this close to a pole (relative to the model's size) has reached it.
+const POLE_REACHED: f64 = 1e-12;
+/// A march whose Newton fails this close to a pole (relative) has reached it.
+const POLE_NEWTON: f64 = 1e-12;
+
+/// The larger model extent of the two surfaces' domains (corner to corner), at least 1e-300.
+fn model_size<S1, S2>(p: &S1, q: &S2) -> f64
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let diag = |s: &dyn Fn(f64, f64) -> Vec3, d: Domain| {
+        (s(d.u[1], d.v[1]) - s(d.u[0], d.v[0]))
+            .norm()
+            .max((s(d.u[1], d.v[0]) - s(d.u[0], d.v[1])).norm())
+    };
+    diag(&|u, v| p.point(u, v), p.domain())
+        .max(diag(&|u, v| q.point(u, v), q.domain()))
+        .max(1e-300)
+}
+
 /// The step for the next prediction: `L` (an angle on tight curves, see [`predict`]), a cap
 /// on the predicted arc length, and whether the march is heading into a singular point.
 #[derive(Clone, Copy)]
@@ -344,6 +365,23 @@ where
 {
     let (dp, dq) = (p.domain(), q.domain());
     let poles: Vec<Vec3> = p.poles().into_iter().chain(q.poles()).collect();
+    // Which surface's pole the march stands on, if any: a curve through a pole reaches it in
+    // geometrically shrinking steps and ends there, on that surface's boundary (the pole's
+    // side); one where Newton fails this close to a pole too.
+    let size = model_size(p, q);
+    let on_pole = |node: &Node, reach: f64| {
+        let near = |s: Vec<Vec3>| {
+            s.iter()
+                .any(|x| (node.frame.xyz - x).norm() <= reach * size)
+        };
+        if near(p.poles()) {
+            Some(0)
+        } else if near(q.poles()) {
+            Some(1)
+        } else {
+            None
+        }
+    };
     let mut half = Half {
         nodes: Vec::new(),
         end: EndReason::PointLimit,
@@ -359,6 +397,10 @@ where
     loop {
         if half.nodes.len() >= budget {
             half.end = EndReason::PointLimit;
+            return half;
+        }
+        if let Some(surface) = on_pole(&cur, POLE_REACHED).filter(|_| prev.is_some()) {
+            half.end = EndReason::Boundary { surface };
             return half;
         }
         let limit = step_limit(prev.as_ref(), &cur, opts, &poles);
@@ -395,7 +437,10 @@ where
             })
         };
         let Some(r) = refined.or_else(ahead) else {
-            half.end = EndReason::NewtonFailed;
+            half.end = match on_pole(&cur, POLE_NEWTON) {
+                Some(surface) => EndReason::Boundary { surface },
+                None => EndReason::NewtonFailed,
+            };
             return half;
         };
 

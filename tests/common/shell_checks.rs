@@ -178,7 +178,9 @@ pub(crate) fn closed_and_proven(what: &str, report: &ShellRunReport) {
     assert!(r.is_complete(), "{what}: search incomplete");
     for c in &r.curves {
         assert!(c.closed, "{what}: an open curve {c:?}");
-        let tol = c.certified_tolerance.expect("certified, joins proven");
+        let tol = c
+            .certified_tolerance
+            .unwrap_or_else(|| panic!("{what}: not certified as a whole: {c:?}"));
         assert!(tol <= 1e-9, "{what}: {tol:e}");
     }
 }

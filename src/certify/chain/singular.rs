@@ -75,6 +75,28 @@ impl Walker<'_> {
         self.singular_box(a, b, 1e-4).is_none() || !self.singular_point_near(b, 1e-4)
     }
 
+    /// If the marched point `x` lies at a pole of `surface` (0 for P, 1 for Q; within 1e-11 of
+    /// the model's size, where the march stops on one): why a half that ran into it ends
+    /// unproven.
+    pub(super) fn pole_at(&self, surface: usize, x: &[f64; 4]) -> Option<String> {
+        let s = [self.p, self.q][surface];
+        let at = s.point(x[2 * surface], x[2 * surface + 1]);
+        let size = s.model_width().max(f64::MIN_POSITIVE);
+        let pole = s
+            .poles()
+            .into_iter()
+            .find(|p| (at - p).norm() <= 1e-11 * size)?;
+        Some(format!(
+            "the curve runs into the pole ({:.6}, {:.6}, {:.6}) of {}, where a side of the patch \
+             collapses to one point and its parameters degenerate: no link reaches it, and a \
+             curve through a pole is not certified",
+            pole.x + 0.0,
+            pole.y + 0.0,
+            pole.z + 0.0,
+            ["P", "Q"][surface]
+        ))
+    }
+
     /// Why a link at `x` was kept although wider than the aim: the rounding of the
     /// coordinates, or the angle between the surfaces' normals (its sine at `x`, an `f64`
     /// estimate for the report).

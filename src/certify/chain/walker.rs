@@ -749,8 +749,23 @@ impl<'a> Walker<'a> {
         if end == EndReason::Singular {
             self.toward_singular = xs.last().copied();
         }
+        // A march that ran into a pole: no link can reach it (the parameters degenerate
+        // there), so the half ends where the links stop, and says why.
+        let pole = match end {
+            EndReason::Boundary { surface } => xs.last().and_then(|x| self.pole_at(surface, x)),
+            _ => None,
+        };
         if let Err(e) = self.advance(&nodes, None) {
-            return e;
+            return match pole {
+                Some(reason) => CertifiedEnd::Unproven {
+                    reason,
+                    near: self
+                        .links
+                        .last()
+                        .map_or_else(|| point_box(&xs[0]), |l| l.end_slice),
+                },
+                None => e,
+            };
         }
         let Some(&cur) = nodes.last() else {
             return CertifiedEnd::Unproven {
@@ -763,6 +778,10 @@ impl<'a> Walker<'a> {
             return self.singular_end(&cur, &xs[nodes.len()]);
         }
         match end {
+            EndReason::Boundary { .. } if pole.is_some() => CertifiedEnd::Unproven {
+                reason: pole.unwrap_or_default(),
+                near: point_box(&cur.x),
+            },
             EndReason::Boundary { surface } => self.exit(cur, surface),
             other => CertifiedEnd::Unproven {
                 // No proof of anything past the last marched point.
