@@ -38,18 +38,6 @@ pub struct PatchDerivs<S> {
     pub svv: [S; 3],
 }
 
-/// The net indices `i*(n+1)+j` of side `side` of a net of degree `[m, n]` (`u = u0`, `u = u1`,
-/// `v = v0`, `v = v1`), in order along it.
-pub(crate) fn side_indices(degree: [usize; 2], side: usize) -> Vec<usize> {
-    let [m, n] = degree;
-    match side {
-        0 => (0..=n).collect(),
-        1 => (0..=n).map(|j| m * (n + 1) + j).collect(),
-        2 => (0..=m).map(|i| i * (n + 1)).collect(),
-        _ => (0..=m).map(|i| i * (n + 1) + n).collect(),
-    }
-}
-
 /// A tensor-product rational Bézier patch of degree `(m, n)`, both at least 1, on a declared
 /// parameter domain, with a homogeneous interval control net.
 ///
@@ -218,14 +206,7 @@ impl RationalBezierPatch {
             .map(|&[x, y, z, w]| [x * w, y * w, z * w, w])
             .collect();
         let mut patch = Self::assemble(degree, homogeneous, domain)?;
-        patch.collapsed = std::array::from_fn(|side| {
-            let row = side_indices(degree, side);
-            let first = &points[row[0]];
-            let exact = |p: &[Interval; 3]| p.iter().all(|x| x.inf() == x.sup());
-            (row.iter()
-                .all(|&k| exact(&points[k]) && points[k] == *first))
-            .then(|| first.map(|x| x.inf()))
-        });
+        patch.collapsed = crate::geometry::collapsed::collapsed_rows(degree, &points);
         patch.cartesian = Some(cartesian);
         Ok(patch)
     }
@@ -809,13 +790,6 @@ impl ParametricSurface for RationalBezierPatch {
     }
 
     fn poles(&self) -> Vec<Vec3> {
-        let mut out: Vec<Vec3> = Vec::new();
-        for x in self.collapsed.iter().flatten() {
-            let x = vec3(*x);
-            if !out.contains(&x) {
-                out.push(x);
-            }
-        }
-        out
+        crate::geometry::collapsed::distinct_poles(&self.collapsed)
     }
 }

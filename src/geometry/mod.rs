@@ -3,6 +3,7 @@
 pub mod analytic;
 pub(crate) mod bernstein;
 pub mod bezier;
+pub(crate) mod collapsed;
 pub mod enclosure;
 pub mod nurbs;
 pub mod piece;

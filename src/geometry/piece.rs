@@ -48,7 +48,9 @@ impl Piece {
         )
     }
 
-    fn new(
+    /// A piece with the given net (index `i*(n+1)+j`, homogeneous) over the normalised box
+    /// `s × r`; `polynomial` when every weight is exactly 1.
+    pub(crate) fn new(
         s: [f64; 2],
         r: [f64; 2],
         degree: [usize; 2],
@@ -119,18 +121,6 @@ impl Piece {
         ];
         let len = c.iter().map(|v| v * v).sum::<f64>().sqrt();
         (len > 0.0 && len.is_finite()).then(|| c.map(|v| v / len))
-    }
-
-    /// A piece with the given net (index `i*(n+1)+j`, homogeneous) over the normalised box
-    /// `s × r`; `polynomial` when every weight is exactly 1.
-    pub(crate) fn from_net(
-        s: [f64; 2],
-        r: [f64; 2],
-        degree: [usize; 2],
-        net: Vec<[Interval; 4]>,
-        polynomial: bool,
-    ) -> Self {
-        Piece::new(s, r, degree, net, polynomial)
     }
 
     /// The homogeneous interval net, index `i*(n+1)+j`.

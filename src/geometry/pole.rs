@@ -78,7 +78,7 @@ pub(crate) fn collapsed_normal(piece: &Piece, side: usize, x: [f64; 3]) -> Optio
             d_net.push([e[0], e[1], e[2], canon(a, b)[3]]);
         }
     }
-    let d_piece = Piece::from_net([0.0, 1.0], [0.0, 1.0], [da, db], d_net, false);
+    let d_piece = Piece::new([0.0, 1.0], [0.0, 1.0], [da, db], d_net, false);
     let unit = Domain {
         u: [0.0, 1.0],
         v: [0.0, 1.0],

@@ -15,6 +15,7 @@ mod crossing;
 pub mod dqoc_step;
 mod node;
 pub mod options;
+mod step_limit;
 pub mod tangent_step;
 pub mod trace;
 

@@ -40,7 +40,7 @@
 
 use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::pair_bounds as bounds;
-use crate::geometry::{Domain, ParametricSurface, Vec3};
+use crate::geometry::{ParametricSurface, Vec3};
 use crate::march::boundary::{
     boundary_surface_of, enters, land_on_boundary, onto_boundary, touching,
 };
@@ -51,6 +51,9 @@ use crate::march::crossing::{cross_node, singular_ahead, singular_between};
 use crate::march::dqoc_step::dqoc_step;
 use crate::march::node::{inside, node_at, Node};
 use crate::march::options::{MarchOptions, StepMethod};
+use crate::march::step_limit::{
+    model_size, on_pole, step_limit, StepLimit, POLE_NEWTON, POLE_REACHED,
+};
 use crate::march::tangent_step::tangent_step;
 use crate::march::StepPrediction;
 use crate::pair::branch_point::SingularNode;
@@ -200,80 +203,6 @@ fn predict(
     }
 }
 
-/// A march this close to a pole (relative to the model's size) has reached it.
-const POLE_REACHED: f64 = 1e-12;
-/// A march whose Newton fails this close to a pole (relative) has reached it.
-const POLE_NEWTON: f64 = 1e-12;
-
-/// The larger model extent of the two surfaces' domains (corner to corner), at least 1e-300.
-fn model_size<S1, S2>(p: &S1, q: &S2) -> f64
-where
-    S1: ParametricSurface + ?Sized,
-    S2: ParametricSurface + ?Sized,
-{
-    let diag = |s: &dyn Fn(f64, f64) -> Vec3, d: Domain| {
-        (s(d.u[1], d.v[1]) - s(d.u[0], d.v[0]))
-            .norm()
-            .max((s(d.u[1], d.v[0]) - s(d.u[0], d.v[1])).norm())
-    };
-    diag(&|u, v| p.point(u, v), p.domain())
-        .max(diag(&|u, v| q.point(u, v), q.domain()))
-        .max(1e-300)
-}
-
-/// The step for the next prediction: `L` (an angle on tight curves, see [`predict`]), a cap
-/// on the predicted arc length, and whether the march is heading into a singular point.
-#[derive(Clone, Copy)]
-struct StepLimit {
-    step: f64,
-    cap: f64,
-    approaching: bool,
-}
-
-impl StepLimit {
-    fn halved(self) -> Self {
-        StepLimit {
-            step: 0.5 * self.step,
-            cap: 0.5 * self.cap,
-            ..self
-        }
-    }
-}
-
-/// The step for the next prediction. Near a singular point (sine small and decreasing) the arc
-/// is capped at half the distance to where the sine would vanish at its current rate of
-/// decrease: a geometric approach. The cap is a length, applied to the predicted arc: on a tight
-/// curve `L` is an angle (the arc is `L·R`), and taking the cap for `L` itself would shrink the
-/// step twice over (on a tiny loop of nearly tangent surfaces, radius 1e-3 and a sine of 1e-4,
-/// the march crawled at 1e-7 a step and stopped at the point limit a third of the way round).
-fn step_limit(prev: Option<&Node>, cur: &Node, opts: &MarchOptions, poles: &[Vec3]) -> StepLimit {
-    // Near a pole the parameters turn fast however smooth the curve is in space (a curve
-    // passing at distance ρ from a sphere's pole sweeps half a turn of u within a few ρ): the
-    // arc is capped at half the distance to the pole, a geometric approach that a pass
-    // close by survives.
-    let near_pole = poles
-        .iter()
-        .map(|x| 0.5 * (cur.frame.xyz - x).norm())
-        .fold(f64::INFINITY, f64::min);
-    let mut limit = StepLimit {
-        step: opts.step,
-        cap: near_pole,
-        approaching: false,
-    };
-    if let Some(pv) = prev {
-        let chord = (cur.frame.xyz - pv.frame.xyz).norm();
-        let rate = (pv.frame.sine - cur.frame.sine) / chord;
-        if cur.frame.sine < opts.watch_sine && rate > 0.0 {
-            limit.cap = limit.cap.min(0.5 * cur.frame.sine / rate);
-            // At this rate the sine vanishes within a hundred chords: heading into a
-            // singular point (on a tiny loop the sine is small but constant, its rate
-            // rounding noise, and the predicted zero far away).
-            limit.approaching = cur.frame.sine < 100.0 * rate * chord;
-        }
-    }
-    limit
-}
-
 /// [`predict`] with the step's arc capped at `limit.cap` (the arc is proportional to `L`).
 fn predict_capped(
     prev: Option<&Node>,
@@ -365,23 +294,7 @@ where
 {
     let (dp, dq) = (p.domain(), q.domain());
     let poles: Vec<Vec3> = p.poles().into_iter().chain(q.poles()).collect();
-    // Which surface's pole the march stands on, if any: a curve through a pole reaches it in
-    // geometrically shrinking steps and ends there, on that surface's boundary (the pole's
-    // side); one where Newton fails this close to a pole too.
     let size = model_size(p, q);
-    let on_pole = |node: &Node, reach: f64| {
-        let near = |s: Vec<Vec3>| {
-            s.iter()
-                .any(|x| (node.frame.xyz - x).norm() <= reach * size)
-        };
-        if near(p.poles()) {
-            Some(0)
-        } else if near(q.poles()) {
-            Some(1)
-        } else {
-            None
-        }
-    };
     let mut half = Half {
         nodes: Vec::new(),
         end: EndReason::PointLimit,
@@ -399,7 +312,7 @@ where
             half.end = EndReason::PointLimit;
             return half;
         }
-        if let Some(surface) = on_pole(&cur, POLE_REACHED).filter(|_| prev.is_some()) {
+        if let Some(surface) = on_pole(p, q, &cur, POLE_REACHED * size).filter(|_| prev.is_some()) {
             half.end = EndReason::Boundary { surface };
             return half;
         }
@@ -437,7 +350,7 @@ where
             })
         };
         let Some(r) = refined.or_else(ahead) else {
-            half.end = match on_pole(&cur, POLE_NEWTON) {
+            half.end = match on_pole(p, q, &cur, POLE_NEWTON * size) {
                 Some(surface) => EndReason::Boundary { surface },
                 None => EndReason::NewtonFailed,
             };

@@ -6,7 +6,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::{ParametricSurface, Vec3};
-use nalgebra::{Matrix4, Vector4};
+use nalgebra::{Matrix3x4, Matrix4, Vector3, Vector4};
 
 /// The fourth equation of the Newton system.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -132,6 +132,38 @@ where
         }
     }
     Err(fail(max_iter, residual, &x))
+}
+
+/// Gauss–Newton (minimum-norm steps) from `x` onto `P(σ,t) = Q(u,v)`; `None` if it does not
+/// converge to a residual below `tol`.
+pub fn project_onto_intersection<P, Q>(p: &P, q: &Q, mut x: [f64; 4], tol: f64) -> Option<[f64; 4]>
+where
+    P: ParametricSurface + ?Sized,
+    Q: ParametricSurface + ?Sized,
+{
+    for _ in 0..40 {
+        let a = p.derivs(x[0], x[1]);
+        let b = q.derivs(x[2], x[3]);
+        let f: Vector3<f64> = a.p - b.p;
+        let j = Matrix3x4::from_columns(&[a.su, a.sv, -b.su, -b.sv]);
+        let jjt = j * j.transpose();
+        let y = jjt.lu().solve(&f)?;
+        let step = j.transpose() * y;
+        for (xi, si) in x.iter_mut().zip(step.iter()) {
+            *xi -= si;
+        }
+        if !x.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        if f.norm() <= tol && step.norm() <= 1e-10 {
+            return Some(x);
+        }
+        if step.norm() <= 1e-15 * (1.0 + x.iter().map(|v| v.abs()).fold(0.0, f64::max)) {
+            let r = (p.point(x[0], x[1]) - q.point(x[2], x[3])).norm();
+            return (r <= tol).then_some(x);
+        }
+    }
+    None
 }
 
 #[cfg(test)]

@@ -20,7 +20,7 @@
 //!
 //! **Poles.** On a piece touching a side its patch collapses to one point `X` (a sphere's
 //! pole), `N_P` vanishes on that side, so no enclosure of it excludes zero. There `N_P` is used
-//! through a positive multiple `Ñ_P` with a limit on the side ([`crate::geometry::pole`]): the
+//! through a positive multiple `Ñ_P` with a limit on the side (`geometry::pole`): the
 //! criterion with `Ñ_P` gives (i) and (ii) off the side, and the side lies on the boundary of
 //! the box pair, so a component wholly inside the pair is still a closed curve where the
 //! argument holds. Components through `X` end on the side, which is a patch boundary: the

@@ -34,14 +34,14 @@
 
 use crate::geometry::enclosure::boxes_disjoint;
 use crate::geometry::piece::Piece;
-use crate::geometry::{Domain, ParametricSurface, RationalBezierPatch};
+use crate::geometry::{Domain, RationalBezierPatch};
 use crate::pair::curve_surface::{settle_box, BoxVerdict};
+pub use crate::pair::newton::project_onto_intersection;
 use crate::pair::newton::{refine, Constraint};
 use crate::search::point_exclusion::point_off_patch;
 use faces::Needs;
 use faces::{face_search, face_searches_ahead};
 use inari::Interval;
-use nalgebra::{Matrix3x4, Vector3};
 use node_region::NodeRegions;
 use pair_verdict::{classify_pair, separated_across, PairVerdict};
 use rayon::prelude::*;
@@ -635,38 +635,6 @@ fn settle_leaf(
         BoxVerdict::None => Leaf::Empty,
         BoxVerdict::Unknown => Leaf::Unknown,
     }
-}
-
-/// Gauss–Newton (minimum-norm steps) from `x` onto `P(σ,t) = Q(u,v)`; `None` if it does not
-/// converge to a residual below `tol`.
-pub fn project_onto_intersection<P, Q>(p: &P, q: &Q, mut x: [f64; 4], tol: f64) -> Option<[f64; 4]>
-where
-    P: ParametricSurface + ?Sized,
-    Q: ParametricSurface + ?Sized,
-{
-    for _ in 0..40 {
-        let a = p.derivs(x[0], x[1]);
-        let b = q.derivs(x[2], x[3]);
-        let f: Vector3<f64> = a.p - b.p;
-        let j = Matrix3x4::from_columns(&[a.su, a.sv, -b.su, -b.sv]);
-        let jjt = j * j.transpose();
-        let y = jjt.lu().solve(&f)?;
-        let step = j.transpose() * y;
-        for (xi, si) in x.iter_mut().zip(step.iter()) {
-            *xi -= si;
-        }
-        if !x.iter().all(|v| v.is_finite()) {
-            return None;
-        }
-        if f.norm() <= tol && step.norm() <= 1e-10 {
-            return Some(x);
-        }
-        if step.norm() <= 1e-15 * (1.0 + x.iter().map(|v| v.abs()).fold(0.0, f64::max)) {
-            let r = (p.point(x[0], x[1]) - q.point(x[2], x[3])).norm();
-            return (r <= tol).then_some(x);
-        }
-    }
-    None
 }
 
 /// Removes boundary points that are the same point found twice (e.g. at a corner, or from two

@@ -36,15 +36,44 @@ const DIP_SLICES: usize = 32;
 impl Walker<'_> {
     /// The surface (0 for P, 1 for Q) whose domain the last link's end slice lies wholly
     /// outside of, in some parameter: the chain's curve leaves that domain inside the link.
-    pub(super) fn outside_domain(&self) -> Option<usize> {
+    pub(super) fn outside_domain(&self) -> Option<(usize, bool)> {
         let e = &self.last_end_slice()?;
         let (dp, dq) = (self.p.domain(), self.q.domain());
-        (0..4)
-            .find(|&i| {
-                let [lo, hi] = pair_bounds(&dp, &dq, i);
-                e[i].sup() < lo || e[i].inf() > hi
-            })
-            .map(|i| i / 2)
+        (0..4).find_map(|i| {
+            let [lo, hi] = pair_bounds(&dp, &dq, i);
+            if e[i].sup() < lo {
+                Some((i / 2, self.collapsed(i, true)))
+            } else if e[i].inf() > hi {
+                Some((i / 2, self.collapsed(i, false)))
+            } else {
+                None
+            }
+        })
+    }
+
+    /// Whether the bound of parameter `i` (0..4: σ, t of P, u, v of Q), the lower one if
+    /// `below`, is a side its patch collapses to a pole: not a boundary of the surface (the
+    /// surface goes on round the pole), so a chain leaving through it proves no boundary end.
+    pub(super) fn collapsed(&self, i: usize, below: bool) -> bool {
+        let patch = [self.p, self.q][i / 2];
+        patch.collapsed_sides()[2 * (i % 2) + usize::from(!below)].is_some()
+    }
+
+    /// The end of a half whose chain leaves `surface`'s domain through a bound (`pole`: a side
+    /// collapsed to a pole) inside the box `near`: a proven boundary end, or unproven at a pole.
+    pub(super) fn leaving(&self, surface: usize, pole: bool, near: [Interval; 4]) -> CertifiedEnd {
+        if pole {
+            CertifiedEnd::Unproven {
+                reason: format!(
+                    "the chain's curve leaves {}'s parameters through a side collapsed to a \
+                     pole, which is no boundary of the surface",
+                    ["P", "Q"][surface]
+                ),
+                near,
+            }
+        } else {
+            CertifiedEnd::Boundary { surface }
+        }
     }
 
     /// The end of a half whose last link, towards a split point on the way to `target` (a
@@ -58,20 +87,20 @@ impl Walker<'_> {
         let out = (0..4).find_map(|i| {
             let [lo, hi] = pair_bounds(&dp, &dq, i);
             if e[i].sup() < lo {
-                Some((i, lo))
+                Some((i, lo, true))
             } else if e[i].inf() > hi {
-                Some((i, hi))
+                Some((i, hi, false))
             } else {
                 None
             }
         });
-        let (i, bound) = out?;
+        let (i, bound, below) = out?;
         let on_bound = (target.x[i] - bound).abs() <= 1e-9 * self.scales[i];
         let inside = (0..4).all(|k| {
             let [lo, hi] = pair_bounds(&dp, &dq, k);
             lo <= target.x[k] && target.x[k] <= hi
         });
-        (on_bound || inside).then_some(CertifiedEnd::Boundary { surface: i / 2 })
+        (on_bound || inside).then(|| self.leaving(i / 2, self.collapsed(i, below), *e))
     }
 
     /// For a link that heads for a marched node on a bound of a domain (the marched end there):
@@ -112,7 +141,8 @@ impl Walker<'_> {
         link.to = cut;
         link.end_slice = link.proof.box_over(cut, cut);
         link.tightened = false;
-        Some(CertifiedEnd::Boundary { surface: i / 2 })
+        let near = link.end_slice;
+        Some(self.leaving(i / 2, self.collapsed(i, below), near))
     }
 
     /// After a link towards `target` (a split point on the way to it if `split`): the end of
@@ -132,7 +162,10 @@ impl Walker<'_> {
     /// can lie back inside when the curve only dips out of the domain there).
     pub(super) fn exit_stopped(&self, end: CertifiedEnd) -> CertifiedEnd {
         match self.outside_domain() {
-            Some(surface) => CertifiedEnd::Boundary { surface },
+            Some((surface, pole)) => {
+                let near = self.last_end_slice().unwrap_or([Interval::ENTIRE; 4]);
+                self.leaving(surface, pole, near)
+            }
             None => end,
         }
     }

@@ -46,6 +46,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 mod leave;
+mod limit;
 mod output;
 mod singular;
 mod slice;

@@ -2,7 +2,8 @@
 //! march, the conditioning that holds links up near one, and the proven singular box a half
 //! ends with.
 
-use super::walker::{scaled_dist, LinkLimit, Node, Walker};
+use super::limit::LinkLimit;
+use super::walker::{scaled_dist, Node, Walker};
 use super::*;
 use crate::geometry::pole::pole_scaled_normal;
 use crate::geometry::{ParametricSurface, RationalBezierPatch};

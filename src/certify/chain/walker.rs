@@ -1,6 +1,7 @@
 //! The walk of one half of a cover chain: links between guide points, split where needed,
 //! joined without gaps, and the end where the half stops.
 
+use super::limit::LinkLimit;
 use super::*;
 use crate::certify::lean_patch::{costlier_side, LeanPatch};
 use std::cell::Cell;
@@ -35,57 +36,6 @@ pub(super) struct Link {
 impl Link {
     fn end_slice(&self) -> [Interval; 4] {
         self.end_slice
-    }
-}
-
-/// Why a link was kept although wider than the chain's aim (`Walker::limit_at`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum LinkLimit {
-    /// The tube is at the rounding level of the coordinates.
-    Rounding,
-    /// The crossing is ill-conditioned there, usually nearly tangent surfaces (`sine` of the
-    /// angle between the normals), and no singular point is near: the residual's rounding over
-    /// that sine sets the width.
-    Conditioning {
-        /// The sine at the link's start (an estimate).
-        sine: f64,
-    },
-    /// The link passes close to a pole of a surface (a side its patch maps to one point, where
-    /// the parameters degenerate): the residual's rounding over the speed of the parameter
-    /// along the pole's side sets the width.
-    Pole {
-        /// Which surface (0 for P, 1 for Q).
-        surface: usize,
-        /// The model distance from the link's start to the pole (an estimate).
-        distance: f64,
-    },
-}
-
-impl LinkLimit {
-    /// The reason reported for a link of model width `width`.
-    pub(super) fn describe(&self, width: f64) -> String {
-        match self {
-            LinkLimit::Rounding => {
-                format!("the tube ({width:.1e}) is at the rounding level of the coordinates")
-            }
-            LinkLimit::Conditioning { sine } => format!(
-                "{} (sine of the angle between the normals {sine:.1e}, no singular point \
-                 near): shorter links did not narrow the tube below {width:.1e}, the rounding \
-                 of the residual over that sine",
-                if *sine < 1e-2 {
-                    "nearly tangent surfaces"
-                } else {
-                    "an ill-conditioned crossing"
-                }
-            ),
-            LinkLimit::Pole { surface, distance } => format!(
-                "a link starting {distance:.1e} from a pole of {} (a side its patch maps to one \
-                 point, where the parameters degenerate): shorter links did not narrow the \
-                 tube below {width:.1e}, the rounding of the residual over the parameters' \
-                 speed there",
-                ["P", "Q"][*surface]
-            ),
-        }
     }
 }
 
@@ -620,7 +570,9 @@ impl<'a> Walker<'a> {
         let end = self.last_end_slice();
         let [lo, hi] = pair_bounds(&dp, &dq, b);
         match end {
-            Some(e) if e[b].sup() < lo || e[b].inf() > hi => CertifiedEnd::Boundary { surface },
+            Some(e) if e[b].sup() < lo || e[b].inf() > hi => {
+                self.leaving(surface, self.collapsed(b, e[b].sup() < lo), e)
+            }
             _ => unproven("the last slice past the boundary is not wholly outside the domain"),
         }
     }

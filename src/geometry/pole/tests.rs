@@ -11,20 +11,12 @@ pub(crate) fn nurbs_sphere() -> NurbsSurface {
     ))
     .unwrap();
     let one = point(1.0);
-    let circle = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ];
     let meridian = [(0.0, -1.0), (1.0, -1.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
     let (mut pts, mut ws) = (Vec::new(), Vec::new());
-    for (i, &(cx, cy)) in circle.iter().enumerate() {
+    // The unit circle's net: the square's corners and edge midpoints, round from (1, 0).
+    let c = [1.0, 1.0, 0.0, -1.0, -1.0, -1.0, 0.0, 1.0, 1.0];
+    for i in 0..9 {
+        let (cx, cy) = (c[i], c[(i + 6) % 8]);
         for (j, &(r, z)) in meridian.iter().enumerate() {
             pts.push([point(cx * r), point(cy * r), point(z)]);
             let wi = if i % 2 == 1 { h } else { one };
