@@ -24,6 +24,7 @@ use common::scenes::scene_path;
 use common::shell_checks::{around, check_edge_with, closed_and_proven, edges, run};
 use serde_json::{json, Value};
 use ssitrace::certify::CertifiedEnd;
+use ssitrace::shell::edges::EdgeKind;
 
 /// The sphere of `scenes/nurbs_sphere_plane.json`, its coordinates taken in the order `axes`
 /// (`[0, 1, 2]` as written, pole on z; `[2, 0, 1]` puts the poles on x).
@@ -114,8 +115,10 @@ fn great_circles_passing_close_to_the_poles_are_one_closed_curve_each() {
 /// a proof of the curve's passage is future work. But the run must say so: each branch that
 /// runs into a pole ends there on the march (within a few hundred points: no crawl to the
 /// point limit), its certified half ends unproven with the pole named, and the rest of each
-/// branch is certified within the tolerance. Before, the march ended "Newton failed" short of
-/// the pole or crawled to its 20 000-point limit, and the chains ended "close branches".
+/// branch is certified within the tolerance; the branches are joined into one closed curve,
+/// through each pole by a join marked unproven. Before, the march ended "Newton failed" short
+/// of the pole or crawled to its 20 000-point limit, the chains ended "close branches", and
+/// the curve came back as two open pieces.
 #[test]
 fn a_great_circle_through_the_poles_ends_its_branches_there_and_says_why() {
     let (_, report) = run(json!({"surfaces": [sphere([0, 1, 2]), plane(0.3, 0.0, [0, 1, 2])]}));
@@ -141,4 +144,21 @@ fn a_great_circle_through_the_poles_ends_its_branches_there_and_says_why() {
     }
     // Four branches (two meridian halves in each hemisphere's two pieces), each into one pole.
     assert_eq!(at_poles, 4, "{res:#?}");
+    // They are one closed curve: joined across the equator (proven) and through each pole
+    // (unproven, and said so).
+    assert_eq!(res.curves.len(), 1, "{:?}", res.curves);
+    let c = &res.curves[0];
+    assert!(c.closed && c.certified_tolerance.is_none(), "{c:?}");
+    let poles: Vec<_> = c
+        .joins
+        .iter()
+        .filter(|j| j.edge == EdgeKind::Pole)
+        .collect();
+    assert_eq!(poles.len(), 2, "{c:?}");
+    assert!(poles.iter().all(|j| !j.status.is_proven()));
+    assert!(c
+        .joins
+        .iter()
+        .filter(|j| j.edge != EdgeKind::Pole)
+        .all(|j| j.status.is_proven()));
 }

@@ -37,15 +37,19 @@ pub enum EdgeKind {
     Seam,
     /// Equal boundary control rows in two faces.
     FaceEdge,
+    /// Two sides of one face collapsed to the same pole: not an edge, but where a curve through
+    /// the pole passes from one piece to another (such a join is never proven).
+    Pole,
 }
 
 impl EdgeKind {
-    /// `"knot_line"`, `"seam"` or `"face_edge"`.
+    /// `"knot_line"`, `"seam"`, `"face_edge"` or `"pole"`.
     pub fn name(self) -> &'static str {
         match self {
             EdgeKind::KnotLine => "knot_line",
             EdgeKind::Seam => "seam",
             EdgeKind::FaceEdge => "face_edge",
+            EdgeKind::Pole => "pole",
         }
     }
 }

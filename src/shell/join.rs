@@ -188,6 +188,7 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
             }
         }
     }
+    candidates.extend(pole_candidates(a, b, pairs, &sites));
     let mut corners = corner::candidates(a, b, pairs, &sites, &links, &by_pair);
     corners.extend(own_corner::candidates(
         a, b, pairs, &sites, &links, &by_pair,
@@ -252,6 +253,76 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
         pairs[k].result.branches[i].marched.status == BranchStatus::Closed
     };
     chain(index.len(), &joins, &tolerance, &closed_branch, &absorbed)
+}
+
+/// A join candidate: the gap, the two sites, the status, the edge and the corner's index.
+type Candidate = (f64, usize, usize, JoinStatus, EdgeKind, Option<usize>);
+
+/// How far from opposite (`1 + cos` of the angle between them) two branches may leave a pole
+/// and still be joined there as one curve passing through it.
+const STRAIGHT_THROUGH: f64 = 1e-3;
+
+/// Joins through a pole: two ends that the marcher ended on sides of one face collapsed to the
+/// same pole, against the same piece of the other surface, leaving the pole in opposite
+/// directions (to [`STRAIGHT_THROUGH`]): a curve through a sphere's pole arrives on one piece's
+/// pole side and leaves from another's, straight on (and two lines crossing at a cone's apex
+/// pair up by their lines). Never proven: no chain reaches the pole (its parameters
+/// degenerate there).
+fn pole_candidates(
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+    sites: &[EndSite<'_>],
+) -> Vec<Candidate> {
+    let index = branch_index(pairs);
+    let pole =
+        |s: &EndSite<'_>| patches(a, b, &pairs[s.pair])[s.surface].collapsed_sides()[s.side.side];
+    // The direction from the pole into the branch: from its end point to a point a little in.
+    let outward = |s: &EndSite<'_>| {
+        let (k, i) = index[s.at.branch];
+        let pts = &pairs[k].result.branches[i].marched.points;
+        let inner = if s.at.end == 0 {
+            pts.get(pts.len().min(4).checked_sub(1)?)
+        } else {
+            pts.get(pts.len().saturating_sub(4))
+        }?;
+        let d: [f64; 3] = std::array::from_fn(|c| inner.xyz[c] - s.point.xyz[c]);
+        let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+        (n > 0.0).then(|| d.map(|x| x / n))
+    };
+    let mut out = Vec::new();
+    for (x, s1) in sites.iter().enumerate() {
+        let Some(p1) = pole(s1) else {
+            continue;
+        };
+        let other = 1 - s1.surface;
+        for (y, s2) in sites.iter().enumerate().skip(x + 1) {
+            let (q1, q2) = (&pairs[s1.pair], &pairs[s2.pair]);
+            let same = s2.surface == s1.surface
+                && s2.side.face == s1.side.face
+                && q1.faces[other] == q2.faces[other]
+                && q1.pieces[other] == q2.pieces[other]
+                && pole(s2) == Some(p1);
+            let Some(gap) = marched_gap(&s1.point, &s2.point).filter(|_| same) else {
+                continue;
+            };
+            let (Some(d1), Some(d2)) = (outward(s1), outward(s2)) else {
+                continue;
+            };
+            if 1.0 + d1[0] * d2[0] + d1[1] * d2[1] + d1[2] * d2[2] > STRAIGHT_THROUGH {
+                continue;
+            }
+            let status = if q1.result.options.method.certifies() {
+                JoinStatus::Unproven {
+                    reason: "through a pole: the curve is not certified there",
+                }
+            } else {
+                JoinStatus::Marched
+            };
+            out.push((gap, x, y, status, EdgeKind::Pole, None));
+        }
+    }
+    out
 }
 
 /// What [`chain`] knows of a join from one of its ends: the other end, the edge, the status, the
