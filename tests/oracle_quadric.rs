@@ -23,6 +23,12 @@
 //! `tests/common/oracle.rs` (soundness against boxes and tubes, completeness, each arc once,
 //! tolerance).
 //!
+//! A third kind, **polar** ([`polar_pair`]): a sphere piece whose meridian ends exactly at the
+//! pole (its last row of control points one exact point, so the piece knows the side collapses
+//! there), against a plane through a point `10^−k` (k uniform in [1, 7]) of the meridian's
+//! parameter from the pole, in a random direction; 60 fixed seeds run in CI, and
+//! `polar_soak` by hand (seeds from 3 000 000).
+//!
 //! `cargo test --release --test oracle_quadric -- --nocapture` prints the figures; the soak is
 //! `SSITRACE_ORACLE_PAIRS=10000 cargo test --release --test oracle_quadric soak -- --ignored
 //! --nocapture` (same options as the height-field soak).
