@@ -105,7 +105,10 @@ impl Walker<'_> {
         if rounding {
             return LinkLimit::Rounding;
         }
-        // Within 1e-6 of a model's size from a pole, the pole is what limits the link.
+        // Within 1e-6 of a model's size from a pole, the pole is what limits the link; within
+        // 1e-3 too, unless the surfaces are nearly tangent (their crossing is then the cause).
+        let sine = normals_sine_sqr(self.p, self.q, x).sqrt();
+        let reach = if sine >= 1e-2 { 1e-3 } else { 1e-6 };
         let at = [self.p.point(x[0], x[1]), self.q.point(x[2], x[3])];
         for (surface, s) in [self.p, self.q].into_iter().enumerate() {
             let size = s.model_width().max(f64::MIN_POSITIVE);
@@ -114,13 +117,11 @@ impl Walker<'_> {
                 .iter()
                 .map(|pole| (at[surface] - pole).norm())
                 .fold(f64::INFINITY, f64::min);
-            if distance < 1e-6 * size {
+            if distance < reach * size {
                 return LinkLimit::Pole { surface, distance };
             }
         }
-        LinkLimit::Conditioning {
-            sine: normals_sine_sqr(self.p, self.q, x).sqrt(),
-        }
+        LinkLimit::Conditioning { sine }
     }
 
     /// Why no link could be proven between `a` and `b`: a singular box if the normals'
