@@ -729,13 +729,13 @@ impl<'a> Walker<'a> {
             // The next marched point has no velocity: a singular point. The half ends between.
             return self.singular_end(&cur, &xs[nodes.len()]);
         }
-        match end {
-            EndReason::Boundary { .. } if pole.is_some() => CertifiedEnd::Unproven {
-                reason: pole.unwrap_or_default(),
+        match (end, pole) {
+            (EndReason::Boundary { .. }, Some(reason)) => CertifiedEnd::Unproven {
+                reason,
                 near: point_box(&cur.x),
             },
-            EndReason::Boundary { surface } => self.exit(cur, surface),
-            other => CertifiedEnd::Unproven {
+            (EndReason::Boundary { surface }, None) => self.exit(cur, surface),
+            (other, _) => CertifiedEnd::Unproven {
                 // No proof of anything past the last marched point.
                 reason: format!("the marched branch ends here ({other})"),
                 near: point_box(&cur.x),
@@ -751,10 +751,11 @@ impl<'a> Walker<'a> {
 fn distinct(xs: &[[f64; 4]], scales: &[f64; 4]) -> Vec<[f64; 4]> {
     let mut out: Vec<[f64; 4]> = Vec::with_capacity(xs.len());
     for (k, x) in xs.iter().enumerate() {
+        let kept = out.len();
         match out.last_mut() {
             Some(last) if scaled_dist(last, x, scales) <= 1e-15 => {
-                if k + 1 == xs.len() && out.len() > 1 {
-                    *out.last_mut().expect("non-empty") = *x;
+                if k + 1 == xs.len() && kept > 1 {
+                    *last = *x;
                 }
             }
             _ => out.push(*x),
