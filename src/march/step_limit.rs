@@ -56,7 +56,7 @@ pub(super) fn step_limit(
     prev: Option<&Node>,
     cur: &Node,
     opts: &MarchOptions,
-    poles: &[Vec3],
+    poles: &[Vec<Vec3>; 2],
 ) -> StepLimit {
     // Near a pole the parameters turn fast however smooth the curve is in space (a curve
     // passing at distance ρ from a sphere's pole sweeps half a turn of u within a few ρ): the
@@ -64,6 +64,7 @@ pub(super) fn step_limit(
     // close by survives.
     let near_pole = poles
         .iter()
+        .flatten()
         .map(|x| 0.5 * (cur.frame.xyz - x).norm())
         .fold(f64::INFINITY, f64::min);
     let mut limit = StepLimit {
@@ -85,20 +86,13 @@ pub(super) fn step_limit(
     limit
 }
 
-/// Which surface's pole (0 for P, 1 for Q) `node` lies within `reach` of, if any: a curve
-/// through a pole reaches it in geometrically shrinking steps and ends there, on that
-/// surface's boundary (the pole's side).
-pub(super) fn on_pole<S1, S2>(p: &S1, q: &S2, node: &Node, reach: f64) -> Option<usize>
-where
-    S1: ParametricSurface + ?Sized,
-    S2: ParametricSurface + ?Sized,
-{
-    let near = |s: Vec<Vec3>| s.iter().any(|x| (node.frame.xyz - x).norm() <= reach);
-    if near(p.poles()) {
-        Some(0)
-    } else if near(q.poles()) {
-        Some(1)
-    } else {
-        None
-    }
+/// Which surface's pole (0 for P, 1 for Q; `poles`: each surface's) `node` lies within
+/// `reach` of, if any: a curve through a pole reaches it in geometrically shrinking steps and
+/// ends there, on that surface's boundary (the pole's side).
+pub(super) fn on_pole(poles: &[Vec<Vec3>; 2], node: &Node, reach: f64) -> Option<usize> {
+    (0..2).find(|&s| {
+        poles[s]
+            .iter()
+            .any(|x| (node.frame.xyz - x).norm() <= reach)
+    })
 }

@@ -293,7 +293,7 @@ where
     S2: ParametricSurface + ?Sized,
 {
     let (dp, dq) = (p.domain(), q.domain());
-    let poles: Vec<Vec3> = p.poles().into_iter().chain(q.poles()).collect();
+    let poles = [p.poles(), q.poles()];
     let size = model_size(p, q);
     let mut half = Half {
         nodes: Vec::new(),
@@ -312,7 +312,8 @@ where
             half.end = EndReason::PointLimit;
             return half;
         }
-        if let Some(surface) = on_pole(p, q, &cur, POLE_REACHED * size).filter(|_| prev.is_some()) {
+        if let Some(surface) = on_pole(&poles, &cur, POLE_REACHED * size).filter(|_| prev.is_some())
+        {
             half.end = EndReason::Boundary { surface };
             return half;
         }
@@ -350,7 +351,7 @@ where
             })
         };
         let Some(r) = refined.or_else(ahead) else {
-            half.end = match on_pole(p, q, &cur, POLE_NEWTON * size) {
+            half.end = match on_pole(&poles, &cur, POLE_NEWTON * size) {
                 Some(surface) => EndReason::Boundary { surface },
                 None => EndReason::NewtonFailed,
             };

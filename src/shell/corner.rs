@@ -198,9 +198,28 @@ pub(super) fn exit_boxes(
     None
 }
 
+/// The two pairs' pieces at a corner and both branches' exit boxes.
+type CornerStart<'a> = ([[&'a RationalBezierPatch; 2]; 2], (ParamBox, ParamBox));
+
+/// What both corner proofs start from ([`prove_pair`], and the one round a corner of one
+/// surface's own pieces): the two pairs' pieces and the proven exit boxes of both branches
+/// ([`both_exits`]); why not, if the method does not certify or an exit is not proven.
+pub(super) fn corner_start<'a>(
+    a: &'a [Face],
+    b: &'a [Face],
+    p: [&PieceIntersection; 2],
+    s: [&EndSite; 2],
+) -> Result<CornerStart<'a>, &'static str> {
+    if !p[0].result.options.method.certifies() {
+        return Err("the method does not certify");
+    }
+    let q = [patches(a, b, p[0]), patches(a, b, p[1])];
+    Ok((q, both_exits(s, q)?))
+}
+
 /// The exit boxes ([`exit_boxes`]) of the two sites `s` at a corner, each in its pair's own
 /// parameters (`q`: the pairs' pieces), or why there are none.
-pub(super) fn both_exits(
+fn both_exits(
     s: [&EndSite; 2],
     q: [[&RationalBezierPatch; 2]; 2],
 ) -> Result<(ParamBox, ParamBox), &'static str> {
@@ -508,18 +527,14 @@ fn prove_pair(
     s: [&EndSite; 2],
     l: [&EdgeLink; 2],
 ) -> (Result<(), &'static str>, Option<CornerProof>) {
-    if !p[0].result.options.method.certifies() {
-        return (Err("the method does not certify"), None);
-    }
     let unproven = |reason| (Err(reason), None);
-    let (q1, q2) = (patches(a, b, p[0]), patches(a, b, p[1]));
+    let ([q1, q2], (x, y)) = match corner_start(a, b, p, s) {
+        Ok(start) => start,
+        Err(reason) => return unproven(reason),
+    };
     let (Some(sa), Some(sb)) = (chart_map(l[0], q1[0], q2[0]), chart_map(l[1], q1[1], q2[1]))
     else {
         return unproven("a side at the corner is degenerate");
-    };
-    let (x, y) = match both_exits(s, [q1, q2]) {
-        Ok(b) => b,
-        Err(reason) => return unproven(reason),
     };
     let d1 = [q1[0].domain(), q1[1].domain()];
     let sta = stitched(q1[0], q2[0], sa);

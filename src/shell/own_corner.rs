@@ -17,9 +17,9 @@
 use std::collections::{HashMap, HashSet};
 
 use super::chart::{chart_map, ChartMap};
-use super::corner::{both_exits, prove, stitched_round, CornerCandidate, CornerProof};
+use super::corner::{corner_start, prove, stitched_round, CornerCandidate, CornerProof};
 use super::edges::{side_coordinate, EdgeKind, EdgeLink, PieceSide};
-use super::sites::{marched_gap, patches, EndSite};
+use super::sites::{marched_gap, EndSite};
 use super::{Face, PieceIntersection};
 use crate::geometry::bezier::RationalBezierPatch;
 use crate::geometry::surface::Domain;
@@ -198,16 +198,12 @@ fn prove_own(
     r: &Round<'_>,
 ) -> (Result<(), &'static str>, Option<CornerProof>) {
     let unproven = |reason| (Err(reason), None);
-    if !p[0].result.options.method.certifies() {
-        return unproven("the method does not certify");
-    }
-    let sf = s[0].surface;
-    let (q1, q2) = (patches(a, b, p[0]), patches(a, b, p[1]));
-    let maps = r.maps;
-    let (x, y) = match both_exits(s, [q1, q2]) {
-        Ok(b) => b,
+    let ([q1, _], (x, y)) = match corner_start(a, b, p, s) {
+        Ok(start) => start,
         Err(reason) => return unproven(reason),
     };
+    let sf = s[0].surface;
+    let maps = r.maps;
     let d1 = [q1[0].domain(), q1[1].domain()];
     let round = stitched_round(q1[sf], (0..3).map(|i| (r.patches[i], maps[i])).collect());
     let alone = stitched_round(q1[1 - sf], Vec::new());

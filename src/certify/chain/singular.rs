@@ -6,7 +6,7 @@ use super::limit::LinkLimit;
 use super::walker::{scaled_dist, Node, Walker};
 use super::*;
 use crate::geometry::pole::pole_scaled_normal;
-use crate::geometry::{ParametricSurface, RationalBezierPatch};
+use crate::geometry::{ParametricSurface, RationalBezierPatch, Vec3};
 use crate::pair::branch_point::locate_singular_point_within;
 use crate::pair::tangent::normals_sine_sqr;
 
@@ -76,17 +76,23 @@ impl Walker<'_> {
         self.singular_box(a, b, 1e-4).is_none() || !self.singular_point_near(b, 1e-4)
     }
 
+    /// The pole of `surface` (0 for P, 1 for Q) nearest the point of `x` on it, and its
+    /// distance relative to the patch's model size; `None` if the patch has no pole.
+    fn nearest_pole(&self, surface: usize, x: &[f64; 4]) -> Option<(Vec3, f64)> {
+        let s = [self.p, self.q][surface];
+        let at = s.point(x[2 * surface], x[2 * surface + 1]);
+        let size = s.model_width().max(f64::MIN_POSITIVE);
+        s.poles()
+            .into_iter()
+            .map(|p| (p, (at - p).norm() / size))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
     /// If the marched point `x` lies at a pole of `surface` (0 for P, 1 for Q; within 1e-11 of
     /// the model's size, where the march stops on one): why a half that ran into it ends
     /// unproven.
     pub(super) fn pole_at(&self, surface: usize, x: &[f64; 4]) -> Option<String> {
-        let s = [self.p, self.q][surface];
-        let at = s.point(x[2 * surface], x[2 * surface + 1]);
-        let size = s.model_width().max(f64::MIN_POSITIVE);
-        let pole = s
-            .poles()
-            .into_iter()
-            .find(|p| (at - p).norm() <= 1e-11 * size)?;
+        let (pole, _) = self.nearest_pole(surface, x).filter(|&(_, d)| d <= 1e-11)?;
         Some(format!(
             "the curve runs into the pole ({:.6}, {:.6}, {:.6}) of {}, where a side of the patch \
              collapses to one point and its parameters degenerate: no link reaches it, and a \
@@ -109,16 +115,13 @@ impl Walker<'_> {
         // 1e-3 too, unless the surfaces are nearly tangent (their crossing is then the cause).
         let sine = normals_sine_sqr(self.p, self.q, x).sqrt();
         let reach = if sine >= 1e-2 { 1e-3 } else { 1e-6 };
-        let at = [self.p.point(x[0], x[1]), self.q.point(x[2], x[3])];
-        for (surface, s) in [self.p, self.q].into_iter().enumerate() {
-            let size = s.model_width().max(f64::MIN_POSITIVE);
-            let distance = s
-                .poles()
-                .iter()
-                .map(|pole| (at[surface] - pole).norm())
-                .fold(f64::INFINITY, f64::min);
-            if distance < reach * size {
-                return LinkLimit::Pole { surface, distance };
+        for surface in 0..2 {
+            if let Some((_, d)) = self.nearest_pole(surface, x).filter(|&(_, d)| d < reach) {
+                let size = [self.p, self.q][surface].model_width();
+                return LinkLimit::Pole {
+                    surface,
+                    distance: d * size,
+                };
             }
         }
         LinkLimit::Conditioning { sine }
