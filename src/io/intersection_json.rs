@@ -4,6 +4,8 @@
 //! and the same for a shell intersection, whose branches each carry the `"pair"` of faces they
 //! belong to ([`shell_result`]).
 
+use std::collections::HashMap;
+
 use serde_json::{json, Map, Value};
 
 use super::result_json::{
@@ -189,22 +191,25 @@ pub fn mark_pair(meta: &mut ResultMeta, r: &SurfaceIntersection, pair: [usize; 2
     }
 }
 
-/// Add `delta` to the unsigned integer at `v[key]`, if there is one.
-fn shift(v: &mut Value, key: &str, delta: usize) {
+/// Replaces the branch id at `v[key]`, if there is one, by its shell-wide number in `ids`
+/// (a pair's own branch ids may have gaps where duplicates were dropped).
+fn renumber(v: &mut Value, key: &str, ids: &HashMap<usize, usize>) {
     if let Some(x) = v.get_mut(key) {
-        if let Some(n) = x.as_u64() {
-            *x = json!(n as usize + delta);
+        if let Some(n) = x.as_u64().and_then(|n| ids.get(&(n as usize))) {
+            *x = json!(*n);
         }
     }
 }
 
 /// The result document of a shell intersection: the branches and events of every traced piece
-/// pair, in the order of [`ShellIntersection::pairs`], renumbered into one sequence (branch ids
-/// and event indices, and the branch references inside the certified members and events,
-/// shifted by the counts before them). Every branch, marcher event note and certified event
+/// pair, in the order of [`ShellIntersection::pairs`], renumbered into one sequence (branches
+/// by their position, as [`ShellIntersection::branch`] and the joins number them; event
+/// indices shifted by the counts before them; the branch references inside the certified
+/// members and events mapped likewise). Every branch, marcher event note and certified event
 /// carries `"pair": [i, j]` (the faces of A and B) and `"pieces"` (the Bézier pieces of those
 /// faces). The stats hold `"piece_pairs"`, `"skipped_pairs"` (proven disjoint by their
-/// bounding boxes), `"branches"`, `"search_complete"` (every traced pair settled) and
+/// bounding boxes), `"edge_copies"` (branches dropped as copies along a shared edge),
+/// `"branches"`, `"search_complete"` (every traced pair settled) and
 /// `"pairs"`, the [`stats_json`] of each traced pair with its `"pair"` and `"pieces"`, and
 /// `"joined_curves"` (their count) and `"join_seconds"`. The document gets the top-level member
 /// `"joined_curves"` ([`joined_curve_json`] of each [`ShellIntersection::curves`]) and every
@@ -228,9 +233,16 @@ pub fn shell_result(
         let mut m = result_meta(None, &pi.result, tubes);
         mark_pair(&mut m, &pi.result, pi.faces);
         let marched = pi.result.marched();
+        // Shell-wide numbers in pair order, position by position, as the joins number them.
+        let ids: HashMap<usize, usize> = marched
+            .branches
+            .iter()
+            .enumerate()
+            .map(|(k, b)| (b.id, b0 + k))
+            .collect();
         for mut b in marched.branches {
             let id = b.id;
-            b.id += b0;
+            b.id = ids[&id];
             let mut notes = m.branch_notes.remove(&id).unwrap_or_default();
             notes.insert("pieces".into(), json!(pi.pieces));
             meta.branch_notes.insert(b.id, notes);
@@ -241,7 +253,7 @@ pub fn shell_result(
                     .and_then(|x| x.as_array_mut())
                 {
                     for p in points {
-                        shift(p, "onto", b0);
+                        renumber(p, "onto", &ids);
                     }
                 }
                 meta.certified.insert(b.id, c);
@@ -257,7 +269,7 @@ pub fn shell_result(
             all.events.push(e);
         }
         for mut v in m.certified_events {
-            shift(&mut v, "branch", b0);
+            renumber(&mut v, "branch", &ids);
             tag(&mut v);
             meta.certified_events.push(v);
         }
@@ -268,6 +280,7 @@ pub fn shell_result(
     let stats = &mut meta.stats;
     stats.insert("piece_pairs".into(), json!(s.piece_pairs));
     stats.insert("skipped_pairs".into(), json!(s.skipped_pairs));
+    stats.insert("edge_copies".into(), json!(s.edge_copies));
     stats.insert("branches".into(), json!(all.branches.len()));
     stats.insert("search_complete".into(), json!(s.is_complete()));
     stats.insert("pairs".into(), Value::Array(pair_stats));
