@@ -400,6 +400,13 @@ fn shell_summary(
         r.branch_count(),
         seconds * 1e3
     );
+    if r.edge_copies > 0 {
+        let _ = writeln!(
+            out,
+            "  {} branch(es) along a shared edge (knot line, seam or face edge) traced by both pieces: one copy kept",
+            r.edge_copies
+        );
+    }
     // Branches a proven corner join covers (shell-wide numbers, as the joins number them).
     let absorbed: std::collections::HashSet<usize> = r
         .curves

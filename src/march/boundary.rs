@@ -254,11 +254,86 @@ where
         n.frame.tangent_q[1],
     ];
     let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
+    let speed = parameter_speed(&dp, &dq, &d);
     (0..4).all(|i| {
         let [lo, hi] = bounds(&dp, &dq, i);
+        // A tangent component across the side at rounding level is none: the curve runs along
+        // the side (a section along a knot line) rather than out through it.
         let di = sign * d[i];
+        let di = if di.abs() <= ALONG * speed * (hi - lo) {
+            0.0
+        } else {
+            di
+        };
         !((n.x[i] - lo).abs() <= edge_tol && di < 0.0
             || (hi - n.x[i]).abs() <= edge_tol && di > 0.0)
+    })
+}
+
+/// A parameter tangent component below this fraction of the fastest one (each relative to its
+/// domain width) runs along a side rather than across it.
+const ALONG: f64 = 1e-9;
+
+/// The largest `|dₖ| / widthₖ` of the parameter tangent `d` (`(σ', t', u', v')`).
+fn parameter_speed(dp: &Domain, dq: &Domain, d: &[f64; 4]) -> f64 {
+    (0..4).fold(0.0, |m: f64, k| {
+        let [lo, hi] = bounds(dp, dq, k);
+        m.max(d[k].abs() / (hi - lo))
+    })
+}
+
+/// Whether the curve through the node `n` runs *along* the side of coordinate `coordinate`
+/// (0..4) that `n` lies on (a section along a knot line, or along a patch's boundary curve):
+/// its parameter tangent has no component across the side (below [`ALONG`] of the fastest),
+/// and the curve points a short way along it both ways (a thousandth of the fastest
+/// coordinate's domain width; Newton on the normal planes) still lie on the side, to [`ALONG`]
+/// of its coordinate's width. A curve that only touches the side moves off it by its curvature
+/// times the step squared, a millionth of the width. Not a proof: it decides how the marcher
+/// starts.
+pub(crate) fn runs_along<S1, S2>(
+    p: &S1,
+    q: &S2,
+    n: &Node,
+    coordinate: usize,
+    opts: &MarchOptions,
+) -> bool
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (dp, dq) = (p.domain(), q.domain());
+    let d = [
+        n.frame.tangent_p[0],
+        n.frame.tangent_p[1],
+        n.frame.tangent_q[0],
+        n.frame.tangent_q[1],
+    ];
+    let [lo, hi] = bounds(&dp, &dq, coordinate);
+    let value = if (n.x[coordinate] - lo).abs() <= (hi - n.x[coordinate]).abs() {
+        lo
+    } else {
+        hi
+    };
+    let speed = parameter_speed(&dp, &dq, &d);
+    if !(speed > 0.0 && speed.is_finite()) || d[coordinate].abs() > ALONG * speed * (hi - lo) {
+        return false;
+    }
+    let h = 1e-3 / speed;
+    [1.0, -1.0].into_iter().all(|sign| {
+        let y: [f64; 4] = std::array::from_fn(|k| n.x[k] + sign * h * d[k]);
+        let constraint = Constraint::Plane {
+            point: p.point(y[0], y[1]),
+            normal: n.frame.tangent,
+        };
+        refine(
+            p,
+            q,
+            y,
+            constraint,
+            opts.newton_tolerance,
+            opts.max_newton_iterations,
+        )
+        .is_ok_and(|r| (r.x[coordinate] - value).abs() <= ALONG * (hi - lo))
     })
 }
 
@@ -266,13 +341,17 @@ where
 /// (Grandine's test to second order, see [`classify_boundary_point_unproven`]): `Some(true)`
 /// when it is tangent to every such face and stays inside the domains, `Some(false)` when it
 /// touches a face from outside (or the surfaces touch at this point only), `None` otherwise.
-pub(crate) fn touching<S1, S2>(p: &S1, q: &S2, n: &Node) -> Option<bool>
+pub(crate) fn touching<S1, S2>(p: &S1, q: &S2, n: &Node, march: &MarchOptions) -> Option<bool>
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
     let opts = BoundaryOptions::default();
-    let sides = boundary_sides(p, q, &n.x, 1e-7);
+    // Sides the curve runs along are neither touched nor crossed.
+    let sides: Vec<_> = boundary_sides(p, q, &n.x, 1e-7)
+        .into_iter()
+        .filter(|side| !runs_along(p, q, n, side.coordinate, march))
+        .collect();
     let mut inside = !sides.is_empty();
     for side in sides {
         match classify_boundary_point_unproven(p, q, n.x, side, &opts).map(|c| c.direction) {
@@ -286,17 +365,39 @@ where
     inside.then_some(true)
 }
 
-/// The surface (0 for P, 1 for Q) on whose domain boundary the node `n` lies, if any.
-pub(crate) fn boundary_surface_of<S1, S2>(p: &S1, q: &S2, n: &Node) -> Option<usize>
+/// The surface (0 for P, 1 for Q) on whose domain boundary the node `n` lies, if any, not
+/// counting sides the curve runs along ([`runs_along`]).
+pub(crate) fn boundary_surface_of<S1, S2>(
+    p: &S1,
+    q: &S2,
+    n: &Node,
+    opts: &MarchOptions,
+) -> Option<usize>
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
     let (dp, dq) = (p.domain(), q.domain());
     let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
-    (0..4).find_map(|i| {
-        let [lo, hi] = bounds(&dp, &dq, i);
-        ((n.x[i] - lo).abs() <= edge_tol || (hi - n.x[i]).abs() <= edge_tol)
-            .then_some(usize::from(i >= 2))
-    })
+    let d = [
+        n.frame.tangent_p[0],
+        n.frame.tangent_p[1],
+        n.frame.tangent_q[0],
+        n.frame.tangent_q[1],
+    ];
+    // Of the sides the node lies on, the one the curve crosses most steeply (relative to the
+    // domain's width that way): a curve running along one surface's edge (a section along a
+    // knot line) and leaving the other's domain ends on the other's boundary.
+    (0..4)
+        .filter(|&i| {
+            let [lo, hi] = bounds(&dp, &dq, i);
+            ((n.x[i] - lo).abs() <= edge_tol || (hi - n.x[i]).abs() <= edge_tol)
+                && !runs_along(p, q, n, i, opts)
+        })
+        .map(|i| {
+            let [lo, hi] = bounds(&dp, &dq, i);
+            (i, d[i].abs() / (hi - lo).max(f64::MIN_POSITIVE))
+        })
+        .reduce(|a, b| if b.1 > a.1 { b } else { a })
+        .map(|(i, _)| usize::from(i >= 2))
 }

@@ -468,36 +468,50 @@ where
 {
     let (dp, dq) = (p.domain(), q.domain());
     let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
-    let on_edge = (0..4).find_map(|i| {
-        let [lo, hi] = bounds(&dp, &dq, i);
-        if (guess[i] - lo).abs() <= edge_tol {
-            Some((i, lo))
-        } else if (guess[i] - hi).abs() <= edge_tol {
-            Some((i, hi))
-        } else {
-            None
-        }
-    });
+    // The bounds the guess lies within `edge_tol` of, nearest first: a start the search found on
+    // one face's edge lies exactly on it, and may also lie near an edge of the other face that
+    // the curve runs along rather than crosses (a section along a knot line), where fixing that
+    // edge's parameter has no isolated root.
+    let mut near_edges: Vec<(f64, usize, f64)> = (0..4)
+        .flat_map(|i| {
+            let [lo, hi] = bounds(&dp, &dq, i);
+            [(i, lo), (i, hi)]
+        })
+        .map(|(i, b)| ((guess[i] - b).abs(), i, b))
+        .filter(|&(d, _, _)| d <= edge_tol)
+        .collect();
+    near_edges.sort_by(|a, b| a.0.total_cmp(&b.0));
     let frame = curve_frame(p, q, guess);
-    let constraint = match on_edge {
-        Some((index, value)) => Constraint::Fixed { index, value },
-        None if frame.tangent != Vec3::zeros() => Constraint::Plane {
+    let mut constraints: Vec<Constraint> = near_edges
+        .iter()
+        .map(|&(_, index, value)| Constraint::Fixed { index, value })
+        .collect();
+    if frame.tangent != Vec3::zeros() {
+        constraints.push(Constraint::Plane {
             point: p.point(guess[0], guess[1]),
             normal: frame.tangent,
-        },
-        None => Constraint::Fixed {
+        });
+    } else if constraints.is_empty() {
+        constraints.push(Constraint::Fixed {
             index: 0,
             value: guess[0],
-        },
+        });
+    }
+    let mut tried = constraints.into_iter().map(|constraint| {
+        refine(
+            p,
+            q,
+            guess,
+            constraint,
+            opts.newton_tolerance,
+            opts.max_newton_iterations,
+        )
+    });
+    let first = tried.next().expect("at least one constraint");
+    let r = match first {
+        Ok(r) => r,
+        Err(e) => tried.find_map(|r| r.ok()).ok_or(e)?,
     };
-    let r = refine(
-        p,
-        q,
-        guess,
-        constraint,
-        opts.newton_tolerance,
-        opts.max_newton_iterations,
-    )?;
     // A guess next to the boundary can refine to a point just outside (a short arc dipping into
     // the domain): the start is then the nearby point where the curve crosses the boundary.
     let x = if inside(&r.x, &dp, &dq, opts.domain_tolerance) {
@@ -595,11 +609,11 @@ where
         events.push(make_event(EventKind::Singular, &s));
         (None, None, EndReason::Singular)
     } else {
-        let on_edge = boundary_surface_of(p, q, &s);
+        let on_edge = boundary_surface_of(p, q, &s, opts);
         // Where the curve only touches a face, the start is no end: from inside it lies within
         // a branch (a closed loop may pass through it), traced as an interior start with
         // closing allowed; from outside it is all the domain holds of the curve (one point).
-        let touch = on_edge.and_then(|_| touching(p, q, &s));
+        let touch = on_edge.and_then(|_| touching(p, q, &s, opts));
         let on_edge = on_edge.filter(|_| touch != Some(true));
         let (fwd_ok, back_ok) = (enters(p, q, &s, 1.0), enters(p, q, &s, -1.0));
         let budget = opts.max_points - 1;

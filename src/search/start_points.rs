@@ -46,7 +46,7 @@ use node_region::NodeRegions;
 use pair_verdict::{classify_pair, separated_across, PairVerdict};
 use rayon::prelude::*;
 use std::collections::HashMap;
-use tangent_leaf::{arc_through, leaf_point};
+use tangent_leaf::{along_edge_point, arc_through, leaf_point};
 
 mod critical_cover;
 mod faces;
@@ -532,7 +532,18 @@ fn edge_search(
                     continue;
                 }
                 Leaf::Empty => continue,
-                Leaf::Unknown if leaf > min_leaf => leaf *= 0.5,
+                Leaf::Unknown if leaf > min_leaf => {
+                    // A curve running along the edge (a section along a knot line) is settled
+                    // at once by the arc proof rather than at the deepest leaves: every leaf
+                    // along it is undecided by the leaf's own test.
+                    if let Some(x) = along_edge_point(a, b, &pa, &pb, ctx.tol)
+                        .filter(|x| arc_through(a, b, &pa, &pb, x))
+                    {
+                        offer(x, out);
+                        continue;
+                    }
+                    leaf *= 0.5
+                }
                 Leaf::Unknown => {
                     // Still offer a Newton point (not proven unique): at a tangential contact
                     // or a singular point it is where the marcher reports the event. Where the

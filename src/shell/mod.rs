@@ -16,6 +16,7 @@
 
 mod chart;
 pub mod corner;
+mod edge_copies;
 pub mod edges;
 pub mod join;
 mod own_corner;
@@ -108,6 +109,10 @@ pub struct ShellIntersection {
     pub piece_pairs: usize,
     /// How many the bounding-box pre-filter proved disjoint (not traced).
     pub skipped_pairs: usize,
+    /// Branches removed as copies of another: a curve running along an edge two pieces share
+    /// (a knot line, a seam, a face edge) is traced by both pieces' pairs, and one copy is kept
+    /// (see `shell/edge_copies.rs`).
+    pub edge_copies: usize,
     /// The branches of all pairs joined into connected curves ([`join::join_branches`]); every
     /// branch is a part of exactly one curve. Branches are numbered shell-wide, pair after
     /// pair ([`ShellIntersection::branch`]).
@@ -183,12 +188,15 @@ pub fn intersect_shells(a: &[Face], b: &[Face], opts: &Options) -> Result<ShellI
         })
         .collect::<Result<Vec<_>>>()?;
     let started = Instant::now();
+    let mut pairs = pairs;
+    let edge_copies = edge_copies::drop_edge_copies(a, b, &mut pairs);
     let curves = join::join_branches(a, b, &pairs);
     Ok(ShellIntersection {
         options: *opts,
         pairs,
         piece_pairs,
         skipped_pairs,
+        edge_copies,
         curves,
         join_seconds: started.elapsed().as_secs_f64(),
     })

@@ -50,22 +50,55 @@ pub(super) fn arc_through(
     // meet at a small angle its wide box would keep Krawczyk from contracting: narrower boxes
     // are tried too.
     let grow = |i: Interval, v: f64, h: f64| interval!(i.inf().min(v) - h, i.sup().max(v) + h).ok();
-    let (Some(u), Some(v)) = (grow(leaf[2], x[2], 4.0 * h), grow(leaf[3], x[3], 4.0 * h)) else {
-        return false;
-    };
-    // The arc as a graph over the edge's free parameter (where it touches the edge), or over
-    // the fixed one (where it crosses the edge, at an angle too small for the leaf's own test).
+    // The arc as a graph over the edge's free parameter (where it touches or runs along the
+    // edge), or over the fixed one (where it crosses the edge, at an angle too small for the
+    // leaf's own test).
     [(index, free), (free, index)]
         .into_iter()
         .any(|(unknown, along)| {
             let Some(s) = grow(leaf[along], x[along], h) else {
                 return false;
             };
+            // Over `S` the unknowns move by their slopes times its width (along an edge the
+            // other surface's parameters may move faster than the edge's): their boxes allow
+            // twice that.
+            let slope = slopes(a, b, unknown, along, x).unwrap_or([0.0; 3]);
+            let moved = |k: usize| 2.0 * slope[k].abs() * s.wid();
+            let (Some(u), Some(v)) = (
+                grow(leaf[2], x[2], 4.0 * h + moved(1)),
+                grow(leaf[3], x[3], 4.0 * h + moved(2)),
+            ) else {
+                return false;
+            };
             [4.0, 0.25, 1.0 / 64.0].into_iter().any(|pad| {
-                grow(leaf[unknown], x[unknown], pad * h)
+                grow(leaf[unknown], x[unknown], pad * h + moved(0))
                     .is_some_and(|w| settles(a, b, unknown, s, [w, u, v], [x[unknown], x[2], x[3]]))
             })
         })
+}
+
+/// The derivatives of the unknowns (`a`'s parameter `unknown`, then `b`'s `u`, `v`) along the
+/// curve with respect to `a`'s parameter `along`, at the curve point `x` (`f64`: they only size
+/// the boxes, which the Krawczyk test then proves or not).
+fn slopes(
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    unknown: usize,
+    along: usize,
+    x: &[f64; 4],
+) -> Option<[f64; 3]> {
+    let da = a.derivs_f64(x[0], x[1]);
+    let db = b.derivs_f64(x[2], x[3]);
+    let col = |k: usize| if k == 0 { da.su } else { da.sv };
+    let (a_unknown, a_along) = (col(unknown), col(along));
+    let m = Matrix3::from_fn(|r, c| match c {
+        0 => a_unknown[r],
+        1 => -db.su[r],
+        _ => -db.sv[r],
+    });
+    let rhs = nalgebra::Vector3::from_fn(|r, _| -a_along[r]);
+    let y = m.try_inverse()? * rhs;
+    y.iter().all(|c| c.is_finite()).then(|| [y[0], y[1], y[2]])
 }
 
 /// The Krawczyk iterations of [`arc_through`] over `S × Y`, `x*` at `xy` in `Y`; `index` is the
@@ -163,7 +196,8 @@ pub(super) fn leaf_point(
     })
 }
 
-/// Newton on `A(edge) − B(u, v) = 0` from the centre of a leaf, the edge parameter held fixed.
+/// Newton on `A(edge) − B(u, v) = 0` from the centre of a leaf, the edge parameter held fixed;
+/// where that fails, [`along_edge_point`].
 fn leaf_newton(
     a: &RationalBezierPatch,
     b: &RationalBezierPatch,
@@ -179,8 +213,67 @@ fn leaf_newton(
         index,
         value: x[index],
     };
-    refine(a, b, x, constraint, tol, 40).ok().map(|r| r.x)
+    refine(a, b, x, constraint, tol, 40)
+        .ok()
+        .map(|r| r.x)
+        .or_else(|| along_edge_point(a, b, edge, other, tol))
 }
+
+/// A curve point on the edge of a leaf where the curve runs *along* the edge (a section along
+/// a knot line or a patch's boundary curve, where the edge's own three equations have no
+/// isolated root): Newton with the edge's free parameter held at the leaf's centre, its quarter
+/// points and its ends must land on the edge at all five (the edge parameter within [`ALONG`] of
+/// its domain width, which a curve that only touches or crosses the edge misses by its
+/// curvature times the spacing squared), and the first of them inside both domains is the
+/// point. Not proven; [`arc_through`] proves what it needs.
+pub(super) fn along_edge_point(
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    edge: &Piece,
+    other: &Piece,
+    tol: f64,
+) -> Option<[f64; 4]> {
+    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let free = 1 - index;
+    let (da, db) = (a.domain(), b.domain());
+    let [xa, ya] = edge.declared(&da, 0.0);
+    let [xb, yb] = other.declared(&db, 0.0);
+    let centre = [xa.mid(), ya.mid(), xb.mid(), yb.mid()];
+    let width = if index == 0 {
+        da.u[1] - da.u[0]
+    } else {
+        da.v[1] - da.v[0]
+    };
+    let s = [xa, ya][free];
+    let mut found = None;
+    let probes = [
+        s.mid(),
+        s.inf() + 0.25 * s.wid(),
+        s.sup() - 0.25 * s.wid(),
+        s.inf(),
+        s.sup(),
+    ];
+    for at in probes {
+        let mut x = centre;
+        x[free] = at;
+        let constraint = Constraint::Fixed {
+            index: free,
+            value: at,
+        };
+        let y = refine(a, b, x, constraint, tol, 40).ok()?.x;
+        if (y[index] - centre[index]).abs() > ALONG * width {
+            return None;
+        }
+        if found.is_none() && da.contains(y[0], y[1], 1e-12) && db.contains(y[2], y[3], 1e-12) {
+            found = Some(y);
+        }
+    }
+    found
+}
+
+/// How far (relative to the edge coordinate's domain width) a curve point may be off the edge
+/// and still count as running along it.
+const ALONG: f64 = 1e-9;
 
 #[cfg(test)]
 mod tests {
