@@ -105,3 +105,63 @@ fn other_radii_and_a_turned_cylinder() {
     check(2, 1.0, Some([0.6, 0.8]), [-0.8, 0.6], 0.0);
     check(2, 1.0, Some([0.6, 0.8]), [0.6, 0.8], 0.0);
 }
+
+/// The NURBS torus about z, radii `big` (to the tube's centre) and `small` (the tube): the
+/// nine-point circle times the nine-point circle (weights the products of the circles' `1` and
+/// `√2/2`). Its joints: the circles at tube angles 0° (the seam: the outer equator), 90°, 180°
+/// (the inner equator), 270°, and the tube circles at 0° (the seam), 90°, 180°, 270° about z.
+fn torus(big: f64, small: f64) -> serde_json::Value {
+    let net = common::surfaces::UNIT_CIRCLE_NET;
+    let (mut points, mut weights) = (Vec::new(), Vec::new());
+    for (i, &(a, b)) in net.iter().enumerate() {
+        for (j, &(c, d)) in net.iter().enumerate() {
+            let rad = big + small * c;
+            points.push(serde_json::json!([a * rad, b * rad, small * d]));
+            weights.push(match (i % 2, j % 2) {
+                (1, 1) => serde_json::json!(0.5),
+                (0, 0) => serde_json::json!(1.0),
+                _ => common::shell_checks::half_sqrt2(),
+            });
+        }
+    }
+    let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0, 4.0];
+    serde_json::json!({"kind": "nurbs", "degree": [2, 2], "knots": [knots, knots],
+                       "points": points, "weights": weights})
+}
+
+/// A torus cut along its joints: by its equatorial plane (the outer equator on the seam, the
+/// inner one on a knot line) and by a plane through its axis (the four tube circles there on
+/// knot lines). Each gives two circles, each one closed curve, certified with every join
+/// proven, its edge within tolerance of the circle. Before: no branch (every start failed);
+/// once found, each quarter arc twice, and the kept copies joined across corners, unproven.
+#[test]
+fn a_torus_cut_along_its_joints_gives_closed_proven_circles() {
+    use common::shell_checks::{around, closed_and_proven};
+    let (big, small) = (2.0, 0.5);
+    let l = 3.0;
+    let equator = plane([-l, -l, 0.0], [2.0 * l, 0.0, 0.0], [0.0, 2.0 * l, 0.0]);
+    let meridian = plane([0.0, -l, -l], [0.0, 2.0 * l, 0.0], [0.0, 0.0, 2.0 * l]);
+    for (what, cut) in [("equator", equator), ("meridian", meridian)] {
+        let (scene, report) = run(serde_json::json!({"surfaces": [torus(big, small), cut]}));
+        closed_and_proven(what, &report);
+        assert_eq!(report.result.curves.len(), 2, "{what}");
+        assert!(report.result.edge_copies > 0, "{what}: along the joints");
+        for edge in edges(what, &scene, &report) {
+            let p0 = edge.curve.eval(edge.curve.knots[0]);
+            if what == "equator" {
+                // Circles of radius big ± small about the axis, in z = 0.
+                let rad = (p0[0] * p0[0] + p0[1] * p0[1]).sqrt();
+                let r = if rad > big { big + small } else { big - small };
+                let off = |x: &[f64; 3]| ((x[0] * x[0] + x[1] * x[1]).sqrt() - r).hypot(x[2]);
+                let c = |t: f64| [r * t.cos(), r * t.sin(), 0.0];
+                check_edge(what, &edge, &scene.shells, &off, &around(c));
+            } else {
+                // Circles of radius small about (0, ±big, 0), in x = 0.
+                let yc = big * p0[1].signum();
+                let off = |x: &[f64; 3]| ((x[1] - yc).hypot(x[2]) - small).hypot(x[0]);
+                let c = |t: f64| [0.0, yc + small * t.cos(), small * t.sin()];
+                check_edge(what, &edge, &scene.shells, &off, &around(c));
+            }
+        }
+    }
+}

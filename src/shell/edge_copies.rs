@@ -10,7 +10,9 @@
 //! pieces' size), the two sides are the two sides of one shared edge ([`shared_edges`]), the
 //! other surface's piece is the same, and their end points coincide in model space (either way
 //! round, within [`MARCH_JOIN_TOLERANCE`](super::sites::MARCH_JOIN_TOLERANCE)). Of the two,
-//! the copy whose certificate reaches both true ends is kept, then the tighter certificate,
+//! the copy whose certificate reaches both true ends is kept, then the one on the lower side
+//! of its piece (so the copies kept along one line all lie on the same side of it and join
+//! each other across knot lines rather than across corners), then the tighter certificate,
 //! then the one traced first. Dropping claims nothing: the kept copy's certificate covers the
 //! same curve; the test is in `f64` because it only decides what is reported twice.
 
@@ -64,11 +66,8 @@ pub(super) fn drop_edge_copies(a: &[Face], b: &[Face], pairs: &mut [PieceInterse
             if !same_ends(&b1.marched.points, &b2.marched.points) {
                 continue;
             }
-            dropped.push(if rank(b2) > rank(b1) {
-                keys[0]
-            } else {
-                keys[1]
-            });
+            let (r1, r2) = (rank(b1, first.side), rank(b2, second.side));
+            dropped.push(if r2 > r1 { keys[0] } else { keys[1] });
         }
     }
     let count = dropped.len();
@@ -125,13 +124,17 @@ fn same_ends(p1: &[CurvePoint], p2: &[CurvePoint]) -> bool {
     (at(a0, b0) && at(a1, b1)) || (at(a0, b1) && at(a1, b0))
 }
 
-/// How good a copy is: its certificate reaches both true ends, then the lower certified
-/// tolerance (greater is better).
-fn rank(t: &TracedBranch) -> (bool, bool, f64) {
+/// How good a copy is (greater is better): its certificate reaches both true ends, it is
+/// certified, then it lies on the lower side of its piece (`u = u0` or `v = v0`: so that all the
+/// copies kept along one line lie in the pieces on the same side of it, and the kept branches
+/// join across the knot lines that cross the line, not across corners), then the lower certified
+/// tolerance.
+fn rank(t: &TracedBranch, side: PieceSide) -> (bool, bool, bool, f64) {
     let c = t.certified();
     (
         c.is_some_and(|c| c.ends.iter().all(CertifiedEnd::reaches_true_end)),
         c.is_some(),
+        side.side.is_multiple_of(2),
         -t.certified_tolerance().unwrap_or(f64::INFINITY),
     )
 }

@@ -7,6 +7,7 @@ use super::edges::{side_coordinate, side_of, PieceSide};
 use super::{Face, PieceIntersection};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::geometry::bezier::RationalBezierPatch;
+use crate::geometry::surface::Domain;
 use crate::march::branch::{CurvePoint, EndReason};
 use crate::numeric::scalar::point;
 use crate::pair::krawczyk::{krawczyk, BoxSurface, KrawczykResult, ParamBox};
@@ -110,7 +111,10 @@ pub(super) fn end_site<'a>(
     let dom = pieces[surface].domain();
     let x = if surface == 0 { point.p } else { point.q };
     let size = dom.size().max(pieces[1 - surface].domain().size());
-    let side = side_of(&dom, x, SIDE_TOLERANCE * size)?;
+    // Not a side the whole branch runs along (a section along a knot line or seam ends where
+    // it crosses another side, perhaps at a corner with the side it runs along).
+    let along = |sd: usize| along_side(&m.points, surface, &dom, sd, SIDE_TOLERANCE * size);
+    let side = nearest_side(&dom, x, SIDE_TOLERANCE * size, &along)?;
     let side = PieceSide {
         face: pi.faces[surface],
         piece: pi.pieces[surface],
@@ -130,7 +134,7 @@ pub(super) fn end_site<'a>(
     let across = if side.side < 2 { [2, 3] } else { [0, 1] };
     let own_corner = across
         .into_iter()
-        .filter(|_| corner.is_none())
+        .filter(|&sd| corner.is_none() && !along(sd))
         .find_map(|sd| {
             let (k, value) = side_coordinate(&dom, sd);
             ((x[k] - value).abs() <= SIDE_TOLERANCE * size).then_some(PieceSide {
@@ -360,6 +364,38 @@ where
         }
         found.ok_or("no zero")
     }
+}
+
+/// Whether every point of `points` lies on `side` of the domain `d` of surface `surface` (0 for
+/// P, 1 for Q), within `tol`: the branch runs along that side (two points at least).
+pub(super) fn along_side(
+    points: &[CurvePoint],
+    surface: usize,
+    d: &Domain,
+    side: usize,
+    tol: f64,
+) -> bool {
+    let (c, value) = side_coordinate(d, side);
+    points.len() >= 2
+        && points.iter().all(|pt| {
+            let x = if surface == 0 { pt.p } else { pt.q };
+            (x[c] - value).abs() <= tol
+        })
+}
+
+/// The side of `d` nearest to `x` within `tol` among those `along` rejects not; else the
+/// nearest of all ([`side_of`]).
+fn nearest_side(d: &Domain, x: [f64; 2], tol: f64, along: &dyn Fn(usize) -> bool) -> Option<usize> {
+    (0..4)
+        .filter(|&sd| !along(sd))
+        .map(|sd| {
+            let (k, value) = side_coordinate(d, sd);
+            (sd, (x[k] - value).abs())
+        })
+        .filter(|&(_, gap)| gap <= tol)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(sd, _)| sd)
+        .or_else(|| side_of(d, x, tol))
 }
 
 /// The model-space distance of two marched end points, when within [`MARCH_JOIN_TOLERANCE`]
