@@ -165,3 +165,113 @@ fn a_torus_cut_along_its_joints_gives_closed_proven_circles() {
         }
     }
 }
+
+/// Along the edges two faces share, and with the NURBS surface second: a shell of four
+/// quarter-cylinder faces (one rational Bézier span each) against the plane `x = 0`, whose
+/// lines lie on the faces' shared edges at 90° and 270°; and the plane first, the NURBS
+/// cylinder second. Two open certified lines each, every line once.
+#[test]
+fn lines_along_face_edges_and_with_the_surfaces_swapped() {
+    use common::shell_checks::quarter_cylinders;
+    let h = 0.5;
+    let cut = plane([0.0, -3.0, -h], [0.0, 6.0, 0.0], [0.0, 0.0, 2.0 * h]);
+    let off = |x: &[f64; 3]| {
+        let beyond = (x[2].abs() - h).max(0.0);
+        (x[0].hypot(x[1].abs() - 1.0)).hypot(beyond)
+    };
+    for (what, scene) in [
+        (
+            "faces",
+            serde_json::json!({"surfaces": [quarter_cylinders(), cut.clone()]}),
+        ),
+        (
+            "swapped",
+            serde_json::json!({"surfaces": [cut.clone(), cylinder(2, 1.0, LEN, None)]}),
+        ),
+    ] {
+        let (scene, report) = run(scene);
+        let res = &report.result;
+        assert!(res.is_complete(), "{what}: search incomplete");
+        assert_eq!(
+            res.edge_copies, 2,
+            "{what}: each line traced by both of its pieces"
+        );
+        assert_eq!(res.curves.len(), 2, "{what}: {:#?}", res.curves);
+        for edge in edges(what, &scene, &report) {
+            let side = edge.curve.eval(edge.curve.knots[0])[1].signum();
+            let truth: Vec<[f64; 3]> = (0..=400)
+                .map(|i| [0.0, side, -h + 2.0 * h * i as f64 / 400.0])
+                .collect();
+            check_edge(what, &edge, &scene.shells, &off, &truth);
+        }
+    }
+}
+
+/// Not only circles and lines: the paraboloid `z = (x − 0.45)² + (y − 0.55)²` over `[0, 1]²`,
+/// a non-rational biquadratic B-spline with knots 1/4, 1/2, 3/4 both ways (control points by
+/// blossoming, exact), cut by the planes `x = 1/2` and `y = 3/4`, which hold its knot lines: a
+/// parabola each, running along the knot line across three others, one open curve of four
+/// parts joined by proven joins, within tolerance of the closed form.
+#[test]
+fn parabolas_along_the_knot_lines_of_a_bspline_paraboloid() {
+    let t = [0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0];
+    let nodes = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
+        (0..t.len() - 3).map(|i| f(t[i + 1], t[i + 2])).collect()
+    };
+    let xs = nodes(&|a, b| 0.5 * (a + b));
+    let gx = nodes(&|a, b| (a - 0.45) * (b - 0.45));
+    let gy = nodes(&|a, b| (a - 0.55) * (b - 0.55));
+    let mut points = Vec::new();
+    for i in 0..xs.len() {
+        for j in 0..xs.len() {
+            points.push(serde_json::json!([xs[i], xs[j], gx[i] + gy[j]]));
+        }
+    }
+    let bowl =
+        serde_json::json!({"kind": "nurbs", "degree": [2, 2], "knots": [t, t], "points": points});
+    // (coordinate held, its value, the other's centre): the parabola z = c + (s − s0)².
+    for (k, value, s0) in [(0usize, 0.5f64, 0.55f64), (1usize, 0.75, 0.45)] {
+        let what = format!("coordinate {k} = {value}");
+        let c = (value - [0.45, 0.55][k]).powi(2);
+        let (o, e1) = if k == 0 {
+            ([value, -1.0, -1.0], [0.0, 3.0, 0.0])
+        } else {
+            ([-1.0, value, -1.0], [3.0, 0.0, 0.0])
+        };
+        let cut = plane(o, e1, [0.0, 0.0, 3.0]);
+        let (scene, report) = run(serde_json::json!({"surfaces": [bowl.clone(), cut]}));
+        let res = &report.result;
+        assert!(res.is_complete(), "{what}: search incomplete");
+        assert_eq!(res.curves.len(), 1, "{what}: {:#?}", res.curves);
+        let curve = &res.curves[0];
+        assert!(!curve.closed && curve.parts.len() == 4, "{what}: {curve:?}");
+        let tol = curve.certified_tolerance.expect("certified, joins proven");
+        assert!(tol <= 1e-9, "{what}: {tol:e}");
+        // Distance to the parabola in its plane: the nearest point by Newton on
+        // d/ds [(s − a)² + (c + (s − s0)² − z)²] = 0 from s = a (the curve is convex).
+        let off = |x: &[f64; 3]| {
+            let (a, z) = (x[1 - k], x[2]);
+            let mut s = a;
+            for _ in 0..50 {
+                let g = (s - a) + 2.0 * (s - s0) * (c + (s - s0).powi(2) - z);
+                let dg = 1.0 + 2.0 * (c + (s - s0).powi(2) - z) + 4.0 * (s - s0).powi(2);
+                s -= g / dg;
+            }
+            // The arc ends at s = 0 and 1 (the paraboloid's domain).
+            let s = s.clamp(0.0, 1.0);
+            ((s - a).hypot(c + (s - s0).powi(2) - z)).hypot(x[k] - value)
+        };
+        let truth: Vec<[f64; 3]> = (0..=1000)
+            .map(|i| {
+                let s = i as f64 / 1000.0;
+                let mut p = [0.0, 0.0, c + (s - s0).powi(2)];
+                p[k] = value;
+                p[1 - k] = s;
+                p
+            })
+            .collect();
+        let es = edges(&what, &scene, &report);
+        assert_eq!(es.len(), 1, "{what}");
+        check_edge(&what, &es[0], &scene.shells, &off, &truth);
+    }
+}

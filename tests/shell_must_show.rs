@@ -17,10 +17,9 @@ mod common;
 
 use common::scenes::scene_path;
 use common::shell_checks::{
-    around, check_edge, closed_and_proven, cylinder, edges, half_sqrt2, plane, run,
+    around, check_edge, closed_and_proven, cylinder, edges, plane, quarter_cylinders, run,
 };
 use common::spline::dist3;
-use common::surfaces::UNIT_CIRCLE_NET;
 use serde_json::{json, Value};
 use ssitrace::io::scene::ShellScene;
 use ssitrace::march::branch::EndReason;
@@ -329,26 +328,6 @@ fn a_paraboloid_with_interior_knots_against_a_plane_is_one_closed_curve() {
     assert_eq!(e.len(), 1);
     assert!(e[0].closed);
     check_edge("paraboloid", &e[0], &scene.shells, &off, &truth);
-}
-
-/// Four faces, each a quarter of x² + y² = 1, z ∈ [−1, 1] (one rational Bézier span, the
-/// quarter from angle kπ/2 to (k + 1)π/2), sharing their edges.
-fn quarter_cylinders() -> Vec<Value> {
-    let c = UNIT_CIRCLE_NET;
-    let quarter = |k: usize| {
-        let mut points = Vec::new();
-        let mut weights = Vec::new();
-        for (m, &(a, b)) in c[2 * k..=2 * k + 2].iter().enumerate() {
-            for z in [-1.0, 1.0] {
-                points.push(json!([a, b, z]));
-                weights.push(if m == 1 { half_sqrt2() } else { json!(1.0) });
-            }
-        }
-        json!({"kind": "nurbs", "degree": [2, 1],
-               "knots": [[0.0, 0.0, 0.0, 1.0, 1.0, 1.0], [0.0, 0.0, 1.0, 1.0]],
-               "points": points, "weights": weights})
-    };
-    (0..4).map(quarter).collect()
 }
 
 #[test]

@@ -162,3 +162,54 @@ fn a_great_circle_through_the_poles_ends_its_branches_there_and_says_why() {
         .filter(|j| j.edge != EdgeKind::Pole)
         .all(|j| j.status.is_proven()));
 }
+
+/// The great circles through both poles that run *along* the sphere's joints: the planes
+/// `x = 0` (the meridians on the knot lines at 90° and 270°) and `y = 0` (on the seam and the
+/// knot line at 180°). Each is one closed curve of four quarter arcs (each traced by the two
+/// pieces it lies between, one copy kept), joined across the equator's knot line by proven
+/// joins and through each pole by a join of kind `pole`, unproven and said so. Before, every
+/// start along the knot line failed and no branch was found; then the copies came back, and
+/// the poles' joins were taken for a seam (the pole rows' interval weights hid that they
+/// collapse).
+#[test]
+fn great_circles_along_the_joints_through_the_poles_are_one_curve_each() {
+    for (what, k, e) in [("x = 0", f64::INFINITY, 0.0), ("y = 0", 0.0, 0.0)] {
+        let cut = if k.is_infinite() {
+            json!({"kind": "bezier", "degree": [1, 1],
+                   "points": [[0.0, -2.0, -2.0], [0.0, -2.0, 2.0], [0.0, 2.0, -2.0], [0.0, 2.0, 2.0]]})
+        } else {
+            plane(k, e, [0, 1, 2])
+        };
+        let (_, report) = run(json!({"surfaces": [sphere([0, 1, 2]), cut]}));
+        let res = &report.result;
+        assert_eq!(
+            res.edge_copies, 4,
+            "{what}: four quarter arcs, each on two pieces"
+        );
+        assert_eq!(res.branch_count(), 4, "{what}");
+        assert_eq!(res.curves.len(), 1, "{what}: {:?}", res.curves);
+        let c = &res.curves[0];
+        assert!(c.closed && c.certified_tolerance.is_none(), "{what}: {c:?}");
+        let (poles, others): (Vec<_>, Vec<_>) =
+            c.joins.iter().partition(|j| j.edge == EdgeKind::Pole);
+        assert_eq!(poles.len(), 2, "{what}: {c:?}");
+        assert!(poles.iter().all(|j| !j.status.is_proven()), "{what}");
+        assert!(others.iter().all(|j| j.status.is_proven()), "{what}: {c:?}");
+        for pair in &res.pairs {
+            for b in &pair.result.branches {
+                let cert = b.certified().expect("certified");
+                assert!(cert.certified_tolerance <= 1e-9, "{what}");
+                // On the great circle: |p| = 1 in the plane.
+                for pt in &b.marched.points {
+                    let r = pt.xyz.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    let off = if k.is_infinite() {
+                        pt.xyz[0]
+                    } else {
+                        pt.xyz[1]
+                    };
+                    assert!((r - 1.0).abs() < 1e-9 && off.abs() < 1e-9, "{what}: {pt:?}");
+                }
+            }
+        }
+    }
+}

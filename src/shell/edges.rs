@@ -230,14 +230,17 @@ pub fn shared_edges(faces: &[Face]) -> Vec<EdgeLink> {
         for (k, p) in face.pieces().iter().enumerate() {
             for side in 0..4 {
                 let row = side_row(p, side);
-                let pole = row.windows(2).all(|w| {
-                    (0..3).all(|c| {
-                        // The Cartesian points coincide when w·x/w agree as intervals.
-                        let a = w[0][c] / w[0][3];
-                        let b = w[1][c] / w[1][3];
-                        a.inf() == b.inf() && a.sup() == b.sup()
-                    })
-                });
+                // A side known to collapse (`collapsed_sides`: exact equal rows of Cartesian
+                // points, whatever the weights' rounding), or whose homogeneous points agree.
+                let pole = p.collapsed_sides()[side].is_some()
+                    || row.windows(2).all(|w| {
+                        (0..3).all(|c| {
+                            // The Cartesian points coincide when w·x/w agree as intervals.
+                            let a = w[0][c] / w[0][3];
+                            let b = w[1][c] / w[1][3];
+                            a.inf() == b.inf() && a.sup() == b.sup()
+                        })
+                    });
                 if pole {
                     continue;
                 }

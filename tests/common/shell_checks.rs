@@ -58,6 +58,26 @@ pub(crate) fn cylinder(axis: usize, r: f64, len: f64, turn: Option<[f64; 2]>) ->
            "points": points, "weights": weights})
 }
 
+/// Four faces, each a quarter of x² + y² = 1, z ∈ [−1, 1] (one rational Bézier span, the
+/// quarter from angle kπ/2 to (k + 1)π/2), sharing their edges.
+pub(crate) fn quarter_cylinders() -> Vec<Value> {
+    let c = UNIT_CIRCLE_NET;
+    let quarter = |k: usize| {
+        let mut points = Vec::new();
+        let mut weights = Vec::new();
+        for (m, &(a, b)) in c[2 * k..=2 * k + 2].iter().enumerate() {
+            for z in [-1.0, 1.0] {
+                points.push(json!([a, b, z]));
+                weights.push(if m == 1 { half_sqrt2() } else { json!(1.0) });
+            }
+        }
+        json!({"kind": "nurbs", "degree": [2, 1],
+               "knots": [[0.0, 0.0, 0.0, 1.0, 1.0, 1.0], [0.0, 0.0, 1.0, 1.0]],
+               "points": points, "weights": weights})
+    };
+    (0..4).map(quarter).collect()
+}
+
 /// The bilinear patch spanned by `origin + a·e1 + b·e2`, `a, b ∈ [0, 1]`.
 pub(crate) fn plane(origin: [f64; 3], e1: [f64; 3], e2: [f64; 3]) -> Value {
     let at = |a: f64, b: f64| -> Vec<f64> {
