@@ -29,6 +29,10 @@
 //! parameter from the pole, in a random direction; 60 fixed seeds run in CI, and
 //! `polar_soak` by hand (seeds from 3 000 000).
 //!
+//! A fourth, **edge** ([`edge_pair`]): a piece whose boundary meridian lies exactly in a
+//! coordinate plane, against that plane or the plane moved by 1e-12 to 1e-6: the curve runs
+//! along P's boundary or beside it; 48 fixed seeds in CI, `edge_soak` by hand (from 4 000 000).
+//!
 //! `cargo test --release --test oracle_quadric -- --nocapture` prints the figures; the soak is
 //! `SSITRACE_ORACLE_PAIRS=10000 cargo test --release --test oracle_quadric soak -- --ignored
 //! --nocapture` (same options as the height-field soak).
@@ -257,6 +261,10 @@ struct Pair {
     plane: Plane,
     /// P's parameters of the tangent point of a near-tangent pair.
     tangent_point: Option<[f64; 2]>,
+    /// For an [`edge_pair`], `ε`: the reference then also samples the lines `v = c` from P's
+    /// boundary `u = 0` outward (geometrically), and for `ε = 0` holds the boundary meridian's
+    /// points themselves (exactly in the plane: the first row's coordinate is the plane's).
+    along_boundary: Option<f64>,
     near: f64,
     label: String,
 }
@@ -291,6 +299,93 @@ fn polar_pair(seed: u64) -> Pair {
     );
     pair.label = format!("polar crossing {t:.1e} from the pole");
     pair
+}
+
+/// A piece whose boundary meridian `u = 0` lies in a coordinate plane, against that plane moved
+/// by `ε` (0, ±1e-12, ±1e-9 or 1e-6 times the model's size): the curve runs *along* P's
+/// boundary (`ε = 0`), or beside it inside or outside the domain. The piece is swept from
+/// angle 0 (its first row of control points has `y = 0` exactly) and moved exactly (a
+/// permutation of the axes, signs, and a dyadic shift), and the plane's corners are exact, so
+/// `ε = 0` is exactly along.
+fn edge_pair(seed: u64) -> Pair {
+    let mut rng = Rng::new(seed);
+    let kind = [Kind::Sphere, Kind::Cylinder, Kind::Cone, Kind::Torus][(seed % 4) as usize];
+    let eps = [0.0, 1e-12, -1e-12, 1e-9, -1e-9, 1e-6][((seed / 4) % 6) as usize];
+    let (mer, mw) = random_meridian(&mut rng, kind);
+    let alpha = rng.uniform(0.4, 2.5);
+    let c = (0.5 * alpha).cos();
+    let arc = [
+        ([1.0, 0.0], 1.0),
+        ([(0.5 * alpha).cos() / c, (0.5 * alpha).sin() / c], c),
+        ([alpha.cos(), alpha.sin()], 1.0),
+    ];
+    let perm = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ][rng.below(6)];
+    let sign: [f64; 3] = std::array::from_fn(|_| if rng.below(2) == 0 { 1.0 } else { -1.0 });
+    let shift: [f64; 3] = std::array::from_fn(|_| dyadic(rng.uniform(-2.0, 2.0)));
+    let moved =
+        |x: [f64; 3]| -> [f64; 3] { std::array::from_fn(|k| sign[k] * x[perm[k]] + shift[k]) };
+    let (mut points, mut weights) = (Vec::with_capacity(9), Vec::with_capacity(9));
+    for (xy, wu) in arc {
+        for (rz, wv) in mer.iter().zip(mw) {
+            points.push(moved([rz[0] * xy[0], rz[0] * xy[1], rz[1]]));
+            weights.push(wu * wv);
+        }
+    }
+    let p = RationalBezierPatch::from_f64_points([2, 2], &points, Some(&weights), Domain::UNIT)
+        .expect("a valid piece");
+    let net = Net::new(&points, &weights);
+    // The plane: coordinate `k` (the image of y) at the meridian's value moved by ε.
+    let k = (0..3).find(|&k| perm[k] == 1).expect("a permutation");
+    let value = shift[k] + sign[k] * eps;
+    let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+    let lo = |i: usize| dyadic(points.iter().map(|x| x[i]).fold(f64::INFINITY, f64::min) - 1.0);
+    let hi = |i: usize| {
+        dyadic(
+            points
+                .iter()
+                .map(|x| x[i])
+                .fold(f64::NEG_INFINITY, f64::max)
+                + 1.0,
+        )
+    };
+    let corner = |ua: f64, ub: f64| {
+        let mut x = [0.0; 3];
+        x[k] = value;
+        x[a] = ua;
+        x[b] = ub;
+        x
+    };
+    let corners = [
+        corner(lo(a), lo(b)),
+        corner(lo(a), hi(b)),
+        corner(hi(a), lo(b)),
+        corner(hi(a), hi(b)),
+    ];
+    let q = RationalBezierPatch::from_f64_points([1, 1], &corners, None, Domain::UNIT)
+        .expect("a rectangle");
+    let mut n = [point(0.0); 3];
+    n[k] = point(1.0);
+    let scene = format!(
+        "{{\"surfaces\": [{{\"kind\": \"bezier\", \"degree\": [2, 2], \"points\": {points:?}, \"weights\": {weights:?}}}, {{\"kind\": \"bezier\", \"degree\": [1, 1], \"points\": {corners:?}}}], \"options\": {{\"name\": \"oracle-quadric-edge-{seed}\", \"method\": \"validated\"}}}}\n"
+    );
+    Pair {
+        scene,
+        p,
+        q,
+        net,
+        plane: Plane { n, d: point(value) },
+        tangent_point: None,
+        along_boundary: Some(eps),
+        near: 0.02,
+        label: format!("{kind:?} along its boundary meridian, ε = {eps:e}"),
+    }
 }
 
 /// The pair of the piece `points`, `weights` and a plane chosen by `rng` (see [`random_pair`]).
@@ -375,6 +470,7 @@ fn pair_through(
         net,
         plane,
         tangent_point: None,
+        along_boundary: None,
         near: 0.02,
         label: String::new(),
     }
@@ -393,6 +489,27 @@ fn reference(pair: &Pair, margin: f64) -> Vec<RefPoint> {
         }
         for y in sign_change_brackets(|s| side(c, s), lo, hi, 400) {
             out.push(RefPoint { x: [c, c], y });
+        }
+    }
+    if let Some(eps) = pair.along_boundary {
+        let from_edge = || {
+            std::iter::once(0.0).chain(
+                (0..200)
+                    .map(|k| 1e-16 * 1.25f64.powi(k))
+                    .take_while(|d| *d < 0.1),
+            )
+        };
+        for c in (1..16).map(|k| k as f64 / 16.0) {
+            if eps == 0.0 {
+                out.push(RefPoint {
+                    x: [0.0, 0.0],
+                    y: [c, c],
+                });
+            } else {
+                for x in sign_change_brackets_at(|s| side(s, c), from_edge()) {
+                    out.push(RefPoint { x, y: [c, c] });
+                }
+            }
         }
     }
     if let Some(&[u0, v0]) = pair.tangent_point.as_ref() {
@@ -424,6 +541,10 @@ fn check_pair(seed: u64, fig: &mut Figures) {
 
 fn check_polar_pair(seed: u64, fig: &mut Figures) {
     check(seed, polar_pair(seed), fig);
+}
+
+fn check_edge_pair(seed: u64, fig: &mut Figures) {
+    check(seed, edge_pair(seed), fig);
 }
 
 fn check(seed: u64, pair: Pair, fig: &mut Figures) {
@@ -484,6 +605,24 @@ fn quadric_pieces_against_planes_fresh_seeds() {
 fn polar_sphere_pieces_against_planes() {
     let fig = run_with_progress(0..60, 0, check_polar_pair);
     assert_clean(&fig);
+}
+
+/// Pieces whose boundary meridian lies in the plane or within 1e-12 to 1e-6 of it
+/// ([`edge_pair`]): the curve runs along P's boundary, or beside it.
+#[test]
+fn pieces_along_their_boundary_against_planes() {
+    let fig = run_with_progress(0..48, 0, check_edge_pair);
+    assert_clean(&fig);
+}
+
+/// The soak of [`edge_pair`]s: as [`soak`], from `SSITRACE_ORACLE_FIRST` (default 4 000 000).
+#[test]
+#[ignore = "soak: run by hand, see the module doc"]
+fn edge_soak() {
+    let n = env_parse("SSITRACE_ORACLE_PAIRS").unwrap_or(10_000u64);
+    let first = env_parse("SSITRACE_ORACLE_FIRST").unwrap_or(4_000_000u64);
+    let every = env_parse("SSITRACE_ORACLE_PROGRESS").unwrap_or(0usize);
+    assert_sound(&run_with_progress(first..first + n, every, check_edge_pair));
 }
 
 /// The soak of [`polar_pair`]s: as [`soak`], from `SSITRACE_ORACLE_FIRST` (default 3 000 000).

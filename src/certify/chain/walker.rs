@@ -529,10 +529,15 @@ impl<'a> Walker<'a> {
     fn exit(&mut self, last: Node, surface: usize) -> CertifiedEnd {
         let (dp, dq) = (self.p.domain(), self.q.domain());
         let coords = if surface == 0 { [0, 1] } else { [2, 3] };
-        // The coordinate nearest its bound, moving outwards.
+        // The coordinate nearest its bound, moving outwards (not one the curve runs along, a
+        // side of a section along a knot line: its tangent component is rounding).
+        let speed = (0..4).fold(0.0f64, |m, k| m.max(last.t[k].abs() / self.scales[k]));
         let mut best: Option<(usize, f64, f64)> = None;
         for &i in &coords {
             let [lo, hi] = pair_bounds(&dp, &dq, i);
+            if last.t[i].abs() / self.scales[i] <= 1e-9 * speed {
+                continue;
+            }
             for (bound, sign) in [(lo, -1.0), (hi, 1.0)] {
                 if last.t[i] * sign <= 0.0 {
                     continue;
