@@ -29,9 +29,9 @@
 //! parameter from the pole, in a random direction; 60 fixed seeds run in CI, and
 //! `polar_soak` by hand (seeds from 3 000 000).
 //!
-//! A fourth, **edge** ([`edge_pair`]): a piece whose boundary meridian lies exactly in a
-//! coordinate plane, against that plane or the plane moved by 1e-12 to 1e-6: the curve runs
-//! along P's boundary or beside it; 48 fixed seeds in CI, `edge_soak` by hand (from 4 000 000).
+//! A fourth, **edge** ([`edge_pair`]): a piece whose boundary meridian or parallel lies
+//! exactly in a coordinate plane, against that plane or the plane moved by 1e-12 to 1e-6: the
+//! curve runs along P's boundary or beside it; 48 fixed seeds in CI, `edge_soak` by hand (from 4 000 000).
 //!
 //! `cargo test --release --test oracle_quadric -- --nocapture` prints the figures; the soak is
 //! `SSITRACE_ORACLE_PAIRS=10000 cargo test --release --test oracle_quadric soak -- --ignored
@@ -261,10 +261,11 @@ struct Pair {
     plane: Plane,
     /// P's parameters of the tangent point of a near-tangent pair.
     tangent_point: Option<[f64; 2]>,
-    /// For an [`edge_pair`], `ε`: the reference then also samples the lines `v = c` from P's
-    /// boundary `u = 0` outward (geometrically), and for `ε = 0` holds the boundary meridian's
-    /// points themselves (exactly in the plane: the first row's coordinate is the plane's).
-    along_boundary: Option<f64>,
+    /// For an [`edge_pair`], `ε` and the parameter held on the boundary curve (0: `u = 0`, the
+    /// meridian; 1: `v = 0`, the parallel): the reference then also samples the lines across
+    /// that side from it outward (geometrically), and for `ε = 0` holds the boundary curve's
+    /// points themselves (exactly in the plane: the boundary row's coordinate is the plane's).
+    along_boundary: Option<(f64, usize)>,
     near: f64,
     label: String,
 }
@@ -301,17 +302,29 @@ fn polar_pair(seed: u64) -> Pair {
     pair
 }
 
-/// A piece whose boundary meridian `u = 0` lies in a coordinate plane, against that plane moved
-/// by `ε` (0, ±1e-12, ±1e-9 or 1e-6 times the model's size): the curve runs *along* P's
-/// boundary (`ε = 0`), or beside it inside or outside the domain. The piece is swept from
-/// angle 0 (its first row of control points has `y = 0` exactly) and moved exactly (a
+/// A piece whose boundary meridian `u = 0` (or, every other 24 seeds, boundary parallel
+/// `v = 0`) lies in a coordinate plane, against that plane moved by `ε` (0, ±1e-12, ±1e-9 or
+/// 1e-6): the curve runs *along* P's boundary (`ε = 0`), or beside it inside or outside the
+/// domain. The piece is swept from angle 0 (its first row of control points has `y = 0`
+/// exactly; along the parallel, its meridian starts at `z = 0` exactly) and moved exactly (a
 /// permutation of the axes, signs, and a dyadic shift), and the plane's corners are exact, so
 /// `ε = 0` is exactly along.
 fn edge_pair(seed: u64) -> Pair {
     let mut rng = Rng::new(seed);
     let kind = [Kind::Sphere, Kind::Cylinder, Kind::Cone, Kind::Torus][(seed % 4) as usize];
     let eps = [0.0, 1e-12, -1e-12, 1e-9, -1e-9, 1e-6][((seed / 4) % 6) as usize];
-    let (mer, mw) = random_meridian(&mut rng, kind);
+    // Along the meridian `u = 0` (in y = 0) or the parallel `v = 0` (in z = 0: the meridian
+    // starts at z = 0 exactly, on the equator of a sphere or torus).
+    let parallel = (seed / 24) % 2 == 1;
+    let (mer, mw) = match (parallel, kind) {
+        (true, Kind::Sphere) => circle_arc(0.0, rng.uniform(0.5, 2.0), 0.0, rng.uniform(0.4, 1.4)),
+        (true, Kind::Torus) => {
+            let big = rng.uniform(1.0, 2.0);
+            let a = rng.uniform(0.2, 0.8) * big;
+            circle_arc(big, a, 0.0, rng.uniform(0.4, 2.5))
+        }
+        _ => random_meridian(&mut rng, kind),
+    };
     let alpha = rng.uniform(0.4, 2.5);
     let c = (0.5 * alpha).cos();
     let arc = [
@@ -341,8 +354,10 @@ fn edge_pair(seed: u64) -> Pair {
     let p = RationalBezierPatch::from_f64_points([2, 2], &points, Some(&weights), Domain::UNIT)
         .expect("a valid piece");
     let net = Net::new(&points, &weights);
-    // The plane: coordinate `k` (the image of y) at the meridian's value moved by ε.
-    let k = (0..3).find(|&k| perm[k] == 1).expect("a permutation");
+    // The plane: coordinate `k` (the image of y, or of z along the parallel) at the boundary
+    // curve's value moved by ε.
+    let held = if parallel { 2 } else { 1 };
+    let k = (0..3).find(|&k| perm[k] == held).expect("a permutation");
     let value = shift[k] + sign[k] * eps;
     let (a, b) = ((k + 1) % 3, (k + 2) % 3);
     let lo = |i: usize| dyadic(points.iter().map(|x| x[i]).fold(f64::INFINITY, f64::min) - 1.0);
@@ -382,9 +397,12 @@ fn edge_pair(seed: u64) -> Pair {
         net,
         plane: Plane { n, d: point(value) },
         tangent_point: None,
-        along_boundary: Some(eps),
+        along_boundary: Some((eps, usize::from(parallel))),
         near: 0.02,
-        label: format!("{kind:?} along its boundary meridian, ε = {eps:e}"),
+        label: format!(
+            "{kind:?} along its boundary {}, ε = {eps:e}",
+            if parallel { "parallel" } else { "meridian" }
+        ),
     }
 }
 
@@ -491,7 +509,7 @@ fn reference(pair: &Pair, margin: f64) -> Vec<RefPoint> {
             out.push(RefPoint { x: [c, c], y });
         }
     }
-    if let Some(eps) = pair.along_boundary {
+    if let Some((eps, held)) = pair.along_boundary {
         let from_edge = || {
             std::iter::once(0.0).chain(
                 (0..200)
@@ -500,15 +518,22 @@ fn reference(pair: &Pair, margin: f64) -> Vec<RefPoint> {
             )
         };
         for c in (1..16).map(|k| k as f64 / 16.0) {
-            if eps == 0.0 {
-                out.push(RefPoint {
-                    x: [0.0, 0.0],
-                    y: [c, c],
-                });
-            } else {
-                for x in sign_change_brackets_at(|s| side(s, c), from_edge()) {
-                    out.push(RefPoint { x, y: [c, c] });
+            let at = |x: [f64; 2]| {
+                if held == 0 {
+                    RefPoint { x, y: [c, c] }
+                } else {
+                    RefPoint { x: [c, c], y: x }
                 }
+            };
+            if eps == 0.0 {
+                out.push(at([0.0, 0.0]));
+            } else {
+                let across = |s: f64| if held == 0 { side(s, c) } else { side(c, s) };
+                out.extend(
+                    sign_change_brackets_at(across, from_edge())
+                        .into_iter()
+                        .map(at),
+                );
             }
         }
     }
