@@ -214,21 +214,7 @@ fn lines_along_face_edges_and_with_the_surfaces_swapped() {
 /// parts joined by proven joins, within tolerance of the closed form.
 #[test]
 fn parabolas_along_the_knot_lines_of_a_bspline_paraboloid() {
-    let t = [0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0];
-    let nodes = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
-        (0..t.len() - 3).map(|i| f(t[i + 1], t[i + 2])).collect()
-    };
-    let xs = nodes(&|a, b| 0.5 * (a + b));
-    let gx = nodes(&|a, b| (a - 0.45) * (b - 0.45));
-    let gy = nodes(&|a, b| (a - 0.55) * (b - 0.55));
-    let mut points = Vec::new();
-    for i in 0..xs.len() {
-        for j in 0..xs.len() {
-            points.push(serde_json::json!([xs[i], xs[j], gx[i] + gy[j]]));
-        }
-    }
-    let bowl =
-        serde_json::json!({"kind": "nurbs", "degree": [2, 2], "knots": [t, t], "points": points});
+    let bowl = common::shell_checks::bspline_paraboloid();
     // (coordinate held, its value, the other's centre): the parabola z = c + (s − s0)².
     for (k, value, s0) in [(0usize, 0.5f64, 0.55f64), (1usize, 0.75, 0.45)] {
         let what = format!("coordinate {k} = {value}");

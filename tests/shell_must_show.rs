@@ -17,7 +17,8 @@ mod common;
 
 use common::scenes::scene_path;
 use common::shell_checks::{
-    around, check_edge, closed_and_proven, cylinder, edges, plane, quarter_cylinders, run,
+    around, bspline_paraboloid, check_edge, closed_and_proven, cylinder, edges, plane,
+    quarter_cylinders, run,
 };
 use common::spline::dist3;
 use serde_json::{json, Value};
@@ -297,22 +298,9 @@ fn a_paraboloid_with_interior_knots_against_a_plane_is_one_closed_curve() {
     // z = (x − 0.45)² + (y − 0.55)² over [0, 1]², biquadratic with knots 1/4, 1/2, 3/4 in both
     // directions (control points by blossoming: exact in binary), against z = 0.0784: the
     // circle of radius 0.28 about (0.45, 0.55), crossing x = 1/4, 1/2 and y = 1/2, 3/4.
-    let t = [0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0];
-    let nodes = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
-        (0..t.len() - 3).map(|i| f(t[i + 1], t[i + 2])).collect()
-    };
-    let xs = nodes(&|a, b| 0.5 * (a + b));
-    let gx = nodes(&|a, b| (a - 0.45) * (b - 0.45));
-    let gy = nodes(&|a, b| (a - 0.55) * (b - 0.55));
-    let mut points = Vec::new();
-    for i in 0..xs.len() {
-        for j in 0..xs.len() {
-            points.push(json!([xs[i], xs[j], gx[i] + gy[j]]));
-        }
-    }
     let h = 0.0784;
     let scene = json!({"surfaces": [
-        {"kind": "nurbs", "degree": [2, 2], "knots": [t, t], "points": points},
+        bspline_paraboloid(),
         plane([-1.0, -1.0, h], [3.0, 0.0, 0.0], [0.0, 3.0, 0.0])],
         "options": {"method": "both"}});
     let (scene, report) = run(scene);

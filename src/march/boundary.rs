@@ -247,12 +247,7 @@ where
     S2: ParametricSurface + ?Sized,
 {
     let (dp, dq) = (p.domain(), q.domain());
-    let d = [
-        n.frame.tangent_p[0],
-        n.frame.tangent_p[1],
-        n.frame.tangent_q[0],
-        n.frame.tangent_q[1],
-    ];
+    let d = parameter_tangent(n);
     let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
     let speed = parameter_speed(&dp, &dq, &d);
     (0..4).all(|i| {
@@ -268,6 +263,12 @@ where
         !((n.x[i] - lo).abs() <= edge_tol && di < 0.0
             || (hi - n.x[i]).abs() <= edge_tol && di > 0.0)
     })
+}
+
+/// The node's parameter tangent `(σ', t', u', v')`.
+fn parameter_tangent(n: &Node) -> [f64; 4] {
+    let (tp, tq) = (n.frame.tangent_p, n.frame.tangent_q);
+    [tp[0], tp[1], tq[0], tq[1]]
 }
 
 /// A parameter tangent component below this fraction of the fastest one (each relative to its
@@ -302,12 +303,7 @@ where
     S2: ParametricSurface + ?Sized,
 {
     let (dp, dq) = (p.domain(), q.domain());
-    let d = [
-        n.frame.tangent_p[0],
-        n.frame.tangent_p[1],
-        n.frame.tangent_q[0],
-        n.frame.tangent_q[1],
-    ];
+    let d = parameter_tangent(n);
     let [lo, hi] = bounds(&dp, &dq, coordinate);
     let value = if (n.x[coordinate] - lo).abs() <= (hi - n.x[coordinate]).abs() {
         lo
@@ -379,12 +375,7 @@ where
 {
     let (dp, dq) = (p.domain(), q.domain());
     let edge_tol = 1e-7 * dp.size().max(dq.size()).max(1.0);
-    let d = [
-        n.frame.tangent_p[0],
-        n.frame.tangent_p[1],
-        n.frame.tangent_q[0],
-        n.frame.tangent_q[1],
-    ];
+    let d = parameter_tangent(n);
     // Of the sides the node lies on, the one the curve crosses most steeply (relative to the
     // domain's width that way): a curve running along one surface's edge (a section along a
     // knot line) and leaving the other's domain ends on the other's boundary.

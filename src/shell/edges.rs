@@ -100,7 +100,18 @@ pub fn along_range(d: &Domain, side: usize) -> [f64; 2] {
 /// The side of `d` that the parameter point `x` lies on, within `tol` (the nearest one when
 /// several are that close); `None` when it is on none.
 pub fn side_of(d: &Domain, x: [f64; 2], tol: f64) -> Option<usize> {
+    side_of_where(d, x, tol, |_| true)
+}
+
+/// As [`side_of`], among the sides `keep` accepts.
+pub(crate) fn side_of_where(
+    d: &Domain,
+    x: [f64; 2],
+    tol: f64,
+    keep: impl Fn(usize) -> bool,
+) -> Option<usize> {
     (0..4)
+        .filter(|&side| keep(side))
         .map(|side| {
             let (k, value) = side_coordinate(d, side);
             (side, (x[k] - value).abs())

@@ -3,7 +3,7 @@
 
 use inari::Interval;
 
-use super::edges::{side_coordinate, side_of, PieceSide};
+use super::edges::{side_coordinate, side_of, side_of_where, PieceSide};
 use super::{Face, PieceIntersection};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::geometry::bezier::RationalBezierPatch;
@@ -114,7 +114,8 @@ pub(super) fn end_site<'a>(
     // Not a side the whole branch runs along (a section along a knot line or seam ends where
     // it crosses another side, perhaps at a corner with the side it runs along).
     let along = |sd: usize| along_side(&m.points, surface, &dom, sd, SIDE_TOLERANCE * size);
-    let side = nearest_side(&dom, x, SIDE_TOLERANCE * size, &along)?;
+    let tol = SIDE_TOLERANCE * size;
+    let side = side_of_where(&dom, x, tol, |sd| !along(sd)).or_else(|| side_of(&dom, x, tol))?;
     let side = PieceSide {
         face: pi.faces[surface],
         piece: pi.pieces[surface],
@@ -381,21 +382,6 @@ pub(super) fn along_side(
             let x = if surface == 0 { pt.p } else { pt.q };
             (x[c] - value).abs() <= tol
         })
-}
-
-/// The side of `d` nearest to `x` within `tol` among those `along` rejects not; else the
-/// nearest of all ([`side_of`]).
-fn nearest_side(d: &Domain, x: [f64; 2], tol: f64, along: &dyn Fn(usize) -> bool) -> Option<usize> {
-    (0..4)
-        .filter(|&sd| !along(sd))
-        .map(|sd| {
-            let (k, value) = side_coordinate(d, sd);
-            (sd, (x[k] - value).abs())
-        })
-        .filter(|&(_, gap)| gap <= tol)
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(sd, _)| sd)
-        .or_else(|| side_of(d, x, tol))
 }
 
 /// The model-space distance of two marched end points, when within [`MARCH_JOIN_TOLERANCE`]

@@ -58,6 +58,26 @@ pub(crate) fn cylinder(axis: usize, r: f64, len: f64, turn: Option<[f64; 2]>) ->
            "points": points, "weights": weights})
 }
 
+/// The paraboloid `z = (x − 0.45)² + (y − 0.55)²` over `[0, 1]²` as a non-rational biquadratic
+/// B-spline with interior knots 1/4, 1/2, 3/4 both ways (control points by blossoming: exact
+/// in binary).
+pub(crate) fn bspline_paraboloid() -> Value {
+    let t = [0.0, 0.0, 0.0, 0.25, 0.5, 0.75, 1.0, 1.0, 1.0];
+    let nodes = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
+        (0..t.len() - 3).map(|i| f(t[i + 1], t[i + 2])).collect()
+    };
+    let xs = nodes(&|a, b| 0.5 * (a + b));
+    let gx = nodes(&|a, b| (a - 0.45) * (b - 0.45));
+    let gy = nodes(&|a, b| (a - 0.55) * (b - 0.55));
+    let mut points = Vec::new();
+    for i in 0..xs.len() {
+        for j in 0..xs.len() {
+            points.push(json!([xs[i], xs[j], gx[i] + gy[j]]));
+        }
+    }
+    json!({"kind": "nurbs", "degree": [2, 2], "knots": [t, t], "points": points})
+}
+
 /// Four faces, each a quarter of x² + y² = 1, z ∈ [−1, 1] (one rational Bézier span, the
 /// quarter from angle kπ/2 to (k + 1)π/2), sharing their edges.
 pub(crate) fn quarter_cylinders() -> Vec<Value> {

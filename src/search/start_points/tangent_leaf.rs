@@ -26,6 +26,20 @@ use crate::pair::newton::{refine, Constraint};
 use inari::{interval, Interval};
 use nalgebra::Matrix3;
 
+/// The leaf's parameter boxes `(a's two, b's two)` and the index (0 or 1) of `a`'s parameter
+/// the edge holds fixed.
+fn leaf_box(
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    edge: &Piece,
+    other: &Piece,
+) -> (usize, [Interval; 4]) {
+    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let [xa, ya] = edge.declared(&a.domain(), 0.0);
+    let [xb, yb] = other.declared(&b.domain(), 0.0);
+    (index, [xa, ya, xb, yb])
+}
+
 /// Whether every intersection point of the edge piece `edge` of `a` with the piece `other` of
 /// `b` lies on the arc of the intersection through `x` (parameters `(a, b)`), see the module
 /// documentation.
@@ -36,11 +50,8 @@ pub(super) fn arc_through(
     other: &Piece,
     x: &[f64; 4],
 ) -> bool {
-    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let (index, leaf) = leaf_box(a, b, edge, other);
     let free = 1 - index;
-    let ea = edge.declared(&a.domain(), 0.0);
-    let eb = other.declared(&b.domain(), 0.0);
-    let leaf = [ea[0], ea[1], eb[0], eb[1]];
     let h = leaf.iter().map(|i| i.wid()).fold(0.0, f64::max);
     if !(h.is_finite() && h > 0.0) {
         return false;
@@ -187,9 +198,7 @@ pub(super) fn leaf_point(
     interior: bool,
 ) -> Option<[f64; 4]> {
     leaf_newton(a, b, edge, other, tol).or_else(|| {
-        let [xa, ya] = edge.declared(&a.domain(), 0.0);
-        let [xb, yb] = other.declared(&b.domain(), 0.0);
-        let centre = [xa.mid(), ya.mid(), xb.mid(), yb.mid()];
+        let centre = leaf_box(a, b, edge, other).1.map(|i| i.mid());
         interior
             .then(|| project_onto_intersection(a, b, centre, tol))
             .flatten()
@@ -205,10 +214,8 @@ fn leaf_newton(
     other: &Piece,
     tol: f64,
 ) -> Option<[f64; 4]> {
-    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
-    let [xa, ya] = edge.declared(&a.domain(), 0.0);
-    let [xb, yb] = other.declared(&b.domain(), 0.0);
-    let x = [xa.mid(), ya.mid(), xb.mid(), yb.mid()];
+    let (index, leaf) = leaf_box(a, b, edge, other);
+    let x = leaf.map(|i| i.mid());
     let constraint = Constraint::Fixed {
         index,
         value: x[index],
@@ -233,18 +240,16 @@ pub(super) fn along_edge_point(
     other: &Piece,
     tol: f64,
 ) -> Option<[f64; 4]> {
-    let index = if edge.degree()[0] == 0 { 0 } else { 1 };
+    let (index, leaf) = leaf_box(a, b, edge, other);
     let free = 1 - index;
     let (da, db) = (a.domain(), b.domain());
-    let [xa, ya] = edge.declared(&da, 0.0);
-    let [xb, yb] = other.declared(&db, 0.0);
-    let centre = [xa.mid(), ya.mid(), xb.mid(), yb.mid()];
+    let centre = leaf.map(|i| i.mid());
     let width = if index == 0 {
         da.u[1] - da.u[0]
     } else {
         da.v[1] - da.v[0]
     };
-    let s = [xa, ya][free];
+    let s = leaf[free];
     let mut found = None;
     let probes = [
         s.mid(),
