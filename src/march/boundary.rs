@@ -11,14 +11,23 @@ use crate::pair::boundary_direction::{
 };
 use crate::pair::newton::{refine, Constraint};
 
-/// The first parameter (index, bound, fraction along `a → b`) where the segment leaves a domain.
-fn first_exit(a: &[f64; 4], b: &[f64; 4], dp: &Domain, dq: &Domain) -> Option<(usize, f64, f64)> {
+/// The first parameter (index, bound, fraction along `a → b`) where the segment leaves a domain
+/// by more than `tol`.
+fn first_exit(
+    a: &[f64; 4],
+    b: &[f64; 4],
+    dp: &Domain,
+    dq: &Domain,
+    tol: f64,
+) -> Option<(usize, f64, f64)> {
     let mut best: Option<(usize, f64, f64)> = None;
     for i in 0..4 {
         let [lo, hi] = bounds(dp, dq, i);
-        let bound = if b[i] < lo {
+        // Out by no more than the domain tolerance is not out (a curve running along the side,
+        // a rounding error beyond it): held fixed there, Newton would have no isolated root.
+        let bound = if b[i] < lo - tol {
             lo
-        } else if b[i] > hi {
+        } else if b[i] > hi + tol {
             hi
         } else {
             continue;
@@ -110,7 +119,7 @@ where
     let (dp, dq) = (p.domain(), q.domain());
     let mut target = *outer;
     for _ in 0..4 {
-        let (i, bound, s) = first_exit(inner, &target, &dp, &dq)?;
+        let (i, bound, s) = first_exit(inner, &target, &dp, &dq, opts.domain_tolerance)?;
         let guess: [f64; 4] = std::array::from_fn(|k| inner[k] + s * (target[k] - inner[k]));
         let r = refine(
             p,

@@ -53,6 +53,11 @@ int main(int argc, char** argv) {
   // The plane z = 1/4, a square face [-3, 3]^2.
   gp_Pln pl(gp_Pnt(0, 0, 0.25), gp_Dir(0, 0, 1));
   bad += write(BRepBuilderAPI_MakeFace(pl, -3, 3, -3, 3).Face(), d + "/occt_plane.step");
+  // The plane y = 0 through the z axis, the face x in [-3, 3], z in [-3/4, 3/4] (its frame's
+  // x direction along x, so its y direction is -z): it cuts the cylinder below along its seam
+  // (x = 1) and its half-turn line (x = -1), and the torus along two tube circles.
+  gp_Pln xz(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0), gp_Dir(1, 0, 0)));
+  bad += write(BRepBuilderAPI_MakeFace(xz, -3, 3, -0.75, 0.75).Face(), d + "/occt_plane_xz.step");
   // A torus, major radius 2, minor 1/2, about the z axis (TOROIDAL_SURFACE).
   bad += write(BRepPrimAPI_MakeTorus(z, 2.0, 0.5).Face(), d + "/occt_torus.step");
   // The lateral faces of a cylinder (radius 1, z in [-1, 1]) and of a cone (radius 1 at z = 0,
