@@ -10,7 +10,9 @@
 //! scheduling.
 //!
 //! Each piece pair is traced on its own: a curve that crosses a knot line or passes from one
-//! face to another comes back as one branch per piece pair. Those branches are then joined end
+//! face to another comes back as one branch per piece pair, and a curve that runs *along* an
+//! edge two pieces share is traced by both pairs and reported once (`edge_copies.rs`). The
+//! branches are then joined end
 //! to end across knot lines, periodic seams and edges shared by two faces ([`join`]): the
 //! result also lists one [`JoinedCurve`] per connected curve, each join proven or flagged.
 
