@@ -261,3 +261,63 @@ fn parabolas_along_the_knot_lines_of_a_bspline_paraboloid() {
         check_edge(&what, &es[0], &scene.shells, &off, &truth);
     }
 }
+
+/// Two faces that meet along an edge they share, at an angle (two faces of one body, or of two
+/// bodies touching along an edge): their intersection is that edge, on the boundary of both.
+/// A quarter cylinder (the edge at 90°, its side `u = 1`) against the plane `x = 0` over
+/// `y ∈ [1, 3]` (its side `y = 1`), either surface first, the plane's patch as long as the
+/// cylinder's or shorter; and the full NURBS cylinder (the edge on a knot line). Each: the one
+/// line, certified from end to end within tolerance, once. Before, the chain stopped after a
+/// link or two ("close branches" at h ≈ 1e-10: the join's box across the plane's side was a few
+/// 1e-46 wide, and no Krawczyk box that narrow held its image), and the repair traced the line
+/// twice more.
+#[test]
+fn faces_meeting_along_a_shared_edge_intersect_in_it() {
+    use common::shell_checks::quarter_cylinders;
+    let quarter = quarter_cylinders().swap_remove(0);
+    for h in [1.0, 0.5] {
+        let face = plane([0.0, 1.0, -h], [0.0, 2.0, 0.0], [0.0, 0.0, 2.0 * h]);
+        let off = |x: &[f64; 3]| {
+            let beyond = (x[2].abs() - h).max(0.0);
+            x[0].hypot(x[1] - 1.0).hypot(beyond)
+        };
+        let truth: Vec<[f64; 3]> = (0..=400)
+            .map(|i| [0.0, 1.0, -h + 2.0 * h * i as f64 / 400.0])
+            .collect();
+        for (what, scene) in [
+            (
+                "quarter, face",
+                serde_json::json!({"surfaces": [quarter.clone(), face.clone()]}),
+            ),
+            (
+                "face, quarter",
+                serde_json::json!({"surfaces": [face.clone(), quarter.clone()]}),
+            ),
+            (
+                "cylinder, face",
+                serde_json::json!({"surfaces": [cylinder(2, 1.0, LEN, None), face.clone()]}),
+            ),
+        ] {
+            let what = format!("{what}, half height {h}");
+            let (scene, report) = run(scene);
+            let res = &report.result;
+            assert!(res.is_complete(), "{what}: search incomplete");
+            assert_eq!(res.curves.len(), 1, "{what}: {:#?}", res.curves);
+            assert_eq!(res.branch_count(), 1, "{what}: the edge once");
+            let tol = res.curves[0].certified_tolerance.expect("certified");
+            assert!(tol <= 1e-9, "{what}: {tol:e}");
+            for pair in &res.pairs {
+                for b in &pair.result.branches {
+                    let c = b.certified().expect("certified");
+                    assert!(
+                        c.ends.iter().all(|e| e.reaches_true_end()),
+                        "{what}: ends {:?}",
+                        c.ends
+                    );
+                }
+            }
+            let es = edges(&what, &scene, &report);
+            check_edge(&what, &es[0], &scene.shells, &off, &truth);
+        }
+    }
+}

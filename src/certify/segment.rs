@@ -656,6 +656,12 @@ fn prove_within(
         let e = cg[r].mag();
         (2.0 * e + 1.25 * need[r]) * (1.0 + 1e-9) + f64::MIN_POSITIVE
     });
+    // No radius far below the others: the contraction's coupling (rounding-sized entries of
+    // `I − C·J`) carries the widest offset into every other, and an offset that is exact (a
+    // curve running along a side, its join a few 1e-46 wide there) would then never hold its
+    // image. Any box is rigorous; this one is at most a thousandth of the widest wider.
+    let widest = rad.iter().fold(0.0f64, |m, &r| m.max(r));
+    let rad = rad.map(|r| r.max(1e-3 * widest));
     let y: [Interval; 3] = std::array::from_fn(|r| inari::interval!(-rad[r], rad[r]).unwrap());
     let mut proof = SegmentProof {
         pred,
