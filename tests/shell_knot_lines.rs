@@ -321,3 +321,44 @@ fn faces_meeting_along_a_shared_edge_intersect_in_it() {
         }
     }
 }
+
+/// A line along knot lines of *both* surfaces: the NURBS cylinder against the plane x = 0 given
+/// as a bilinear NURBS with a knot at y = 1, so the line (0, 1, z) is a knot line of both (four
+/// piece pairs trace it) and (0, −1, z) of the cylinder only (two do); either surface first.
+/// Two lines, each reported once (four copies dropped), certified.
+#[test]
+fn a_line_along_knot_lines_of_both_surfaces_is_reported_once() {
+    let split_plane = serde_json::json!({"kind": "nurbs", "degree": [1, 1],
+        "knots": [[-3.0, -3.0, 1.0, 3.0, 3.0], [-1.0, -1.0, 1.0, 1.0]],
+        "points": [[0.0, -3.0, -1.0], [0.0, -3.0, 1.0], [0.0, 1.0, -1.0], [0.0, 1.0, 1.0],
+                   [0.0, 3.0, -1.0], [0.0, 3.0, 1.0]]});
+    let cyl = cylinder(2, 1.0, LEN, None);
+    let off = |x: &[f64; 3]| {
+        let beyond = (x[2].abs() - 1.0).max(0.0);
+        x[0].hypot(x[1].abs() - 1.0).hypot(beyond)
+    };
+    for (what, scene) in [
+        (
+            "cylinder first",
+            serde_json::json!({"surfaces": [cyl.clone(), split_plane.clone()]}),
+        ),
+        (
+            "plane first",
+            serde_json::json!({"surfaces": [split_plane.clone(), cyl.clone()]}),
+        ),
+    ] {
+        let (scene, report) = run(scene);
+        let res = &report.result;
+        assert!(res.is_complete(), "{what}: search incomplete");
+        assert_eq!(res.edge_copies, 4, "{what}");
+        assert_eq!(res.branch_count(), 2, "{what}");
+        assert_eq!(res.curves.len(), 2, "{what}: {:#?}", res.curves);
+        for edge in edges(what, &scene, &report) {
+            let side = edge.curve.eval(edge.curve.knots[0])[1].signum();
+            let truth: Vec<[f64; 3]> = (0..=400)
+                .map(|i| [0.0, side, -1.0 + 2.0 * i as f64 / 400.0])
+                .collect();
+            check_edge(what, &edge, &scene.shells, &off, &truth);
+        }
+    }
+}
