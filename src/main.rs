@@ -444,7 +444,7 @@ fn shell_summary(
             if absorbed.contains(&g) {
                 let _ = writeln!(
                     out,
-                    "      a sliver of a curve at a corner of pieces, covered by its proven corner join"
+                    "      a sliver of a curve at a corner of pieces or at a pole, covered by a proven join"
                 );
             } else if let Some(c) = &traced.certificate {
                 let _ = writeln!(out, "  {}", certificate_line(c, opts.required_tolerance));
@@ -454,7 +454,19 @@ fn shell_summary(
     }
     for (k, c) in r.curves.iter().enumerate() {
         let proven = c.joins.iter().filter(|j| j.status.is_proven()).count();
-        let corners = c.joins.iter().filter(|j| j.corner.is_some()).count();
+        let through_poles =
+            |j: &&ssitrace::shell::Join| j.edge == ssitrace::shell::edges::EdgeKind::Pole;
+        let corners = c
+            .joins
+            .iter()
+            .filter(|j| j.corner.is_some() && !through_poles(j))
+            .count();
+        let poles = c.joins.iter().filter(through_poles).count();
+        let poles = if poles > 0 {
+            format!(", {poles} through a pole")
+        } else {
+            String::new()
+        };
         let tolerance = c
             .certified_tolerance
             .map_or("not certified as a whole".to_string(), |t| {
@@ -462,7 +474,7 @@ fn shell_summary(
             });
         let _ = writeln!(
             out,
-            "  curve {k}: {}, {} part(s), {tolerance}; joins: {proven} of {} proven ({corners} across corners)",
+            "  curve {k}: {}, {} part(s), {tolerance}; joins: {proven} of {} proven ({corners} across corners{poles})",
             if c.closed { "closed" } else { "open" },
             c.parts.len(),
             c.joins.len(),

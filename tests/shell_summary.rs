@@ -39,7 +39,7 @@ fn the_summary_names_each_joined_curve_and_the_slivers_its_corners_cover() {
         "{out}"
     );
     assert_eq!(
-        out.matches("covered by its proven corner join").count(),
+        out.matches("covered by a proven join").count(),
         4,
         "{out}"
     );

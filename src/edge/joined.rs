@@ -30,6 +30,7 @@ use crate::geometry::RationalBezierPatch;
 use crate::numeric::scalar::point;
 use crate::pair::krawczyk::{krawczyk, KrawczykResult};
 use crate::shell::corner::diameter;
+use crate::shell::edges::EdgeKind;
 use crate::shell::{Face, JoinStatus, JoinedCurve, ShellIntersection};
 use inari::Interval;
 
@@ -97,10 +98,15 @@ pub fn edge_from_joined(
         } else {
             [&cert.ends[0], &cert.ends[1]]
         };
-        // The joins before and after this part, and whether each is across a corner.
-        let join_at = |i: Option<usize>| -> MustCut {
+        // The joins before and after this part, and whether each is across a corner or
+        // through a pole.
+        let join_at = |i: Option<usize>| -> Option<MustCut> {
             let j = &curve.joins[i?];
-            Some(j.corner.as_ref().map(|c| diameter(&c.xyz)))
+            Some(match (&j.corner, j.edge) {
+                (None, _) => MustCut::Side,
+                (Some(c), EdgeKind::Pole) => MustCut::Pole(diameter(&c.xyz)),
+                (Some(c), _) => MustCut::Corner(diameter(&c.xyz)),
+            })
         };
         let before = if k > 0 {
             Some(k - 1)
@@ -148,9 +154,19 @@ pub fn edge_from_joined(
     )
 }
 
-/// How an end of a part must be cut: at a join (`Some`), across a corner of the piece pair with
-/// its corner box's diameter (`Some(Some(d))`), or only if it is a boundary end (`None`).
-pub(super) type MustCut = Option<Option<f64>>;
+/// How an end of a part must be cut at a join (an end without a join is cut only if it is a
+/// boundary end).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum MustCut {
+    /// At the piece side the join is on.
+    Side,
+    /// Across a corner of the piece pair: where the chain first leaves its pieces; the corner
+    /// box's diameter is the cut's extra share.
+    Corner(f64),
+    /// Through a pole: at the chain's end (unproven at the pole); the diameter of the box
+    /// holding the arc through the pole is the cut's extra share.
+    Pole(f64),
+}
 
 /// Cuts the chain `segs` (in the edge's direction, its certified ends `ends` in that order)
 /// at the piece side of each end that must be cut (`must`: a join) or is a boundary end. At a
@@ -162,12 +178,13 @@ pub(super) fn cut_ends(
     ends: [&CertifiedEnd; 2],
     pq: [&RationalBezierPatch; 2],
     branch: usize,
-    must: [MustCut; 2],
+    must: [Option<MustCut>; 2],
 ) -> Result<Vec<Cut>, EdgeError> {
     let mut cuts = Vec::new();
     let boundary = |e: &CertifiedEnd| matches!(e, CertifiedEnd::Boundary { .. });
-    let cut = |segs: &mut Vec<Seg>, end: &CertifiedEnd, m: MustCut| match m {
-        Some(Some(corner)) => cut_at_corner(cert, segs, end, pq, branch, corner),
+    let cut = |segs: &mut Vec<Seg>, end: &CertifiedEnd, m: Option<MustCut>| match m {
+        Some(MustCut::Corner(corner)) => cut_at_corner(cert, segs, end, pq, branch, corner),
+        Some(MustCut::Pole(share)) => cut_at_pole(segs, end, branch, share),
         _ => cut_at_side(cert, segs, end, pq, branch, None).map(|(c, _)| c),
     };
     if must[0].is_some() || boundary(ends[0]) {
@@ -232,6 +249,33 @@ fn cut_at_corner(
     let (mine, c, _) = cuts.swap_remove(first);
     *segs = mine;
     Ok(Cut { corner, ..c })
+}
+
+/// At a join through a pole: the chain is not cut (its end, unproven at the pole, is inside
+/// the pieces); the last link's end is the cut, and `share`, the diameter of the join's box
+/// holding the true arc from there through the pole to the next part, its extra share.
+fn cut_at_pole(
+    segs: &mut [Seg],
+    end: &CertifiedEnd,
+    branch: usize,
+    share: f64,
+) -> Result<Cut, EdgeError> {
+    let fail = |reason: &str| EdgeError::Trim {
+        branch,
+        reason: reason.into(),
+    };
+    if !matches!(end, CertifiedEnd::Unproven { .. }) {
+        return Err(fail(
+            "the part's end at the pole is not where its chain stops",
+        ));
+    }
+    let last = segs.last().ok_or_else(|| fail("no links"))?;
+    Ok(Cut {
+        tube: last.tube,
+        gap: point(last.tb),
+        next: None,
+        corner: share,
+    })
 }
 
 /// Whether the reported end of the chain `segs` lies beyond a side of coordinate `coord` (0

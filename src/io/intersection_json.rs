@@ -305,7 +305,8 @@ pub fn shell_result(
 /// `reversed`), `closed`, `joins` (objects with the two branch ends `from` and `to`, each
 /// `{"branch", "end"}`, the `edge` kind, the `status` `"proven"`, `"unproven"` (with a
 /// `reason`) or `"marched"`, the matched `gap`, and for a join across a corner of the piece
-/// pair `corner`: the other surface's `second_edge`, the model-space box `xyz` holding the
+/// pair or proven through a pole `corner`: the other surface's `second_edge` (`"pole"` through
+/// a pole), the model-space box `xyz` holding the
 /// curve between the two parts (`null` bounds unless proven) and the `absorbed` branches) and
 /// `certified_tolerance` (`null` unless every part is certified and every join proven).
 pub fn joined_curve_json(c: &JoinedCurve) -> Value {

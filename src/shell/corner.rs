@@ -43,16 +43,20 @@ use crate::march::branch::CurvePoint;
 use crate::numeric::scalar::point;
 use crate::pair::krawczyk::{krawczyk, BoxSurface, KrawczykResult, ParamBox};
 
-/// What a proven join across a corner of the piece pair adds to [`super::Join`].
+/// What a join across a corner of the piece pair, or a proven join through a pole, adds to
+/// [`super::Join`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct CornerJoin {
-    /// The edge crossed on the second surface (the join's `edge` is the first surface's).
+    /// The edge crossed on the second surface (the join's `edge` is the first surface's;
+    /// [`EdgeKind::Pole`] through a pole).
     pub second_edge: EdgeKind,
     /// Every point of the true curve between the two parts' ends lies in this model-space box
-    /// (the corner box's image; empty when the join is not proven).
+    /// (the corner box's image, or the pole proof's box, `super::pole_cap`; empty when the join
+    /// is not proven).
     pub xyz: [Interval; 3],
-    /// Branches of the two other piece pairs at the corner whose marched points all lie in the
-    /// corner box: slivers of the same arc, covered by the join and in no curve's parts.
+    /// Branches of the other piece pairs at the corner or pole whose marched points all lie in
+    /// the corner box or the pole's cap: slivers of the same arc, covered by the join and in no
+    /// curve's parts.
     pub absorbed: Vec<usize>,
 }
 

@@ -27,6 +27,8 @@
 //!    true end points then lie in that region, where the curve meets the edge only once, so
 //!    they are the same point. Otherwise the join is [`JoinStatus::Unproven`] with the reason;
 //!    with the marching method it is [`JoinStatus::Marched`].
+//!    A join through a pole (two ends on sides of one face collapsed to the same point) is
+//!    proven on a cap round the pole (`pole_cap.rs`), its arc held in a model box.
 //! 4. The joins chain the branches into [`JoinedCurve`]s: ordered parts with orientations,
 //!    closed when the chain comes back to its first part. Every branch is in exactly one curve
 //!    (a branch that nothing joins is a curve of one part).
@@ -38,6 +40,7 @@ use inari::Interval;
 use super::corner::{self, CornerJoin};
 use super::edges::{along_range, shared_edges, side_coordinate, EdgeKind, EdgeLink, PieceSide};
 use super::own_corner;
+use super::pole_cap::{self, PoleProof};
 use super::sites::{certified_exit, end_site, marched_gap, patches, EndSite};
 pub use super::sites::{BranchEnd, MARCH_JOIN_TOLERANCE, SIDE_TOLERANCE};
 use super::{Face, PieceIntersection};
@@ -84,7 +87,8 @@ pub struct Join {
     /// For a join across a corner of the piece pair (both pieces change: `edge` is the first
     /// surface's edge) or of one surface's own pieces (four pieces of it meet there: `edge` and
     /// the corner's `second_edge` are both that surface's), what it crosses and covers
-    /// ([`super::corner`]); `None` otherwise.
+    /// ([`super::corner`]); for a proven join through a pole, the box holding the arc through
+    /// it (`second_edge` [`EdgeKind::Pole`], see `shell/pole_cap.rs`); `None` otherwise.
     pub corner: Option<CornerJoin>,
 }
 
@@ -183,12 +187,13 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
             };
             for &y in others.iter().filter(|&&y| y > x) {
                 if let Some(c) = candidate(a, b, pairs, s1, &sites[y], link) {
-                    candidates.push((c.0, x, y, c.1, link.kind, None));
+                    candidates.push((c.0, x, y, c.1, link.kind, Region::None));
                 }
             }
         }
     }
-    candidates.extend(pole_candidates(a, b, pairs, &sites));
+    let mut poles = Vec::new();
+    candidates.extend(pole_candidates(a, b, pairs, &sites, &links, &mut poles));
     let mut corners = corner::candidates(a, b, pairs, &sites, &links, &by_pair);
     corners.extend(own_corner::candidates(
         a, b, pairs, &sites, &links, &by_pair,
@@ -200,7 +205,7 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
             Ok(()) => JoinStatus::Proven,
             Err(reason) => JoinStatus::Unproven { reason },
         };
-        candidates.push((c.gap, x, y, status, c.edges[0], Some(n)));
+        candidates.push((c.gap, x, y, status, c.edges[0], Region::Corner(n)));
     }
     // Proven joins first, then the nearest.
     candidates.sort_by(|p, q| {
@@ -220,27 +225,39 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
     let mut used: std::collections::HashSet<BranchEnd> = std::collections::HashSet::new();
     let mut absorbed = vec![false; index.len()];
     let mut joins: HashMap<BranchEnd, JoinValue> = HashMap::new();
-    for (gap, x, y, status, kind, corner_at) in candidates {
+    for (gap, x, y, status, kind, region) in candidates {
         let (e1, e2) = (sites[x].at, sites[y].at);
         if used.contains(&e1) || used.contains(&e2) || absorbed[e1.branch] || absorbed[e2.branch] {
             continue;
         }
         used.insert(e1);
         used.insert(e2);
-        let corner = corner_at.map(|n| {
-            let c = &corners[n];
-            let covered = c.proof.as_ref().map_or(Vec::new(), |pr| {
-                corner::absorbed(pr, pairs, &by_pair, &first_branch)
-            });
-            for &g in &covered {
-                absorbed[g] = true;
+        let corner = match region {
+            Region::None => None,
+            Region::Corner(n) => {
+                let c = &corners[n];
+                let covered = c.proof.as_ref().map_or(Vec::new(), |pr| {
+                    corner::absorbed(pr, pairs, &by_pair, &first_branch)
+                });
+                Some(CornerJoin {
+                    second_edge: c.edges[1],
+                    xyz: c.proof.as_ref().map_or([Interval::EMPTY; 3], |pr| pr.xyz),
+                    absorbed: covered,
+                })
             }
-            CornerJoin {
-                second_edge: c.edges[1],
-                xyz: c.proof.as_ref().map_or([Interval::EMPTY; 3], |pr| pr.xyz),
-                absorbed: covered,
+            Region::Pole(n) => {
+                let keep = [e1.branch, e2.branch];
+                let pr = &poles[n];
+                Some(CornerJoin {
+                    second_edge: EdgeKind::Pole,
+                    xyz: pr.xyz,
+                    absorbed: pole_cap::absorbed(pr, a, b, pairs, &by_pair, &first_branch, keep),
+                })
             }
-        });
+        };
+        for &g in corner.iter().flat_map(|c| &c.absorbed) {
+            absorbed[g] = true;
+        }
         joins.insert(e1, (e2, kind, status.clone(), gap, corner.clone()));
         joins.insert(e2, (e1, kind, status, gap, corner));
     }
@@ -255,8 +272,19 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
     chain(index.len(), &joins, &tolerance, &closed_branch, &absorbed)
 }
 
-/// A join candidate: the gap, the two sites, the status, the edge and the corner's index.
-type Candidate = (f64, usize, usize, JoinStatus, EdgeKind, Option<usize>);
+/// A join candidate: the gap, the two sites, the status, the edge and its proof's region.
+type Candidate = (f64, usize, usize, JoinStatus, EdgeKind, Region);
+
+/// Where the proof of a join candidate holds the arc between its two ends.
+#[derive(Clone, Copy)]
+enum Region {
+    /// Nowhere: the ends meet on a shared edge.
+    None,
+    /// In the corner box of this corner candidate.
+    Corner(usize),
+    /// In the box of this pole proof.
+    Pole(usize),
+}
 
 /// How far from opposite (`1 + cos` of the angle between them) two branches may leave a pole
 /// and still be joined there as one curve passing through it.
@@ -266,13 +294,15 @@ const STRAIGHT_THROUGH: f64 = 1e-3;
 /// same pole, against the same piece of the other surface, leaving the pole in opposite
 /// directions (to [`STRAIGHT_THROUGH`]): a curve through a sphere's pole arrives on one piece's
 /// pole side and leaves from another's, straight on (and two lines crossing at a cone's apex
-/// pair up by their lines). Never proven: no chain reaches the pole (its parameters
-/// degenerate there).
+/// pair up by their lines). No chain reaches the pole (its parameters degenerate there): the
+/// join is proven on a cap round the pole ([`pole_cap`]), whose proofs go to `proofs`.
 fn pole_candidates(
     a: &[Face],
     b: &[Face],
     pairs: &[PieceIntersection],
     sites: &[EndSite<'_>],
+    links: &[Vec<EdgeLink>; 2],
+    proofs: &mut Vec<PoleProof>,
 ) -> Vec<Candidate> {
     let index = branch_index(pairs);
     let pole =
@@ -312,14 +342,18 @@ fn pole_candidates(
             if 1.0 + d1[0] * d2[0] + d1[1] * d2[1] + d1[2] * d2[2] > STRAIGHT_THROUGH {
                 continue;
             }
-            let status = if q1.result.options.method.certifies() {
-                JoinStatus::Unproven {
-                    reason: "through a pole: the curve is not certified there",
-                }
+            let (status, region) = if !q1.result.options.method.certifies() {
+                (JoinStatus::Marched, Region::None)
             } else {
-                JoinStatus::Marched
+                match pole_cap::prove(a, b, pairs, s1, s2, &links[s1.surface]) {
+                    Ok(proof) => {
+                        proofs.push(proof);
+                        (JoinStatus::Proven, Region::Pole(proofs.len() - 1))
+                    }
+                    Err(reason) => (JoinStatus::Unproven { reason }, Region::None),
+                }
             };
-            out.push((gap, x, y, status, EdgeKind::Pole, None));
+            out.push((gap, x, y, status, EdgeKind::Pole, region));
         }
     }
     out

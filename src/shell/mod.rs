@@ -22,6 +22,7 @@ mod edge_copies;
 pub mod edges;
 pub mod join;
 mod own_corner;
+mod pole_cap;
 mod sites;
 
 use rayon::prelude::*;

@@ -1,0 +1,662 @@
+//! Joins through a pole, proven on a cap round it.
+//!
+//! A curve through the pole `X` of a face (a side of some of its pieces that the patch maps to
+//! `X`: a sphere's pole, the end of any surface of revolution meeting its axis) comes back as
+//! two branches, one in each piece it arrives and leaves by, each ending unproven a little short
+//! of the pole: a chain cannot reach it, because every point of the collapsed side is a
+//! parameter of `X` and the parameters degenerate there. [`prove`] proves that the two branches
+//! are one curve through (or past) the pole, and encloses the arc between their chains' ends.
+//!
+//! **The cap.** `F` is the part of the face within a normalised width `w` of the collapsed
+//! sides of all its pieces at `X` (each piece's *strip*): strips of neighbouring pieces meet on
+//! their shared knot line or seam, so `F` is a disc round `X` on the surface, whose rim is
+//! made of the strips' inner sides and of those strip ends that are a side of the face (a
+//! piece of a surface of revolution of less than a full turn). `V` covers every part of the
+//! other surface's piece whose image meets `F`'s bounding box (quadtree leaves, all strictly
+//! inside that piece).
+//!
+//! 1. **No loop, each arc monotone.** With `d = n₀ × m₀` (`n₀` the face's normal at `X`, `m₀`
+//!    the other surface's near it), `⟨Ñ × N_Q, d⟩` excludes zero on every strip piece and leaf
+//!    whose images meet, `Ñ` the positive multiple of the face's normal that has a limit at the
+//!    pole (`geometry::pole`). So along every arc of the curve in `F` (off `X`) the tangent
+//!    never turns orthogonal to `d`: `⟨x, d⟩` is strictly monotone on it and there is no closed
+//!    loop. Every component of the curve in `F` is then an arc with two ends on the rim, or
+//!    with one end on the rim and one at `X`.
+//! 2. **Two crossings.** On each piece of the rim, with that coordinate held, the crossings with
+//!    the other surface over `V` are cut into boxes proven empty or proven to hold one zero
+//!    ([`Zero`]): exactly two in all, one on the inner side of each branch's strip, neither
+//!    at a corner of the rim. So the curve in `F` is one arc, possibly through `X`, between
+//!    those two points.
+//! 3. **The branches cross there.** Each branch's chain starts outside its strip and ends
+//!    inside it (its unproven end at the pole), and its boxes from that end out to the first
+//!    one wholly outside lie within its piece's side range: its curve crosses the inner side of
+//!    its own strip, so at the crossing found there. Both chains' curves are parts of the one
+//!    arc, and the true arc between their ends lies in `F`.
+//! 4. **Where the arc lies.** The strip pieces' control points bound `⟨x, n₀⟩` over `F`, the
+//!    leaves' bound `⟨x, m₀⟩` (two thin slabs: the surfaces are nearly their tangent planes on
+//!    so small a cap), and by (1) `⟨x, d⟩` on the arc between the ends lies between its values
+//!    on the two end boxes; the three bounds, solved for `x` in interval arithmetic, give the
+//!    model box [`PoleProof::xyz`] holding the arc.
+//!
+//! Branches of the pairs of the strips' pieces whose marched points all lie in a strip are
+//! slivers of the same arc: the join absorbs them ([`absorbed`]).
+
+use std::collections::HashMap;
+
+use inari::Interval;
+
+use super::edges::{side_coordinate, EdgeLink, PieceSide};
+use super::sites::{patches, widest, EndSite};
+use super::{Face, PieceIntersection};
+use crate::certify::{CertifiedBranch, CertifiedEnd};
+use crate::geometry::bezier::RationalBezierPatch;
+use crate::geometry::enclosure::boxes_disjoint;
+use crate::geometry::piece::Piece;
+use crate::geometry::pole::collapsed_normal;
+use crate::numeric::scalar::point;
+use crate::numeric::vec3::{cross, dot};
+use crate::pair::krawczyk::{krawczyk, KrawczykResult, ParamBox};
+
+/// Strip widths tried, smallest first (normalised, exact powers of two).
+const WIDTHS: [f64; 3] = [1.0 / 65536.0, 1.0 / 4096.0, 1.0 / 256.0];
+/// Pieces of a strip along its side, for the normals and the slab bounds.
+const ALONG: usize = 16;
+/// Deepest level of the other surface's quadtree.
+const MAX_LEVEL: usize = 48;
+/// Most leaves kept.
+const MAX_LEAVES: usize = 512;
+/// Most boxes the crossing search looks at per rim piece.
+const MAX_BOXES: usize = 4000;
+
+/// A proven join through a pole.
+pub(super) struct PoleProof {
+    /// Every point of the true curve between the two branches' ends lies in this model box.
+    pub(super) xyz: [Interval; 3],
+    /// The pole's surface (0 or 1), face and strips (piece, collapsed side).
+    surface: usize,
+    face: usize,
+    strips: Vec<(usize, usize)>,
+    /// The other surface's face and piece.
+    other: [usize; 2],
+    /// The strips' normalised width.
+    width: f64,
+}
+
+/// One piece of the face at the pole: the strip along its collapsed side `side`.
+struct Strip<'a> {
+    piece: usize,
+    patch: &'a RationalBezierPatch,
+    side: usize,
+}
+
+impl Strip<'_> {
+    /// The parameter index (0: u, 1: v) across the side.
+    fn across(&self) -> usize {
+        self.side / 2
+    }
+
+    /// The declared value of the strip's inner side at normalised width `w`.
+    fn inner(&self, w: f64) -> f64 {
+        let d = self.patch.domain();
+        let r = if self.across() == 0 { d.u } else { d.v };
+        if self.side.is_multiple_of(2) {
+            r[0] + w * (r[1] - r[0])
+        } else {
+            r[1] - w * (r[1] - r[0])
+        }
+    }
+
+    /// Whether the interval `x` of the across coordinate lies strictly between the side and
+    /// the inner value `at` (`inside`), or strictly beyond `at` (`!inside`).
+    fn holds(&self, x: Interval, at: f64, inside: bool) -> bool {
+        let lower = self.side.is_multiple_of(2);
+        match (lower, inside) {
+            (true, true) => x.sup() < at,
+            (true, false) => x.inf() > at,
+            (false, true) => x.inf() > at,
+            (false, false) => x.sup() < at,
+        }
+    }
+
+    /// The strip's pieces along the side, `2w` wide (covering the strip of width `w` whatever
+    /// the rounding of its inner value), with their pole-scaled normals.
+    fn pieces(&self, w: f64, x: [f64; 3]) -> Option<Vec<(Piece, [Interval; 3])>> {
+        let across = if self.side.is_multiple_of(2) {
+            [0.0, 2.0 * w]
+        } else {
+            [1.0 - 2.0 * w, 1.0]
+        };
+        (0..ALONG)
+            .map(|k| {
+                let along = [k as f64 / ALONG as f64, (k + 1) as f64 / ALONG as f64];
+                let (s, r) = if self.across() == 0 {
+                    (across, along)
+                } else {
+                    (along, across)
+                };
+                let piece = Piece::over(self.patch, s, r)?;
+                let n = collapsed_normal(&piece, self.side, x)?;
+                Some((piece, n))
+            })
+            .collect()
+    }
+}
+
+/// A leaf of the other surface's quadtree: its piece, declared box and normal enclosure.
+struct Leaf {
+    piece: Piece,
+    declared: [Interval; 2],
+    normal: [Interval; 3],
+}
+
+/// The leaves of `other` whose images meet `cap`, each strictly inside `other`'s domain.
+fn leaves(other: &RationalBezierPatch, cap: &[Interval; 3]) -> Result<Vec<Leaf>, &'static str> {
+    let size = crate::shell::corner::diameter(cap);
+    let dom = other.domain();
+    let mut todo = vec![([0.0, 1.0], [0.0, 1.0], 0usize)];
+    let mut out = Vec::new();
+    while let Some((s, r, level)) = todo.pop() {
+        let piece = Piece::over(other, s, r).ok_or("a quadtree box of the other piece")?;
+        if boxes_disjoint(&piece.bounds(), cap) {
+            continue;
+        }
+        let touches = s[0] == 0.0 || s[1] == 1.0 || r[0] == 0.0 || r[1] == 1.0;
+        let small = crate::shell::corner::diameter(&piece.bounds()) <= 4.0 * size;
+        if (small && !touches) || level >= MAX_LEVEL {
+            if touches {
+                return Err("the other surface's piece ends within the pole's cap");
+            }
+            let declared = piece.declared(&dom, 0.0);
+            let [_, su, sv] = other.first_derivs(declared[0], declared[1]);
+            out.push(Leaf {
+                normal: cross(&su, &sv),
+                piece,
+                declared,
+            });
+            if out.len() > MAX_LEAVES {
+                return Err("the other surface meets the pole's cap in too many places");
+            }
+            continue;
+        }
+        let (sm, rm) = (0.5 * (s[0] + s[1]), 0.5 * (r[0] + r[1]));
+        for (ss, rr) in [
+            ([s[0], sm], [r[0], rm]),
+            ([sm, s[1]], [r[0], rm]),
+            ([s[0], sm], [rm, r[1]]),
+            ([sm, s[1]], [rm, r[1]]),
+        ] {
+            todo.push((ss, rr, level + 1));
+        }
+    }
+    if out.is_empty() {
+        return Err("the other surface does not come near the pole");
+    }
+    Ok(out)
+}
+
+/// The unit vector along `x` (`None` if it is zero or not finite).
+fn unit(x: [f64; 3]) -> Option<[f64; 3]> {
+    let n = x.iter().map(|c| c * c).sum::<f64>().sqrt();
+    (n > 0.0 && n.is_finite()).then(|| x.map(|c| c / n))
+}
+
+/// A piece of the cap's rim: on the strip `strip`, parameter `fixed` (0..4) held at `value`,
+/// `free` over `range`.
+struct Rim {
+    strip: usize,
+    fixed: usize,
+    value: f64,
+    free: usize,
+    range: [f64; 2],
+}
+
+/// The rim of the cap of strips `strips` at width `w`: each strip's inner side, and each strip
+/// end that is not glued (by `links`) to another strip's end at the same end of the edge.
+fn rim(strips: &[Strip<'_>], surface: usize, face: usize, w: f64, links: &[EdgeLink]) -> Vec<Rim> {
+    // Glued: the edge's other side is an end of another strip whose pole is at the same end
+    // of the edge (the same collapsed side, or the opposite one across a reversed edge).
+    let glued = |l: &EdgeLink, mine: usize| {
+        l.to.face == face
+            && strips.iter().any(|st| {
+                st.piece == l.to.piece
+                    && st.side / 2 != l.to.side / 2
+                    && st.side == if l.reversed { mine ^ 1 } else { mine }
+            })
+    };
+    let mut out = Vec::new();
+    for (k, st) in strips.iter().enumerate() {
+        let d = st.patch.domain();
+        let (across, along) = (st.across(), 1 - st.across());
+        let along_range = if along == 0 { d.u } else { d.v };
+        out.push(Rim {
+            strip: k,
+            fixed: 2 * surface + across,
+            value: st.inner(w),
+            free: 2 * surface + along,
+            range: along_range,
+        });
+        let side_value = side_coordinate(&d, st.side).1;
+        let inner = st.inner(w);
+        for end in [2 * along, 2 * along + 1] {
+            let here = PieceSide {
+                face,
+                piece: st.piece,
+                side: end,
+            };
+            if !links.iter().any(|l| l.from == here && glued(l, st.side)) {
+                out.push(Rim {
+                    strip: k,
+                    fixed: 2 * surface + along,
+                    value: side_coordinate(&d, end).1,
+                    free: 2 * surface + across,
+                    range: [side_value.min(inner), side_value.max(inner)],
+                });
+            }
+        }
+    }
+    out
+}
+
+/// The crossings of the curve with the rim piece `r` over the leaves' hull `v` (other
+/// surface's coordinates): `Ok(Some(enclosure))` for exactly one, strictly inside the piece's
+/// range, `Ok(None)` for none.
+fn crossing(
+    pieces: [&RationalBezierPatch; 2],
+    r: &Rim,
+    other: usize,
+    v: [Interval; 2],
+) -> Result<Option<ParamBox>, &'static str> {
+    let mut region = [Interval::ENTIRE; 4];
+    region[r.fixed] = point(r.value);
+    region[r.free] = Interval::try_from((r.range[0], r.range[1])).map_err(|_| "a rim range")?;
+    region[2 * other] = v[0];
+    region[2 * other + 1] = v[1];
+    match zeros(pieces, region, r.fixed)?.as_slice() {
+        [] => Ok(None),
+        [e] => {
+            let f = e[r.free];
+            if f.inf() > r.range[0] && f.sup() < r.range[1] {
+                Ok(Some(*e))
+            } else {
+                Err("the curve crosses the cap's rim at a corner")
+            }
+        }
+        _ => Err("the curve crosses a piece of the cap's rim more than once"),
+    }
+}
+
+/// Where boxes are cut, as a fraction of their width: off the middle, so that a zero at a
+/// symmetric parameter (the middle of a knot span) is not on the cut.
+const CUT: f64 = 0.4638671875;
+
+/// The distinct zeros of `P − Q` in `region` (coordinate `fixed` a point there), each
+/// enclosed: the region is cut into boxes proven empty (disjoint images, or a Krawczyk image
+/// disjoint from the box) or proven to hold exactly one zero, and two such boxes hold the same
+/// zero when one's enclosure lies in the other or the Krawczyk test proves one zero in their
+/// hull (a zero on the cut between them).
+fn zeros(
+    pieces: [&RationalBezierPatch; 2],
+    region: ParamBox,
+    fixed: usize,
+) -> Result<Vec<ParamBox>, &'static str> {
+    let mut todo = vec![region];
+    let mut found: Vec<(ParamBox, ParamBox)> = Vec::new();
+    let mut looked = 0;
+    while let Some(y) = todo.pop() {
+        looked += 1;
+        if looked > MAX_BOXES {
+            return Err("the crossings of the cap's rim could not be settled (too many boxes)");
+        }
+        let (xp, xq) = (pieces[0].enclose(y[0], y[1]), pieces[1].enclose(y[2], y[3]));
+        if xp.iter().chain(&xq).any(|x| !x.is_common_interval()) {
+            return Err("an image on the cap's rim is unbounded");
+        }
+        if boxes_disjoint(&xp, &xq) {
+            continue;
+        }
+        match krawczyk(pieces[0], pieces[1], y, fixed, 30) {
+            KrawczykResult::Proven { enclosure, .. } => found.push((y, enclosure)),
+            KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
+            KrawczykResult::NotProven(_) => {
+                let k = widest(pieces, &y, fixed);
+                let (lo, hi) = (y[k].inf(), y[k].sup());
+                let m = lo + CUT * (hi - lo);
+                if !(lo < m && m < hi) {
+                    return Err("the crossings of the cap's rim could not be settled");
+                }
+                let (mut a, mut b) = (y, y);
+                a[k] = Interval::try_from((lo, m)).map_err(|_| "a cut is not finite")?;
+                b[k] = Interval::try_from((m, hi)).map_err(|_| "a cut is not finite")?;
+                todo.push(a);
+                todo.push(b);
+            }
+        }
+    }
+    let inside = |e: &ParamBox, y: &ParamBox| e.iter().zip(y).all(|(a, b)| a.subset(*b));
+    let mut distinct: Vec<(ParamBox, ParamBox)> = Vec::new();
+    'next: for (y, e) in found {
+        for (dy, de) in distinct.iter_mut() {
+            if inside(&e, dy) || inside(de, &y) {
+                continue 'next;
+            }
+            if e.iter().zip(de.iter()).all(|(a, b)| !a.disjoint(*b)) {
+                let hull: ParamBox = std::array::from_fn(|i| y[i].convex_hull(dy[i]));
+                match krawczyk(pieces[0], pieces[1], hull, fixed, 30) {
+                    KrawczykResult::Proven { enclosure, .. } => {
+                        (*dy, *de) = (hull, enclosure);
+                        continue 'next;
+                    }
+                    _ => return Err("two crossings of the cap's rim could not be told apart"),
+                }
+            }
+        }
+        distinct.push((y, e));
+    }
+    Ok(distinct.into_iter().map(|(_, e)| e).collect())
+}
+
+/// The certified end of `c` at the marched end point of `site`, when it is unproven at a pole:
+/// its box, and whether it is the chain's first end.
+fn pole_end(site: &EndSite<'_>, c: &CertifiedBranch) -> Option<([Interval; 4], bool)> {
+    let target = [
+        site.point.p[0],
+        site.point.p[1],
+        site.point.q[0],
+        site.point.q[1],
+    ];
+    let distance = |y: &[Interval; 4]| {
+        (0..4)
+            .map(|i| {
+                (y[i].inf() - target[i])
+                    .max(target[i] - y[i].sup())
+                    .max(0.0)
+            })
+            .fold(0.0, f64::max)
+    };
+    let ends: Vec<(usize, [Interval; 4])> = c
+        .ends
+        .iter()
+        .enumerate()
+        .filter_map(|(k, e)| match e {
+            CertifiedEnd::Unproven { reason, near } if reason.contains("pole") => Some((k, *near)),
+            _ => None,
+        })
+        .collect();
+    let (k, near) = ends
+        .into_iter()
+        .min_by(|a, b| distance(&a.1).total_cmp(&distance(&b.1)))?;
+    Some((near, k == 0))
+}
+
+/// Checks step 3 of the module documentation for one branch: its chain ends inside its strip
+/// (at `near`) and crosses the strip's inner side within the piece's side range. Returns the
+/// model box of its end.
+fn chain_crosses(
+    site: &EndSite<'_>,
+    st: &Strip<'_>,
+    w: f64,
+    surface: usize,
+    pair: [&RationalBezierPatch; 2],
+) -> Result<[Interval; 3], &'static str> {
+    let c = site
+        .certificate
+        .ok_or("a branch at the pole is not certified")?;
+    let (near, first) = pole_end(site, c).ok_or("a branch does not end unproven at the pole")?;
+    let at = st.inner(w);
+    let (across, along) = (2 * surface + st.across(), 2 * surface + 1 - st.across());
+    if !st.holds(near[across], at, true) {
+        return Err("a branch's chain ends outside the pole's cap");
+    }
+    let d = st.patch.domain();
+    let along_range = if st.across() == 0 { d.v } else { d.u };
+    let walk: Box<dyn Iterator<Item = _>> = if first {
+        Box::new(c.boxes.iter())
+    } else {
+        Box::new(c.boxes.iter().rev())
+    };
+    let mut outside = false;
+    for bx in walk {
+        let y = bx.params();
+        if st.holds(y[across], at, false) {
+            outside = true;
+            break;
+        }
+        if !(y[along].inf() >= along_range[0] && y[along].sup() <= along_range[1]) {
+            return Err("a branch's chain leaves its piece within the pole's cap");
+        }
+    }
+    if !outside {
+        return Err("a branch's chain lies wholly within the pole's cap");
+    }
+    let xp = pair[0].enclose(near[0], near[1]);
+    let xq = pair[1].enclose(near[2], near[3]);
+    Ok(std::array::from_fn(|i| {
+        let both = xp[i].intersection(xq[i]);
+        if both.is_empty() {
+            xp[i]
+        } else {
+            both
+        }
+    }))
+}
+
+/// Proves the join of `s1` and `s2` (two ends on sides of one face collapsed to the same pole,
+/// against the same piece of the other surface) through the pole; see the module
+/// documentation. `links` are the shared edges of the pole's shell.
+pub(super) fn prove(
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+    s1: &EndSite<'_>,
+    s2: &EndSite<'_>,
+    links: &[EdgeLink],
+) -> Result<PoleProof, &'static str> {
+    let surface = s1.surface;
+    let pair = patches(a, b, &pairs[s1.pair]);
+    let x = pair[surface].collapsed_sides()[s1.side.side].ok_or("no pole on the side")?;
+    let face = &[a, b][surface][s1.side.face];
+    let strips: Vec<Strip<'_>> = face
+        .pieces()
+        .iter()
+        .enumerate()
+        .flat_map(|(k, p)| {
+            (0..4)
+                .filter(move |&sd| p.collapsed_sides()[sd] == Some(x))
+                .map(move |side| Strip {
+                    piece: k,
+                    patch: p,
+                    side,
+                })
+        })
+        .collect();
+    let index = |s: &EndSite<'_>| {
+        strips
+            .iter()
+            .position(|st| st.piece == s.side.piece && st.side == s.side.side)
+    };
+    let (Some(k1), Some(k2)) = (index(s1), index(s2)) else {
+        return Err("an end is not on a side at the pole");
+    };
+    if k1 == k2 {
+        return Err("both branches are in one piece at the pole");
+    }
+    let mut last = "no cap round the pole";
+    for w in WIDTHS {
+        match prove_at(a, b, pairs, [s1, s2], [k1, k2], &strips, x, w, links) {
+            Ok(xyz) => {
+                let other_pair = &pairs[s1.pair];
+                return Ok(PoleProof {
+                    xyz,
+                    surface,
+                    face: s1.side.face,
+                    strips: strips.iter().map(|s| (s.piece, s.side)).collect(),
+                    other: [
+                        other_pair.faces[1 - surface],
+                        other_pair.pieces[1 - surface],
+                    ],
+                    width: w,
+                });
+            }
+            Err(e) => last = e,
+        }
+    }
+    Err(last)
+}
+
+/// [`prove`] with strips of normalised width `w`: the model box of the arc between the ends.
+#[allow(clippy::too_many_arguments)]
+fn prove_at(
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+    sites: [&EndSite<'_>; 2],
+    at: [usize; 2],
+    strips: &[Strip<'_>],
+    x: [f64; 3],
+    w: f64,
+    links: &[EdgeLink],
+) -> Result<[Interval; 3], &'static str> {
+    let surface = sites[0].surface;
+    let other_surface = 1 - surface;
+    let other = patches(a, b, &pairs[sites[0].pair])[other_surface];
+    // The strips' pieces and the cap's bounding box.
+    let mut cap: Option<[Interval; 3]> = None;
+    let mut pieces = Vec::new();
+    for st in strips {
+        let ps = st
+            .pieces(w, x)
+            .ok_or("a strip's normal cannot be enclosed")?;
+        for (p, _) in &ps {
+            let bd = p.bounds();
+            cap = Some(cap.map_or(bd, |c| std::array::from_fn(|i| c[i].convex_hull(bd[i]))));
+        }
+        pieces.push(ps);
+    }
+    let cap = cap.ok_or("no strips")?;
+    let leaves = leaves(other, &cap)?;
+    // 1. A direction along which the curve is monotone in the cap.
+    let n0 = unit(pieces[at[0]][0].1.map(|c| c.mid())).ok_or("no normal at the pole")?;
+    let m0 = unit(leaves[0].normal.map(|c| c.mid())).ok_or("no normal of the other surface")?;
+    let d = unit(cross(&n0, &m0)).ok_or("the surfaces touch at the pole")?;
+    let dp = d.map(point);
+    for (piece, n) in pieces.iter().flatten() {
+        for leaf in &leaves {
+            if boxes_disjoint(&piece.bounds(), &leaf.piece.bounds()) {
+                continue;
+            }
+            if dot(&cross(n, &leaf.normal), &dp).contains(0.0) {
+                return Err("the curve is not monotone in the pole's cap");
+            }
+        }
+    }
+    // 2. Exactly two crossings of the rim, on the branches' strips' inner sides.
+    let hull = leaves.iter().fold(leaves[0].declared, |h, l| {
+        [
+            h[0].convex_hull(l.declared[0]),
+            h[1].convex_hull(l.declared[1]),
+        ]
+    });
+    let mut found = Vec::new();
+    for r in rim(strips, surface, sites[0].side.face, w, links) {
+        let st = &strips[r.strip];
+        let mut pair = [st.patch, other];
+        if surface == 1 {
+            pair.swap(0, 1);
+        }
+        if crossing(pair, &r, other_surface, hull)?.is_some() {
+            found.push((r.strip, r.fixed == 2 * surface + st.across()));
+        }
+    }
+    let inner_of = |k: usize| found.contains(&(k, true));
+    if found.len() != 2 || !inner_of(at[0]) || !inner_of(at[1]) {
+        return Err("the curve does not cross the pole's cap exactly where the branches enter");
+    }
+    // 3. Each branch crosses its strip's inner side.
+    let mut ends = Vec::with_capacity(2);
+    for (site, &k) in sites.iter().zip(&at) {
+        ends.push(chain_crosses(
+            site,
+            &strips[k],
+            w,
+            surface,
+            patches(a, b, &pairs[site.pair]),
+        )?);
+    }
+    // 4. The slabs and the range along d.
+    let along_n = hull_all(pieces.iter().flatten().map(|(p, _)| p.range_along(&n0)))
+        .ok_or("a strip's weights are not positive")?;
+    let along_m = hull_all(leaves.iter().map(|l| l.piece.range_along(&m0)))
+        .ok_or("a leaf's weights are not positive")?;
+    let along_d = ends
+        .iter()
+        .fold(Interval::EMPTY, |h, e| h.convex_hull(dot(e, &dp)));
+    let xyz = solve_frame([n0, m0, d], [along_n, along_m, along_d]);
+    Ok(std::array::from_fn(|i| {
+        let both = xyz[i].intersection(cap[i]);
+        if both.is_empty() {
+            xyz[i]
+        } else {
+            both
+        }
+    }))
+}
+
+/// The hull of the intervals, `None` if one is missing.
+fn hull_all(xs: impl Iterator<Item = Option<Interval>>) -> Option<Interval> {
+    let mut xs = xs;
+    xs.try_fold(Interval::EMPTY, |h, x| Some(h.convex_hull(x?)))
+}
+
+/// Every `x` with `⟨x, rows[i]⟩ ∈ values[i]` (three independent rows), enclosed: by Cramer's
+/// rule in interval arithmetic.
+fn solve_frame(rows: [[f64; 3]; 3], values: [Interval; 3]) -> [Interval; 3] {
+    let r = rows.map(|row| row.map(point));
+    let det = dot(&r[0], &cross(&r[1], &r[2]));
+    let cols = [
+        cross(&r[1], &r[2]),
+        cross(&r[2], &r[0]),
+        cross(&r[0], &r[1]),
+    ];
+    std::array::from_fn(|i| (0..3).fold(point(0.0), |acc, k| acc + values[k] * cols[k][i]) / det)
+}
+
+/// The branches of the pairs of the proof's strips' pieces (against its other piece) whose
+/// marched points all lie strictly inside a strip, except `keep`: slivers of the arc the join
+/// proves. Shell-wide branch numbers.
+pub(super) fn absorbed(
+    proof: &PoleProof,
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+    by_pair: &HashMap<([usize; 2], [usize; 2]), usize>,
+    first_branch: &[usize],
+    keep: [usize; 2],
+) -> Vec<usize> {
+    let s = proof.surface;
+    let mut out = Vec::new();
+    for &(piece, side) in &proof.strips {
+        let (mut faces, mut pcs) = ([0; 2], [0; 2]);
+        faces[s] = proof.face;
+        pcs[s] = piece;
+        faces[1 - s] = proof.other[0];
+        pcs[1 - s] = proof.other[1];
+        let Some(&k) = by_pair.get(&(faces, pcs)) else {
+            continue;
+        };
+        let patch = patches(a, b, &pairs[k])[s];
+        let st = Strip { piece, patch, side };
+        let at = st.inner(proof.width);
+        for (i, br) in pairs[k].result.branches.iter().enumerate() {
+            let g = first_branch[k] + i;
+            let pts = &br.marched.points;
+            let inside = pts.iter().all(|c| {
+                let y = if s == 0 { c.p } else { c.q };
+                st.holds(point(y[st.across()]), at, true)
+            });
+            if !keep.contains(&g) && !pts.is_empty() && inside {
+                out.push(g);
+            }
+        }
+    }
+    out
+}
