@@ -407,6 +407,13 @@ fn shell_summary(
             r.edge_copies
         );
     }
+    if r.pole_settled > 0 {
+        let _ = writeln!(
+            out,
+            "  {} undecided search region(s) at a pole settled by the proven join through it",
+            r.pole_settled
+        );
+    }
     // Branches a proven corner join covers (shell-wide numbers, as the joins number them).
     let absorbed: std::collections::HashSet<usize> = r
         .curves

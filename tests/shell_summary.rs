@@ -38,11 +38,7 @@ fn the_summary_names_each_joined_curve_and_the_slivers_its_corners_cover() {
             && curves[0].ends_with("joins: 4 of 4 proven (2 across corners)"),
         "{out}"
     );
-    assert_eq!(
-        out.matches("covered by a proven join").count(),
-        4,
-        "{out}"
-    );
+    assert_eq!(out.matches("covered by a proven join").count(), 4, "{out}");
     assert!(!out.contains("FAILED"), "{out}");
     let _ = std::fs::remove_dir_all(&dir);
 }

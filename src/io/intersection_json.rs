@@ -209,6 +209,7 @@ fn renumber(v: &mut Value, key: &str, ids: &HashMap<usize, usize>) {
 /// carries `"pair": [i, j]` (the faces of A and B) and `"pieces"` (the Bézier pieces of those
 /// faces). The stats hold `"piece_pairs"`, `"skipped_pairs"` (proven disjoint by their
 /// bounding boxes), `"edge_copies"` (branches dropped as copies along a shared edge),
+/// `"pole_settled"` (undecided search regions covered by a proven join through a pole),
 /// `"branches"`, `"search_complete"` (every traced pair settled) and
 /// `"pairs"`, the [`stats_json`] of each traced pair with its `"pair"` and `"pieces"`, and
 /// `"joined_curves"` (their count) and `"join_seconds"`. The document gets the top-level member
@@ -281,6 +282,7 @@ pub fn shell_result(
     stats.insert("piece_pairs".into(), json!(s.piece_pairs));
     stats.insert("skipped_pairs".into(), json!(s.skipped_pairs));
     stats.insert("edge_copies".into(), json!(s.edge_copies));
+    stats.insert("pole_settled".into(), json!(s.pole_settled));
     stats.insert("branches".into(), json!(all.branches.len()));
     stats.insert("search_complete".into(), json!(s.is_complete()));
     stats.insert("pairs".into(), Value::Array(pair_stats));

@@ -128,6 +128,17 @@ fn branch_index(pairs: &[PieceIntersection]) -> Vec<(usize, usize)> {
 /// Join the branches of all piece pairs (see the module documentation). `a` and `b` are the
 /// two shells the pairs were traced on.
 pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec<JoinedCurve> {
+    join_and_settle(a, b, pairs).0
+}
+
+/// [`join_branches`], and the undecided search regions that its proven joins through poles
+/// settle (`(pair, index of the region in the pair's list)`: every curve point there lies on
+/// a proven arc through a pole, see [`pole_cap::settled`]).
+pub(super) fn join_and_settle(
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+) -> (Vec<JoinedCurve>, Vec<(usize, usize)>) {
     let index = branch_index(pairs);
     let links = [shared_edges(a), shared_edges(b)];
     let mut sites = Vec::new();
@@ -225,6 +236,7 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
     let mut used: std::collections::HashSet<BranchEnd> = std::collections::HashSet::new();
     let mut absorbed = vec![false; index.len()];
     let mut joins: HashMap<BranchEnd, JoinValue> = HashMap::new();
+    let mut settled = Vec::new();
     for (gap, x, y, status, kind, region) in candidates {
         let (e1, e2) = (sites[x].at, sites[y].at);
         if used.contains(&e1) || used.contains(&e2) || absorbed[e1.branch] || absorbed[e2.branch] {
@@ -248,6 +260,7 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
             Region::Pole(n) => {
                 let keep = [e1.branch, e2.branch];
                 let pr = &poles[n];
+                settled.extend(pole_cap::settled(pr, a, b, pairs, &by_pair));
                 Some(CornerJoin {
                     second_edge: EdgeKind::Pole,
                     xyz: pr.xyz,
@@ -269,7 +282,8 @@ pub fn join_branches(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> Vec
         let (k, i) = index[g];
         pairs[k].result.branches[i].marched.status == BranchStatus::Closed
     };
-    chain(index.len(), &joins, &tolerance, &closed_branch, &absorbed)
+    let curves = chain(index.len(), &joins, &tolerance, &closed_branch, &absorbed);
+    (curves, settled)
 }
 
 /// A join candidate: the gap, the two sites, the status, the edge and its proof's region.

@@ -116,6 +116,9 @@ pub struct ShellIntersection {
     /// (a knot line, a seam, a face edge) is traced by both pieces' pairs, and one copy is kept
     /// (see `shell/edge_copies.rs`).
     pub edge_copies: usize,
+    /// Undecided search regions removed from their pairs because a proven join through a pole
+    /// covers them (every curve point there lies on its arc; `shell/pole_cap.rs`).
+    pub pole_settled: usize,
     /// The branches of all pairs joined into connected curves ([`join::join_branches`]); every
     /// branch is a part of exactly one curve. Branches are numbered shell-wide, pair after
     /// pair ([`ShellIntersection::branch`]).
@@ -193,16 +196,34 @@ pub fn intersect_shells(a: &[Face], b: &[Face], opts: &Options) -> Result<ShellI
     let started = Instant::now();
     let mut pairs = pairs;
     let edge_copies = edge_copies::drop_edge_copies(a, b, &mut pairs);
-    let curves = join::join_branches(a, b, &pairs);
+    let (curves, settled) = join::join_and_settle(a, b, &pairs);
+    let pole_settled = settled.len();
+    settle(&mut pairs, settled);
     Ok(ShellIntersection {
         options: *opts,
         pairs,
         piece_pairs,
         skipped_pairs,
         edge_copies,
+        pole_settled,
         curves,
         join_seconds: started.elapsed().as_secs_f64(),
     })
+}
+
+/// Removes the undecided search regions `settled` (`(pair, index)`) from their pairs, which
+/// are then complete if nothing else is left undecided.
+fn settle(pairs: &mut [PieceIntersection], mut settled: Vec<(usize, usize)>) {
+    settled.sort_unstable();
+    settled.dedup();
+    for &(k, i) in settled.iter().rev() {
+        let search = &mut pairs[k].result.stats.search;
+        if i < search.undecided_regions.len() {
+            search.undecided_regions.remove(i);
+            search.search_complete =
+                !search.search_truncated && search.undecided_regions.is_empty();
+        }
+    }
 }
 
 /// The options of a piece pair that starts at `now`: `opts` with the time left before the

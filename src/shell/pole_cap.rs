@@ -61,6 +61,10 @@ use crate::pair::krawczyk::{krawczyk, KrawczykResult, ParamBox};
 const WIDTHS: [f64; 3] = [1.0 / 65536.0, 1.0 / 4096.0, 1.0 / 256.0];
 /// Pieces of a strip along its side, for the normals and the slab bounds.
 const ALONG: usize = 16;
+/// Widest piece of a strip across its side (normalised).
+const ACROSS: f64 = 1.0 / 32.0;
+/// Widest strip tried to settle the search's undecided regions round a pole (normalised).
+const SETTLE_MOST: f64 = 0.5;
 /// Deepest level of the other surface's quadtree.
 const MAX_LEVEL: usize = 48;
 /// Most leaves kept.
@@ -78,7 +82,8 @@ pub(super) struct PoleProof {
     strips: Vec<(usize, usize)>,
     /// The other surface's face and piece.
     other: [usize; 2],
-    /// The strips' normalised width.
+    /// The strips' normalised width (the widest proven: the box may come from a narrower
+    /// cap, which lies in this one).
     width: f64,
 }
 
@@ -118,27 +123,46 @@ impl Strip<'_> {
         }
     }
 
-    /// The strip's pieces along the side, `2w` wide (covering the strip of width `w` whatever
-    /// the rounding of its inner value), with their pole-scaled normals.
+    /// The strip's pieces, covering it to a little past its inner side (`w·(1 + 2⁻¹⁰)`, so
+    /// whatever the rounding of the inner value), with enclosures of positive multiples of the
+    /// normal: [`ALONG`] pieces along the side, and across it one piece touching the side (the
+    /// pole-scaled normal, `geometry::pole`) and pieces at most [`ACROSS`] wide beyond (the
+    /// normal itself, away from the pole).
     fn pieces(&self, w: f64, x: [f64; 3]) -> Option<Vec<(Piece, [Interval; 3])>> {
-        let across = if self.side.is_multiple_of(2) {
-            [0.0, 2.0 * w]
-        } else {
-            [1.0 - 2.0 * w, 1.0]
-        };
-        (0..ALONG)
-            .map(|k| {
-                let along = [k as f64 / ALONG as f64, (k + 1) as f64 / ALONG as f64];
+        let cover = (w + w / 1024.0).min(1.0);
+        let touch = cover.min(ACROSS);
+        let beyond = ((cover - touch) / ACROSS).ceil() as usize;
+        let mut cuts = vec![0.0, touch];
+        cuts.extend((1..=beyond).map(|k| touch + (cover - touch) * k as f64 / beyond as f64));
+        let dom = self.patch.domain();
+        let mut out = Vec::with_capacity(ALONG * cuts.len());
+        for k in 0..ALONG {
+            let along = [k as f64 / ALONG as f64, (k + 1) as f64 / ALONG as f64];
+            for (c, span) in cuts.windows(2).enumerate() {
+                let across = if self.side.is_multiple_of(2) {
+                    [span[0], span[1]]
+                } else {
+                    [1.0 - span[1], 1.0 - span[0]]
+                };
                 let (s, r) = if self.across() == 0 {
                     (across, along)
                 } else {
                     (along, across)
                 };
                 let piece = Piece::over(self.patch, s, r)?;
-                let n = collapsed_normal(&piece, self.side, x)?;
-                Some((piece, n))
-            })
-            .collect()
+                let n = if c == 0 {
+                    collapsed_normal(&piece, self.side, x)?
+                } else {
+                    let origin = piece.bounds().map(|c| c.mid());
+                    let [Some(su), Some(sv)] = piece.partials(&dom, None, &origin, 0.0)? else {
+                        return None;
+                    };
+                    cross(&su, &sv)
+                };
+                out.push((piece, n));
+            }
+        }
+        Some(out)
     }
 }
 
@@ -167,7 +191,13 @@ fn leaves(other: &RationalBezierPatch, cap: &[Interval; 3]) -> Result<Vec<Leaf>,
                 return Err("the other surface's piece ends within the pole's cap");
             }
             let declared = piece.declared(&dom, 0.0);
-            let [_, su, sv] = other.first_derivs(declared[0], declared[1]);
+            let origin = piece.bounds().map(|c| c.mid());
+            let [Some(su), Some(sv)] = piece
+                .partials(&dom, None, &origin, 0.0)
+                .ok_or("the other piece's weights are not positive")?
+            else {
+                return Err("the other piece is degenerate");
+            };
             out.push(Leaf {
                 normal: cross(&su, &sv),
                 piece,
@@ -485,7 +515,7 @@ pub(super) fn prove(
         match prove_at(a, b, pairs, [s1, s2], [k1, k2], &strips, x, w, links) {
             Ok(xyz) => {
                 let other_pair = &pairs[s1.pair];
-                return Ok(PoleProof {
+                let mut proof = PoleProof {
                     xyz,
                     surface,
                     face: s1.side.face,
@@ -495,7 +525,18 @@ pub(super) fn prove(
                         other_pair.pieces[1 - surface],
                     ],
                     width: w,
-                });
+                };
+                // A wider cap, when the search left regions round the pole that this one
+                // does not hold: the proof at that width covers them (its box is not kept).
+                let wanted = undecided_reach(&proof, &strips, pairs);
+                let wider = (wanted * 1.125).min(SETTLE_MOST);
+                if wanted >= w
+                    && wider > wanted
+                    && prove_at(a, b, pairs, [s1, s2], [k1, k2], &strips, x, wider, links).is_ok()
+                {
+                    proof.width = wider;
+                }
+                return Ok(proof);
             }
             Err(e) => last = e,
         }
@@ -620,6 +661,86 @@ fn solve_frame(rows: [[f64; 3]; 3], values: [Interval; 3]) -> [Interval; 3] {
     std::array::from_fn(|i| (0..3).fold(point(0.0), |acc, k| acc + values[k] * cols[k][i]) / det)
 }
 
+/// The pairs of the proof's strips' pieces against its other piece, each with the strip.
+fn strip_pairs<'a>(
+    proof: &PoleProof,
+    a: &'a [Face],
+    b: &'a [Face],
+    by_pair: &HashMap<([usize; 2], [usize; 2]), usize>,
+) -> Vec<(usize, Strip<'a>)> {
+    let s = proof.surface;
+    let mut out = Vec::new();
+    for &(piece, side) in &proof.strips {
+        let (mut faces, mut pcs) = ([0; 2], [0; 2]);
+        faces[s] = proof.face;
+        pcs[s] = piece;
+        faces[1 - s] = proof.other[0];
+        pcs[1 - s] = proof.other[1];
+        if let Some(&k) = by_pair.get(&(faces, pcs)) {
+            let patch = &[a, b][s][proof.face].pieces()[piece];
+            out.push((k, Strip { piece, patch, side }));
+        }
+    }
+    out
+}
+
+/// The largest normalised distance from the pole's side reached by an undecided search region
+/// of the pairs of the proof's strips' pieces against its other piece.
+fn undecided_reach(proof: &PoleProof, strips: &[Strip<'_>], pairs: &[PieceIntersection]) -> f64 {
+    let s = proof.surface;
+    let mut most = 0.0f64;
+    for pi in pairs {
+        let theirs =
+            pi.faces[s] == proof.face && [pi.faces[1 - s], pi.pieces[1 - s]] == proof.other;
+        let Some(st) = strips.iter().find(|st| theirs && st.piece == pi.pieces[s]) else {
+            continue;
+        };
+        let d = st.patch.domain();
+        let r = if st.across() == 0 { d.u } else { d.v };
+        for reg in pi.result.undecided_regions() {
+            let x = (if s == 0 { reg.p } else { reg.q })[st.across()];
+            let reach = if st.side.is_multiple_of(2) {
+                (x[1] - r[0]) / (r[1] - r[0])
+            } else {
+                (r[1] - x[0]) / (r[1] - r[0])
+            };
+            most = most.max(reach);
+        }
+    }
+    most
+}
+
+/// The undecided search regions (`(pair, index in its list)`) of the pairs of the proof's
+/// strips' pieces against its other piece whose box on the pole's surface lies strictly
+/// inside the strip (across the side: between the side and the inner value). Every curve
+/// point with parameters there lies in the cap, where the proof shows the curve to be the
+/// one arc the join covers: the region hides nothing. (The boundary search cannot settle a
+/// collapsed side whose pole lies on the other surface: the side maps to a curve point.)
+pub(super) fn settled(
+    proof: &PoleProof,
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+    by_pair: &HashMap<([usize; 2], [usize; 2]), usize>,
+) -> Vec<(usize, usize)> {
+    let s = proof.surface;
+    let mut out = Vec::new();
+    for (k, st) in strip_pairs(proof, a, b, by_pair) {
+        let at = st.inner(proof.width);
+        for (i, r) in pairs[k].result.undecided_regions().iter().enumerate() {
+            let bx = if s == 0 { r.p } else { r.q };
+            let x = bx[st.across()];
+            let Ok(x) = Interval::try_from((x[0], x[1])) else {
+                continue;
+            };
+            if st.holds(x, at, true) {
+                out.push((k, i));
+            }
+        }
+    }
+    out
+}
+
 /// The branches of the pairs of the proof's strips' pieces (against its other piece) whose
 /// marched points all lie strictly inside a strip, except `keep`: slivers of the arc the join
 /// proves. Shell-wide branch numbers.
@@ -634,17 +755,7 @@ pub(super) fn absorbed(
 ) -> Vec<usize> {
     let s = proof.surface;
     let mut out = Vec::new();
-    for &(piece, side) in &proof.strips {
-        let (mut faces, mut pcs) = ([0; 2], [0; 2]);
-        faces[s] = proof.face;
-        pcs[s] = piece;
-        faces[1 - s] = proof.other[0];
-        pcs[1 - s] = proof.other[1];
-        let Some(&k) = by_pair.get(&(faces, pcs)) else {
-            continue;
-        };
-        let patch = patches(a, b, &pairs[k])[s];
-        let st = Strip { piece, patch, side };
+    for (k, st) in strip_pairs(proof, a, b, by_pair) {
         let at = st.inner(proof.width);
         for (i, br) in pairs[k].result.branches.iter().enumerate() {
             let g = first_branch[k] + i;

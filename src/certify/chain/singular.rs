@@ -95,8 +95,8 @@ impl Walker<'_> {
         let (pole, _) = self.nearest_pole(surface, x).filter(|&(_, d)| d <= 1e-11)?;
         Some(format!(
             "the curve runs into the pole ({:.6}, {:.6}, {:.6}) of {}, where a side of the patch \
-             collapses to one point and its parameters degenerate: no link reaches it, and a \
-             curve through a pole is not certified",
+             collapses to one point and its parameters degenerate: no link reaches it (in a \
+             shell, a join through the pole can be proven on a cap round it)",
             pole.x + 0.0,
             pole.y + 0.0,
             pole.z + 0.0,
