@@ -45,8 +45,10 @@ use std::collections::HashMap;
 
 use inari::Interval;
 
+use super::chart::{chart_map, ChartMap};
+use super::corner::stitched;
 use super::edges::{side_coordinate, EdgeLink, PieceSide};
-use super::sites::{patches, widest, EndSite};
+use super::sites::{patches, EndSite};
 use super::{Face, PieceIntersection};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::geometry::bezier::RationalBezierPatch;
@@ -55,7 +57,7 @@ use crate::geometry::piece::Piece;
 use crate::geometry::pole::collapsed_normal;
 use crate::numeric::scalar::point;
 use crate::numeric::vec3::{cross, dot};
-use crate::pair::krawczyk::{krawczyk, KrawczykResult, ParamBox};
+use crate::pair::krawczyk::{krawczyk, BoxSurface, KrawczykResult, ParamBox};
 
 /// Strip widths tried, smallest first (normalised, exact powers of two).
 const WIDTHS: [f64; 3] = [1.0 / 65536.0, 1.0 / 4096.0, 1.0 / 256.0];
@@ -238,60 +240,132 @@ struct Rim {
     value: f64,
     free: usize,
     range: [f64; 2],
+    /// For a piece round the corner where this strip's inner side meets the next strip's
+    /// across a glued edge: that strip and the chart map onto its piece (the rim piece is in
+    /// this strip's parameters, continued across the edge).
+    across: Option<(usize, ChartMap)>,
+    /// The strips whose inner side the piece is part of.
+    inner_of: Vec<usize>,
 }
 
-/// The rim of the cap of strips `strips` at width `w`: each strip's inner side, and each strip
-/// end that is not glued (by `links`) to another strip's end at the same end of the edge.
-fn rim(strips: &[Strip<'_>], surface: usize, face: usize, w: f64, links: &[EdgeLink]) -> Vec<Rim> {
-    // Glued: the edge's other side is an end of another strip whose pole is at the same end
-    // of the edge (the same collapsed side, or the opposite one across a reversed edge).
-    let glued = |l: &EdgeLink, mine: usize| {
-        l.to.face == face
-            && strips.iter().any(|st| {
-                st.piece == l.to.piece
+/// The share of an inner side's range, at each glued end, given to the rim piece round that
+/// corner (a crossing on the glued edge itself, the curve running along a knot line or seam,
+/// lies inside that piece, not at the end of two).
+const CORNER_SHARE: f64 = 1.0 / 64.0;
+
+/// The rim of the cap of strips `strips` at width `w`: each strip's inner side (short of its
+/// glued ends), a piece round each corner where two strips' inner sides meet across a glued
+/// edge (`links`: another strip's end at the same end of the edge), and each strip end that is
+/// not glued.
+fn rim(
+    strips: &[Strip<'_>],
+    surface: usize,
+    face: usize,
+    w: f64,
+    links: &[EdgeLink],
+) -> Result<Vec<Rim>, &'static str> {
+    // The strip glued to the end `here` of strip `k`, which of its ends, and the chart onto it.
+    let glued = |k: usize, here: PieceSide| {
+        let mine = strips[k].side;
+        links.iter().filter(|l| l.from == here).find_map(|l| {
+            // Only the same way round, on the same range along the edge: the strips' inner
+            // values then meet exactly on it (across a reversed edge, or between different
+            // ranges, they could miss each other by a rounding).
+            let range = |st: &Strip<'_>| {
+                let d = st.patch.domain();
+                if st.across() == 0 {
+                    d.u
+                } else {
+                    d.v
+                }
+            };
+            let next = strips.iter().position(|st| {
+                l.to.face == face
+                    && !l.reversed
+                    && st.piece == l.to.piece
                     && st.side / 2 != l.to.side / 2
-                    && st.side == if l.reversed { mine ^ 1 } else { mine }
-            })
+                    && st.side == mine
+                    && range(st) == range(&strips[k])
+            })?;
+            let map = chart_map(l, strips[k].patch, strips[next].patch)?;
+            Some((next, l.to.side % 2, map))
+        })
     };
     let mut out = Vec::new();
     for (k, st) in strips.iter().enumerate() {
         let d = st.patch.domain();
         let (across, along) = (st.across(), 1 - st.across());
-        let along_range = if along == 0 { d.u } else { d.v };
-        out.push(Rim {
-            strip: k,
-            fixed: 2 * surface + across,
-            value: st.inner(w),
-            free: 2 * surface + along,
-            range: along_range,
-        });
+        let mut range = if along == 0 { d.u } else { d.v };
+        let share = CORNER_SHARE * (range[1] - range[0]);
         let side_value = side_coordinate(&d, st.side).1;
         let inner = st.inner(w);
-        for end in [2 * along, 2 * along + 1] {
+        for e in 0..2 {
             let here = PieceSide {
                 face,
                 piece: st.piece,
-                side: end,
+                side: 2 * along + e,
             };
-            if !links.iter().any(|l| l.from == here && glued(l, st.side)) {
+            let at = side_coordinate(&d, here.side).1;
+            let Some((next, next_end, map)) = glued(k, here) else {
                 out.push(Rim {
                     strip: k,
                     fixed: 2 * surface + along,
-                    value: side_coordinate(&d, end).1,
+                    value: at,
                     free: 2 * surface + across,
                     range: [side_value.min(inner), side_value.max(inner)],
+                    across: None,
+                    inner_of: Vec::new(),
+                });
+                continue;
+            };
+            // Short of the corner; the piece round it belongs to the first of the two ends.
+            // A little more than the share of the next piece its inner side leaves out, so
+            // that the two overlap whatever the rounding of the chart.
+            let reach = map
+                .chart_domain()
+                .map(|cd| 1.001 * CORNER_SHARE * cd[along].wid())
+                .filter(|r| r.is_finite() && *r > 0.0);
+            if e == 0 {
+                range[0] = at + share;
+            } else {
+                range[1] = at - share;
+            }
+            if (k, e) < (next, next_end) {
+                let reach = reach.ok_or("a corner of the cap's rim has no chart")?;
+                let corner = if e == 0 {
+                    [at - reach, at + share]
+                } else {
+                    [at - share, at + reach]
+                };
+                out.push(Rim {
+                    strip: k,
+                    fixed: 2 * surface + across,
+                    value: inner,
+                    free: 2 * surface + along,
+                    range: corner,
+                    across: Some((next, map)),
+                    inner_of: vec![k, next],
                 });
             }
         }
+        out.push(Rim {
+            strip: k,
+            fixed: 2 * surface + across,
+            value: inner,
+            free: 2 * surface + along,
+            range,
+            across: None,
+            inner_of: vec![k],
+        });
     }
-    out
+    Ok(out)
 }
 
-/// The crossings of the curve with the rim piece `r` over the leaves' hull `v` (other
-/// surface's coordinates): `Ok(Some(enclosure))` for exactly one, strictly inside the piece's
-/// range, `Ok(None)` for none.
+/// The crossings of the curve with the rim piece `r` (of `surfaces`, in the order P, Q) over
+/// the leaves' hull `v` (other surface's coordinates): `Ok(Some(enclosure))` for exactly one,
+/// strictly inside the piece's range, `Ok(None)` for none.
 fn crossing(
-    pieces: [&RationalBezierPatch; 2],
+    surfaces: [&dyn BoxSurface; 2],
     r: &Rim,
     other: usize,
     v: [Interval; 2],
@@ -301,7 +375,7 @@ fn crossing(
     region[r.free] = Interval::try_from((r.range[0], r.range[1])).map_err(|_| "a rim range")?;
     region[2 * other] = v[0];
     region[2 * other + 1] = v[1];
-    match zeros(pieces, region, r.fixed)?.as_slice() {
+    match zeros(surfaces, region, r.fixed)?.as_slice() {
         [] => Ok(None),
         [e] => {
             let f = e[r.free];
@@ -315,6 +389,10 @@ fn crossing(
     }
 }
 
+/// How far (relative to the side's range) a chain's boxes may reach past a glued end of its
+/// strip: the rounding of a chain along the knot line or seam there.
+const ALONG_SLACK: f64 = 1e-9;
+
 /// Where boxes are cut, as a fraction of their width: off the middle, so that a zero at a
 /// symmetric parameter (the middle of a knot span) is not on the cut.
 const CUT: f64 = 0.4638671875;
@@ -325,10 +403,11 @@ const CUT: f64 = 0.4638671875;
 /// zero when one's enclosure lies in the other or the Krawczyk test proves one zero in their
 /// hull (a zero on the cut between them).
 fn zeros(
-    pieces: [&RationalBezierPatch; 2],
+    surfaces: [&dyn BoxSurface; 2],
     region: ParamBox,
     fixed: usize,
 ) -> Result<Vec<ParamBox>, &'static str> {
+    let [p, q] = surfaces;
     let mut todo = vec![region];
     let mut found: Vec<(ParamBox, ParamBox)> = Vec::new();
     let mut looked = 0;
@@ -337,18 +416,35 @@ fn zeros(
         if looked > MAX_BOXES {
             return Err("the crossings of the cap's rim could not be settled (too many boxes)");
         }
-        let (xp, xq) = (pieces[0].enclose(y[0], y[1]), pieces[1].enclose(y[2], y[3]));
-        if xp.iter().chain(&xq).any(|x| !x.is_common_interval()) {
+        let (fp, fq) = (p.box_first_order(y[0], y[1]), q.box_first_order(y[2], y[3]));
+        if fp
+            .iter()
+            .chain(&fq)
+            .flatten()
+            .any(|x| !x.is_common_interval())
+        {
             return Err("an image on the cap's rim is unbounded");
         }
-        if boxes_disjoint(&xp, &xq) {
+        if boxes_disjoint(&fp[0], &fq[0]) {
             continue;
         }
-        match krawczyk(pieces[0], pieces[1], y, fixed, 30) {
+        match krawczyk(p, q, y, fixed, 30) {
             KrawczykResult::Proven { enclosure, .. } => found.push((y, enclosure)),
             KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
             KrawczykResult::NotProven(_) => {
-                let k = widest(pieces, &y, fixed);
+                // The free coordinate widest in model space (its partial's length times its
+                // width).
+                let partial = |k: usize| {
+                    let f = if k < 2 { &fp } else { &fq };
+                    let c = f[1 + k % 2];
+                    (c[0].sqr() + c[1].sqr() + c[2].sqr()).sqrt().sup()
+                };
+                let k = (0..4)
+                    .filter(|&k| k != fixed)
+                    .max_by(|&a, &b| {
+                        (y[a].wid() * partial(a)).total_cmp(&(y[b].wid() * partial(b)))
+                    })
+                    .unwrap_or((fixed + 1) % 4);
                 let (lo, hi) = (y[k].inf(), y[k].sup());
                 let m = lo + CUT * (hi - lo);
                 if !(lo < m && m < hi) {
@@ -371,7 +467,7 @@ fn zeros(
             }
             if e.iter().zip(de.iter()).all(|(a, b)| !a.disjoint(*b)) {
                 let hull: ParamBox = std::array::from_fn(|i| y[i].convex_hull(dy[i]));
-                match krawczyk(pieces[0], pieces[1], hull, fixed, 30) {
+                match krawczyk(p, q, hull, fixed, 30) {
                     KrawczykResult::Proven { enclosure, .. } => {
                         (*dy, *de) = (hull, enclosure);
                         continue 'next;
@@ -419,12 +515,14 @@ fn pole_end(site: &EndSite<'_>, c: &CertifiedBranch) -> Option<([Interval; 4], b
 }
 
 /// Checks step 3 of the module documentation for one branch: its chain ends inside its strip
-/// (at `near`) and crosses the strip's inner side within the piece's side range. Returns the
-/// model box of its end.
+/// (at `near`) and crosses the strip's inner side within the piece's side range (past an end
+/// `glued` to the next strip, where a rim piece runs on round the corner, by rounding only: a
+/// chain along the knot line there). Returns the model box of its end.
 fn chain_crosses(
     site: &EndSite<'_>,
     st: &Strip<'_>,
     w: f64,
+    glued: [bool; 2],
     surface: usize,
     pair: [&RationalBezierPatch; 2],
 ) -> Result<[Interval; 3], &'static str> {
@@ -438,7 +536,14 @@ fn chain_crosses(
         return Err("a branch's chain ends outside the pole's cap");
     }
     let d = st.patch.domain();
-    let along_range = if st.across() == 0 { d.v } else { d.u };
+    let mut along_range = if st.across() == 0 { d.v } else { d.u };
+    let slack = ALONG_SLACK * (along_range[1] - along_range[0]);
+    if glued[0] {
+        along_range[0] -= slack;
+    }
+    if glued[1] {
+        along_range[1] += slack;
+    }
     let walk: Box<dyn Iterator<Item = _>> = if first {
         Box::new(c.boxes.iter())
     } else {
@@ -597,28 +702,48 @@ fn prove_at(
             h[1].convex_hull(l.declared[1]),
         ]
     });
-    let mut found = Vec::new();
-    for r in rim(strips, surface, sites[0].side.face, w, links) {
+    // Per crossing, the strips whose inner side it is on.
+    let mut found: Vec<Vec<usize>> = Vec::new();
+    let rims = rim(strips, surface, sites[0].side.face, w, links)?;
+    for r in &rims {
         let st = &strips[r.strip];
-        let mut pair = [st.patch, other];
+        let stitched = r
+            .across
+            .map(|(next, map)| stitched(st.patch, strips[next].patch, map));
+        let own: &dyn BoxSurface = match &stitched {
+            Some(s) => s,
+            None => st.patch,
+        };
+        let mut pair: [&dyn BoxSurface; 2] = [own, other];
         if surface == 1 {
             pair.swap(0, 1);
         }
-        if crossing(pair, &r, other_surface, hull)?.is_some() {
-            found.push((r.strip, r.fixed == 2 * surface + st.across()));
+        if crossing(pair, r, other_surface, hull)?.is_some() {
+            found.push(r.inner_of.clone());
         }
     }
-    let inner_of = |k: usize| found.contains(&(k, true));
-    if found.len() != 2 || !inner_of(at[0]) || !inner_of(at[1]) {
+    let on = |c: &Vec<usize>, k: usize| c.contains(&at[k]);
+    let matched = found.len() == 2
+        && ((on(&found[0], 0) && on(&found[1], 1)) || (on(&found[0], 1) && on(&found[1], 0)));
+    if !matched {
         return Err("the curve does not cross the pole's cap exactly where the branches enter");
     }
     // 3. Each branch crosses its strip's inner side.
     let mut ends = Vec::with_capacity(2);
     for (site, &k) in sites.iter().zip(&at) {
+        // An end of the strip with no rim piece on it is glued to the next strip.
+        let glued = [0, 1].map(|e| {
+            let end =
+                side_coordinate(&strips[k].patch.domain(), 2 * (1 - strips[k].across()) + e).1;
+            !rims
+                .iter()
+                .any(|r| r.strip == k && r.inner_of.is_empty() && r.value == end)
+        });
         ends.push(chain_crosses(
             site,
             &strips[k],
             w,
+            glued,
             surface,
             patches(a, b, &pairs[site.pair]),
         )?);

@@ -401,7 +401,7 @@ pub(super) fn marched_gap(p1: &CurvePoint, p2: &CurvePoint) -> Option<f64> {
 
 /// The free coordinate of `y` (not `fixed`) whose width is largest in model space (times the
 /// length of the surface's partial derivative at the box's midpoint).
-pub(super) fn widest(pieces: [&RationalBezierPatch; 2], y: &ParamBox, fixed: usize) -> usize {
+fn widest(pieces: [&RationalBezierPatch; 2], y: &ParamBox, fixed: usize) -> usize {
     let mid = y.map(|c| c.mid());
     let speed = |k: usize| {
         let s = &pieces[k / 2];
