@@ -33,7 +33,7 @@ use crate::certify::segment::{
     hull, others, prove_segment, Jet, Predictor, SegmentProof, PREDICTOR_DEGREE,
 };
 use crate::error::{Error, Result};
-use crate::geometry::surface::{pair_bounds, pair_widths};
+use crate::geometry::surface::pair_widths;
 use crate::geometry::RationalBezierPatch;
 use crate::march::branch::{Branch, BranchStatus, EndReason};
 use crate::numeric::scalar::point;
