@@ -2,6 +2,7 @@
 //! joined without gaps, and the end where the half stops.
 
 use super::limit::LinkLimit;
+use super::pole::PoleEnd;
 use super::*;
 use crate::certify::lean_patch::{costlier_side, LeanPatch};
 use std::cell::Cell;
@@ -83,6 +84,8 @@ pub(super) struct Walker<'a> {
     pub(super) l_pred: Option<f64>,
     /// The last marched point when the march ended at a singular point there.
     pub(super) toward_singular: Option<[f64; 4]>,
+    /// The pole the march ran into, if it did (see `pole.rs`).
+    pub(super) toward_pole: Option<PoleEnd>,
     /// Scaled length and model width of the last link added.
     pub(super) prev: Option<(f64, f64)>,
     /// Both patches in the form the link proofs evaluate.
@@ -127,6 +130,7 @@ impl<'a> Walker<'a> {
             wants_closure: false,
             l_pred: None,
             toward_singular: None,
+            toward_pole: None,
             prev: None,
             costly_side: costlier_side(&lean),
             lean,
@@ -139,11 +143,14 @@ impl<'a> Walker<'a> {
         if !t.iter().all(|v| v.is_finite()) || t.iter().all(|v| *v == 0.0) {
             return None;
         }
-        let sign = if (0..4).map(|i| t[i] * along[i]).sum::<f64>() < 0.0 {
-            -1.0
-        } else {
-            1.0
-        };
+        // Next to the pole the half runs into, the angular part is rounding over the distance
+        // to the pole, on both sides (`pole.rs`): orient by the other coordinates.
+        let skip = self.pole_angular_at(&x);
+        let dot: f64 = (0..4)
+            .filter(|&i| Some(i) != skip)
+            .map(|i| t[i] * along[i])
+            .sum();
+        let sign = if dot < 0.0 { -1.0 } else { 1.0 };
         Some(Node {
             x,
             t: t.map(|v| v * sign),
@@ -155,6 +162,9 @@ impl<'a> Walker<'a> {
     /// [`Self::costly_side`], if that is at least half of it); the previous link's if nearly as
     /// good.
     fn along(&self, a: &Node, b: &Node) -> Option<usize> {
+        if let Some(j) = self.pole_along(a, b) {
+            return Some(j);
+        }
         let score = |i: usize| {
             let d = b.x[i] - a.x[i];
             let ok = d != 0.0 && d.signum() == a.t[i].signum() && d.signum() == b.t[i].signum();
@@ -195,7 +205,10 @@ impl<'a> Walker<'a> {
     /// The Hermite predictor from `a` to `b` graphed over `j`.
     fn predictor(&self, j: usize, a: &Node, b: &Node) -> Option<Predictor> {
         let ja = self.jet(a, j)?;
-        let jb = self.jet(b, j)?;
+        let mut jb = self.jet(b, j)?;
+        if let Some(k) = self.flat_coordinate(j, a, b) {
+            jb.x[k] = ja.x[k];
+        }
         Predictor::hermite(j, &ja, &jb)
     }
 
@@ -206,7 +219,7 @@ impl<'a> Walker<'a> {
         if let Some((_, _, jet)) = kept.iter().flatten().find(|(m, k, _)| *k == j && same(m)) {
             return Some(*jet);
         }
-        let jet = Jet::new(self.p, self.q, &n.x, &n.t, j)?;
+        let jet = self.node_jet(n, j)?;
         kept = [Some((*n, j, jet)), kept[0]];
         self.jets.set(kept);
         Some(jet)
@@ -318,13 +331,12 @@ impl<'a> Walker<'a> {
 
     /// A new node halfway (in the along coordinate of largest scaled change) from `a` to `b`.
     fn midpoint(&self, a: &Node, b: &Node, frac: f64) -> Option<Node> {
-        let j = (0..4)
-            .max_by(|&x, &y| {
-                let dx = (b.x[x] - a.x[x]).abs() / self.scales[x];
-                let dy = (b.x[y] - a.x[y]).abs() / self.scales[y];
-                dx.total_cmp(&dy)
-            })
-            .unwrap_or(0);
+        let largest = (0..4).max_by(|&x, &y| {
+            let dx = (b.x[x] - a.x[x]).abs() / self.scales[x];
+            let dy = (b.x[y] - a.x[y]).abs() / self.scales[y];
+            dx.total_cmp(&dy)
+        });
+        let j = self.pole_along(a, b).or(largest).unwrap_or(0);
         let value = a.x[j] + frac * (b.x[j] - a.x[j]);
         let guess = match self.predictor(j, a, b) {
             Some(pr) => pr.eval(value - pr.x0),
@@ -637,16 +649,19 @@ impl<'a> Walker<'a> {
     /// `end`.
     pub(super) fn walk(&mut self, xs: &[[f64; 4]], end: EndReason) -> CertifiedEnd {
         let xs = &distinct(xs, &self.scales);
-        let nodes = self.nodes(xs);
-        if end == EndReason::Singular {
-            self.toward_singular = xs.last().copied();
-        }
         // A march that ran into a pole: no link can reach it (the parameters degenerate
         // there), so the half ends where the links stop, and says why.
         let pole = match end {
             EndReason::Boundary { surface } => xs.last().and_then(|x| self.pole_at(surface, x)),
             _ => None,
         };
+        if let (Some(_), EndReason::Boundary { surface }, Some(x)) = (&pole, end, xs.last()) {
+            self.toward_pole = self.pole_end(surface, x);
+        }
+        let nodes = self.nodes(xs);
+        if end == EndReason::Singular {
+            self.toward_singular = xs.last().copied();
+        }
         if let Err(e) = self.advance(&nodes, None) {
             return match pole {
                 Some(reason) => CertifiedEnd::Unproven {
@@ -670,9 +685,13 @@ impl<'a> Walker<'a> {
             return self.singular_end(&cur, &xs[nodes.len()]);
         }
         match (end, pole) {
+            // The last link's end slice: the proven box nearest the pole.
             (EndReason::Boundary { .. }, Some(reason)) => CertifiedEnd::Unproven {
                 reason,
-                near: point_box(&cur.x),
+                near: self
+                    .links
+                    .last()
+                    .map_or_else(|| point_box(&cur.x), |l| l.end_slice),
             },
             (EndReason::Boundary { surface }, None) => self.exit(cur, surface),
             (other, _) => CertifiedEnd::Unproven {
