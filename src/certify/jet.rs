@@ -42,11 +42,45 @@ impl Jet {
         t: &[f64; 4],
         along: usize,
     ) -> Option<Jet> {
+        Self::build(p, q, x, t, along, None)
+    }
+
+    /// [`Self::new`] with the coordinate `pin` (not `along`) held: its derivatives are zero,
+    /// and the others' come from the curve's equations with `d x_pin = 0`. For an angular parameter
+    /// next to a pole, which the point determines only to rounding over the distance to the
+    /// pole: the velocity there is that of the field at a point off the curve by that much,
+    /// and its angular part and every derivative built on it grow like the inverse of the
+    /// distance (and its powers). Guidance only, as any jet.
+    pub(crate) fn pinned(
+        p: &RationalBezierPatch,
+        q: &RationalBezierPatch,
+        x: &[f64; 4],
+        t: &[f64; 4],
+        along: usize,
+        pin: usize,
+    ) -> Option<Jet> {
+        Self::build(p, q, x, t, along, Some(pin).filter(|&k| k != along))
+    }
+
+    /// [`Self::new`] or, with `pin`, [`Self::pinned`].
+    fn build(
+        p: &RationalBezierPatch,
+        q: &RationalBezierPatch,
+        x: &[f64; 4],
+        t: &[f64; 4],
+        along: usize,
+        pin: Option<usize>,
+    ) -> Option<Jet> {
         if t[along] == 0.0 {
             return None;
         }
         let o = others(along);
-        let d: [f64; 4] = std::array::from_fn(|i| t[i] / t[along]);
+        let mut d: [f64; 4] = std::array::from_fn(|i| t[i] / t[along]);
+        // The pinned coordinate's place among the others.
+        let pinned = pin.and_then(|k| o.iter().position(|&i| i == k));
+        if let Some(k) = pin {
+            d[k] = 0.0;
+        }
         let dp = p.derivs_f64(x[0], x[1]);
         let dq = q.derivs_f64(x[2], x[3]);
         let cols = [dp.su, dp.sv, dq.su.map(|v| -v), dq.sv.map(|v| -v)];
@@ -65,7 +99,13 @@ impl Jet {
             d2: [d2v[0], d2v[1], d2v[2]],
             d3: [0.0; 3],
         };
+        if let Some(r) = pinned {
+            jet.d2[r] = 0.0;
+        }
         jet.d3 = third_derivative(p, q, x, &d, &jet.d2, along, &inv);
+        if let Some(r) = pinned {
+            jet.d3[r] = 0.0;
+        }
         jet.d1
             .iter()
             .chain(&jet.d2)

@@ -25,7 +25,7 @@
 //! itself dips out and back (its end slices inside), the first of its slices wholly beyond the
 //! bound proves the boundary end, and the link is cut there.
 
-use super::walker::{Node, Walker};
+use super::walker::{newton, point_box, Node, Stop, Walker};
 use crate::certify::curve::CertifiedEnd;
 use crate::geometry::surface::pair_bounds;
 use inari::Interval;
@@ -168,5 +168,70 @@ impl Walker<'_> {
             }
             None => end,
         }
+    }
+
+    /// At a boundary end: a node past the boundary of `surface` along the curve, proven links
+    /// to it, and the end proven when the last slice lies wholly outside.
+    pub(super) fn exit(&mut self, last: Node, surface: usize) -> CertifiedEnd {
+        let (dp, dq) = (self.p.domain(), self.q.domain());
+        let coords = if surface == 0 { [0, 1] } else { [2, 3] };
+        // The coordinate nearest its bound, moving outwards (not one the curve runs along, a
+        // side of a section along a knot line: its tangent component is rounding).
+        let speed = (0..4).fold(0.0f64, |m, k| m.max(last.t[k].abs() / self.scales[k]));
+        let mut best: Option<(usize, f64, f64)> = None;
+        for &i in &coords {
+            let [lo, hi] = pair_bounds(&dp, &dq, i);
+            if last.t[i].abs() / self.scales[i] <= 1e-9 * speed {
+                continue;
+            }
+            for (bound, sign) in [(lo, -1.0), (hi, 1.0)] {
+                if last.t[i] * sign <= 0.0 {
+                    continue;
+                }
+                let gap = (bound - last.x[i]).abs() / self.scales[i];
+                if best.is_none_or(|b| gap < b.1) {
+                    best = Some((i, gap, bound));
+                }
+            }
+        }
+        let unproven = |reason: &str| CertifiedEnd::Unproven {
+            reason: reason.into(),
+            near: point_box(&last.x),
+        };
+        let Some((b, _, bound)) = best else {
+            return unproven("the curve does not leave the domain at the marched boundary end");
+        };
+        let margin = 1e-7 * self.scales[b] + 4.0 * self.join_width();
+        let dist = (bound - last.x[b]).abs() + margin;
+        let scale = dist / last.t[b].abs();
+        let guess: [f64; 4] = std::array::from_fn(|i| last.x[i] + scale * last.t[i]);
+        let j = (0..4)
+            .max_by(|&x, &y| {
+                (last.t[x].abs() / self.scales[x]).total_cmp(&(last.t[y].abs() / self.scales[y]))
+            })
+            .unwrap_or(b);
+        let Some(out) =
+            newton(self.p, self.q, guess, j, guess[j]).and_then(|r| self.node(r.x, &last.t))
+        else {
+            return unproven("no curve point found past the boundary");
+        };
+        if let Stop::Failed(end) = self.span(last, out, None) {
+            return self.exit_stopped(end);
+        }
+        let end = self.last_end_slice();
+        let [lo, hi] = pair_bounds(&dp, &dq, b);
+        match end {
+            Some(e) if e[b].sup() < lo || e[b].inf() > hi => {
+                self.leaving(surface, self.collapsed(b, e[b].sup() < lo), e)
+            }
+            _ => unproven("the last slice past the boundary is not wholly outside the domain"),
+        }
+    }
+
+    /// Largest half-width of the current join box (0 without one).
+    fn join_width(&self) -> f64 {
+        self.join
+            .map(|b| b.iter().map(|x| x.wid()).fold(0.0, f64::max))
+            .unwrap_or(0.0)
     }
 }

@@ -33,7 +33,7 @@ use crate::certify::segment::{
     hull, others, prove_segment, Jet, Predictor, SegmentProof, PREDICTOR_DEGREE,
 };
 use crate::error::{Error, Result};
-use crate::geometry::surface::{pair_bounds, pair_widths};
+use crate::geometry::surface::pair_widths;
 use crate::geometry::RationalBezierPatch;
 use crate::march::branch::{Branch, BranchStatus, EndReason};
 use crate::numeric::scalar::point;
@@ -48,6 +48,7 @@ use std::time::Instant;
 mod leave;
 mod limit;
 mod output;
+mod pole;
 mod singular;
 mod slice;
 mod walker;
@@ -110,8 +111,7 @@ fn guide_points(p: &RationalBezierPatch, q: &RationalBezierPatch, b: &Branch) ->
         let j = (0..4)
             .max_by(|&a, &b| (v[a].abs() / scales[a]).total_cmp(&(v[b].abs() / scales[b])))
             .unwrap_or(0);
-        let y = newton(p, q, x, j, x[j])
-            .map(|r| r.x)
+        let y = pole::refine_guide(p, q, x, j)
             .filter(|y| scaled_dist(y, &x, &scales) < 1e-6)
             .unwrap_or(x);
         if out.last().is_none_or(|l| scaled_dist(l, &y, &scales) > 0.0) {

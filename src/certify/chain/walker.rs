@@ -2,6 +2,7 @@
 //! joined without gaps, and the end where the half stops.
 
 use super::limit::LinkLimit;
+use super::pole::PoleEnd;
 use super::*;
 use crate::certify::lean_patch::{costlier_side, LeanPatch};
 use std::cell::Cell;
@@ -83,6 +84,8 @@ pub(super) struct Walker<'a> {
     pub(super) l_pred: Option<f64>,
     /// The last marched point when the march ended at a singular point there.
     pub(super) toward_singular: Option<[f64; 4]>,
+    /// The pole the march ran into, if it did (see `pole.rs`).
+    pub(super) toward_pole: Option<PoleEnd>,
     /// Scaled length and model width of the last link added.
     pub(super) prev: Option<(f64, f64)>,
     /// Both patches in the form the link proofs evaluate.
@@ -127,6 +130,7 @@ impl<'a> Walker<'a> {
             wants_closure: false,
             l_pred: None,
             toward_singular: None,
+            toward_pole: None,
             prev: None,
             costly_side: costlier_side(&lean),
             lean,
@@ -139,11 +143,14 @@ impl<'a> Walker<'a> {
         if !t.iter().all(|v| v.is_finite()) || t.iter().all(|v| *v == 0.0) {
             return None;
         }
-        let sign = if (0..4).map(|i| t[i] * along[i]).sum::<f64>() < 0.0 {
-            -1.0
-        } else {
-            1.0
-        };
+        // Next to the pole the half runs into, the angular part is rounding over the distance
+        // to the pole, on both sides (`pole.rs`): orient by the other coordinates.
+        let skip = self.pole_angular_at(&x);
+        let dot: f64 = (0..4)
+            .filter(|&i| Some(i) != skip)
+            .map(|i| t[i] * along[i])
+            .sum();
+        let sign = if dot < 0.0 { -1.0 } else { 1.0 };
         Some(Node {
             x,
             t: t.map(|v| v * sign),
@@ -155,6 +162,9 @@ impl<'a> Walker<'a> {
     /// [`Self::costly_side`], if that is at least half of it); the previous link's if nearly as
     /// good.
     fn along(&self, a: &Node, b: &Node) -> Option<usize> {
+        if let Some(j) = self.pole_along(a, b) {
+            return Some(j);
+        }
         let score = |i: usize| {
             let d = b.x[i] - a.x[i];
             let ok = d != 0.0 && d.signum() == a.t[i].signum() && d.signum() == b.t[i].signum();
@@ -195,7 +205,10 @@ impl<'a> Walker<'a> {
     /// The Hermite predictor from `a` to `b` graphed over `j`.
     fn predictor(&self, j: usize, a: &Node, b: &Node) -> Option<Predictor> {
         let ja = self.jet(a, j)?;
-        let jb = self.jet(b, j)?;
+        let mut jb = self.jet(b, j)?;
+        if let Some(k) = self.flat_coordinate(j, a, b) {
+            jb.x[k] = ja.x[k];
+        }
         Predictor::hermite(j, &ja, &jb)
     }
 
@@ -206,7 +219,7 @@ impl<'a> Walker<'a> {
         if let Some((_, _, jet)) = kept.iter().flatten().find(|(m, k, _)| *k == j && same(m)) {
             return Some(*jet);
         }
-        let jet = Jet::new(self.p, self.q, &n.x, &n.t, j)?;
+        let jet = self.node_jet(n, j)?;
         kept = [Some((*n, j, jet)), kept[0]];
         self.jets.set(kept);
         Some(jet)
@@ -318,13 +331,12 @@ impl<'a> Walker<'a> {
 
     /// A new node halfway (in the along coordinate of largest scaled change) from `a` to `b`.
     fn midpoint(&self, a: &Node, b: &Node, frac: f64) -> Option<Node> {
-        let j = (0..4)
-            .max_by(|&x, &y| {
-                let dx = (b.x[x] - a.x[x]).abs() / self.scales[x];
-                let dy = (b.x[y] - a.x[y]).abs() / self.scales[y];
-                dx.total_cmp(&dy)
-            })
-            .unwrap_or(0);
+        let largest = (0..4).max_by(|&x, &y| {
+            let dx = (b.x[x] - a.x[x]).abs() / self.scales[x];
+            let dy = (b.x[y] - a.x[y]).abs() / self.scales[y];
+            dx.total_cmp(&dy)
+        });
+        let j = self.pole_along(a, b).or(largest).unwrap_or(0);
         let value = a.x[j] + frac * (b.x[j] - a.x[j]);
         let guess = match self.predictor(j, a, b) {
             Some(pr) => pr.eval(value - pr.x0),
@@ -524,71 +536,6 @@ impl<'a> Walker<'a> {
         Stop::Done
     }
 
-    /// At a boundary end: a node past the boundary of `surface` along the curve, proven links
-    /// to it, and the end proven when the last slice lies wholly outside.
-    fn exit(&mut self, last: Node, surface: usize) -> CertifiedEnd {
-        let (dp, dq) = (self.p.domain(), self.q.domain());
-        let coords = if surface == 0 { [0, 1] } else { [2, 3] };
-        // The coordinate nearest its bound, moving outwards (not one the curve runs along, a
-        // side of a section along a knot line: its tangent component is rounding).
-        let speed = (0..4).fold(0.0f64, |m, k| m.max(last.t[k].abs() / self.scales[k]));
-        let mut best: Option<(usize, f64, f64)> = None;
-        for &i in &coords {
-            let [lo, hi] = pair_bounds(&dp, &dq, i);
-            if last.t[i].abs() / self.scales[i] <= 1e-9 * speed {
-                continue;
-            }
-            for (bound, sign) in [(lo, -1.0), (hi, 1.0)] {
-                if last.t[i] * sign <= 0.0 {
-                    continue;
-                }
-                let gap = (bound - last.x[i]).abs() / self.scales[i];
-                if best.is_none_or(|b| gap < b.1) {
-                    best = Some((i, gap, bound));
-                }
-            }
-        }
-        let unproven = |reason: &str| CertifiedEnd::Unproven {
-            reason: reason.into(),
-            near: point_box(&last.x),
-        };
-        let Some((b, _, bound)) = best else {
-            return unproven("the curve does not leave the domain at the marched boundary end");
-        };
-        let margin = 1e-7 * self.scales[b] + 4.0 * self.join_width();
-        let dist = (bound - last.x[b]).abs() + margin;
-        let scale = dist / last.t[b].abs();
-        let guess: [f64; 4] = std::array::from_fn(|i| last.x[i] + scale * last.t[i]);
-        let j = (0..4)
-            .max_by(|&x, &y| {
-                (last.t[x].abs() / self.scales[x]).total_cmp(&(last.t[y].abs() / self.scales[y]))
-            })
-            .unwrap_or(b);
-        let Some(out) =
-            newton(self.p, self.q, guess, j, guess[j]).and_then(|r| self.node(r.x, &last.t))
-        else {
-            return unproven("no curve point found past the boundary");
-        };
-        if let Stop::Failed(end) = self.span(last, out, None) {
-            return self.exit_stopped(end);
-        }
-        let end = self.last_end_slice();
-        let [lo, hi] = pair_bounds(&dp, &dq, b);
-        match end {
-            Some(e) if e[b].sup() < lo || e[b].inf() > hi => {
-                self.leaving(surface, self.collapsed(b, e[b].sup() < lo), e)
-            }
-            _ => unproven("the last slice past the boundary is not wholly outside the domain"),
-        }
-    }
-
-    /// Largest half-width of the current join box (0 without one).
-    fn join_width(&self) -> f64 {
-        self.join
-            .map(|b| b.iter().map(|x| x.wid()).fold(0.0, f64::max))
-            .unwrap_or(0.0)
-    }
-
     /// The nodes of the marched points `xs`, each velocity oriented along the march, up to the
     /// first point without a velocity (a singular point: the normals are parallel there).
     pub(super) fn nodes(&self, xs: &[[f64; 4]]) -> Vec<Node> {
@@ -702,16 +649,19 @@ impl<'a> Walker<'a> {
     /// `end`.
     pub(super) fn walk(&mut self, xs: &[[f64; 4]], end: EndReason) -> CertifiedEnd {
         let xs = &distinct(xs, &self.scales);
-        let nodes = self.nodes(xs);
-        if end == EndReason::Singular {
-            self.toward_singular = xs.last().copied();
-        }
         // A march that ran into a pole: no link can reach it (the parameters degenerate
         // there), so the half ends where the links stop, and says why.
         let pole = match end {
             EndReason::Boundary { surface } => xs.last().and_then(|x| self.pole_at(surface, x)),
             _ => None,
         };
+        if let (Some(_), EndReason::Boundary { surface }, Some(x)) = (&pole, end, xs.last()) {
+            self.toward_pole = self.pole_end(surface, x);
+        }
+        let nodes = self.nodes(xs);
+        if end == EndReason::Singular {
+            self.toward_singular = xs.last().copied();
+        }
         if let Err(e) = self.advance(&nodes, None) {
             return match pole {
                 Some(reason) => CertifiedEnd::Unproven {
@@ -735,9 +685,13 @@ impl<'a> Walker<'a> {
             return self.singular_end(&cur, &xs[nodes.len()]);
         }
         match (end, pole) {
+            // The last link's end slice: the proven box nearest the pole.
             (EndReason::Boundary { .. }, Some(reason)) => CertifiedEnd::Unproven {
                 reason,
-                near: point_box(&cur.x),
+                near: self
+                    .links
+                    .last()
+                    .map_or_else(|| point_box(&cur.x), |l| l.end_slice),
             },
             (EndReason::Boundary { surface }, None) => self.exit(cur, surface),
             (other, _) => CertifiedEnd::Unproven {

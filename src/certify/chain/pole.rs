@@ -1,0 +1,166 @@
+//! Guide points and links next to a pole: a side of a patch collapsed to one point, which a
+//! marched branch runs into (a great circle of a sphere through its poles).
+//!
+//! There `P(σ, t) − X = t·G(σ, t)` (`t` the distance from the side, `σ` along it), so
+//! `∂P/∂σ = t·G_σ` and a curve point fixes `σ` only to the rounding of `P` over `t`. The
+//! velocity at such a point is the field's off the curve by that much, and its `σ` part grows
+//! like `1/t`: holding `σ` in Newton sends a point onto the pole (for a `σ` off the curve
+//! there is no other solution), the fastest coordinate is `σ`, and a jet built on that
+//! velocity has derivatives like `1/tᵏ`; its sign, from a dot product with the step between
+//! marched points, follows the `σ` parts of both, and they are noise. So next to the pole the
+//! guide points hold `t` (where holding the fastest coordinate lands on the pole), the nodes
+//! are oriented without `σ`, the links run along `t`, and their predictors hold `σ` (any
+//! predictor is rigorous: the proof bounds the curve's offsets from it). The links then reach
+//! the last marched point, a few `1e-12` from the pole on the sphere of
+//! `scenes/nurbs_sphere_plane.json`; before, they stopped at `t ≈ 3e-9`.
+
+use super::walker::{newton, Node, Walker};
+use super::*;
+
+/// Next to a pole, within this part of the patch's domain across from its collapsed side,
+/// the links of a half that runs into it hold the angular parameter (`σ` above) in their
+/// predictors. Farther out its derivatives are the curve's own and are kept (through a pole a
+/// curve's angle is a smooth function of `t` with a nonzero slope in general, and a predictor
+/// with a flat `σ` would be off by about that slope times the link's length there).
+const POLE_ZONE: f64 = 1e-6;
+
+/// The collapsed side of `s` nearest the parameter point `(a, b)`: its distance from there as
+/// a part of the domain's width across it, and which parameter (0 for `u`, 1 for `v`) runs
+/// away from it. `None` if `s` has no collapsed side.
+pub(super) fn pole_gap(s: &RationalBezierPatch, a: f64, b: f64) -> Option<(f64, usize)> {
+    let d = s.domain();
+    let sides = s.collapsed_sides();
+    (0..4)
+        .filter(|&k| sides[k].is_some())
+        .map(|k| {
+            let (x, r) = if k < 2 { (a, d.u) } else { (b, d.v) };
+            ((x - r[k % 2]).abs() / (r[1] - r[0]), k / 2)
+        })
+        .min_by(|x, y| x.0.total_cmp(&y.0))
+}
+
+/// The nearest collapsed side of either patch to `x`: its gap ([`pole_gap`]) and the
+/// coordinate (0–3) that runs away from it.
+fn nearest_side(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    x: &[f64; 4],
+) -> Option<(f64, usize)> {
+    let at_p = pole_gap(p, x[0], x[1]);
+    let at_q = pole_gap(q, x[2], x[3]).map(|(g, r)| (g, 2 + r));
+    at_p.into_iter()
+        .chain(at_q)
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+/// Whether `y` lies much nearer a collapsed side than `x` or much farther from it (its gap
+/// changed by more than half of `x`'s): Newton from `x` went onto the pole (or off it).
+fn moved_at_pole(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    x: &[f64; 4],
+    y: &[f64; 4],
+) -> bool {
+    let gaps = |z: &[f64; 4]| [pole_gap(p, z[0], z[1]), pole_gap(q, z[2], z[3])];
+    gaps(x).iter().zip(gaps(y)).any(
+        |(a, b)| matches!((a, b), (Some((ga, _)), Some((gb, _))) if (gb - ga).abs() > 0.5 * ga),
+    )
+}
+
+/// A guide point refined from the marched point `x` by Newton holding coordinate `j`
+/// (`None` if it does not converge): when that lands on a pole (or leaves one, see
+/// [`moved_at_pole`]), Newton again holding the coordinate that runs away from the nearest
+/// collapsed side; `None` if that also fails.
+pub(super) fn refine_guide(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    x: [f64; 4],
+    j: usize,
+) -> Option<[f64; 4]> {
+    let y = newton(p, q, x, j, x[j]).map(|r| r.x)?;
+    if !moved_at_pole(p, q, &x, &y) {
+        return Some(y);
+    }
+    let (_, radial) = nearest_side(p, q, &x)?;
+    newton(p, q, x, radial, x[radial])
+        .map(|r| r.x)
+        .filter(|y| radial != j && !moved_at_pole(p, q, &x, y))
+}
+
+/// The pole a half of a chain runs into: which coordinates run away from its side and along
+/// it, on the surface whose patch collapses there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct PoleEnd {
+    /// The coordinate (0–3) that runs away from the collapsed side.
+    radial: usize,
+    /// The coordinate along the side (the angle about the pole).
+    angular: usize,
+}
+
+impl Walker<'_> {
+    /// The pole end of a half whose march ended at a pole of `surface` (0 for P, 1 for Q) at
+    /// the marched point `x`.
+    pub(super) fn pole_end(&self, surface: usize, x: &[f64; 4]) -> Option<PoleEnd> {
+        let s = [self.p, self.q][surface];
+        let (_, r) = pole_gap(s, x[2 * surface], x[2 * surface + 1])?;
+        Some(PoleEnd {
+            radial: 2 * surface + r,
+            angular: 2 * surface + 1 - r,
+        })
+    }
+
+    /// Whether `x` lies within [`POLE_ZONE`] of the collapsed side of the pole the half runs
+    /// into.
+    fn in_pole_zone(&self, x: &[f64; 4]) -> bool {
+        self.toward_pole.is_some_and(|e| {
+            let surface = e.radial / 2;
+            let s = [self.p, self.q][surface];
+            pole_gap(s, x[2 * surface], x[2 * surface + 1]).is_some_and(|(g, _)| g < POLE_ZONE)
+        })
+    }
+
+    /// The angular coordinate of the pole the half runs into, if `x` lies within
+    /// [`POLE_ZONE`] of it.
+    pub(super) fn pole_angular_at(&self, x: &[f64; 4]) -> Option<usize> {
+        self.toward_pole
+            .filter(|_| self.in_pole_zone(x))
+            .map(|e| e.angular)
+    }
+
+    /// Next to the pole the half runs into, the coordinate to run a link from `a` to `b` along
+    /// (and to place a node between them by): the radial one, when both lie within
+    /// [`POLE_ZONE`] and it moves between them as both velocities say.
+    pub(super) fn pole_along(&self, a: &Node, b: &Node) -> Option<usize> {
+        let e = self.toward_pole?;
+        let i = e.radial;
+        let d = b.x[i] - a.x[i];
+        let monotone = d != 0.0 && d.signum() == a.t[i].signum() && d.signum() == b.t[i].signum();
+        (monotone && self.in_pole_zone(&a.x) && self.in_pole_zone(&b.x)).then_some(i)
+    }
+
+    /// The coordinate a link from `a` to `b` along `j` holds constant in its predictor, at
+    /// `a`'s value: the angular one of the pole the half runs into, when `j` is the radial one
+    /// and both lie within [`POLE_ZONE`] of it. Interpolating the nodes' angles instead (each
+    /// off the curve by up to the rounding over the distance `t` to the pole) swings the
+    /// predictor by that much, `Δσ ~ 1e-5` at `t = 1e-10`, and the Taylor form of `P` along
+    /// it, whose rational form does not cancel the swing in the pole's own coordinates, widens
+    /// the residual by about `Δσ²`: the tube then grew to the tolerance at `t ≈ 1e-10`. With
+    /// `σ` held, the proof's offsets take up the nodes' rounding instead, as a width of the
+    /// tube, which the linearised terms multiply by `t`.
+    pub(super) fn flat_coordinate(&self, j: usize, a: &Node, b: &Node) -> Option<usize> {
+        let e = self.toward_pole.filter(|e| e.radial == j)?;
+        (self.in_pole_zone(&a.x) && self.in_pole_zone(&b.x)).then_some(e.angular)
+    }
+
+    /// The jet of node `n` graphed over `j`: with the angular coordinate held
+    /// ([`Jet::pinned`]) when `j` is the radial one of the pole the half runs into and `n` lies
+    /// within [`POLE_ZONE`] of it.
+    pub(super) fn node_jet(&self, n: &Node, j: usize) -> Option<Jet> {
+        match self.toward_pole {
+            Some(e) if e.radial == j && self.in_pole_zone(&n.x) => {
+                Jet::pinned(self.p, self.q, &n.x, &n.t, j, e.angular)
+            }
+            _ => Jet::new(self.p, self.q, &n.x, &n.t, j),
+        }
+    }
+}
