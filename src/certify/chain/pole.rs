@@ -24,6 +24,11 @@ use super::*;
 /// with a flat `σ` would be off by about that slope times the link's length there).
 const POLE_ZONE: f64 = 1e-6;
 
+/// The largest change of the angular coordinate (a part of the domain) that the rounding of
+/// a marched point at a distance `g` (a part of the domain) from the pole explains, times
+/// `g`: a point fixes the angle only to about `1e-16/g`; a thousand times that.
+const ANGLE_NOISE: f64 = 1e-13;
+
 /// The collapsed side of `s` nearest the parameter point `(a, b)`: its distance from there as
 /// a part of the domain's width across it, and which parameter (0 for `u`, 1 for `v`) runs
 /// away from it. `None` if `s` has no collapsed side.
@@ -107,6 +112,44 @@ impl Walker<'_> {
             radial: 2 * surface + r,
             angular: 2 * surface + 1 - r,
         })
+    }
+
+    /// Whether the marched points `xs` run *into* the pole `e` (rather than past it): they come
+    /// from outside [`POLE_ZONE`], and within
+    /// [`POLE_ZONE`] of its side, their angular coordinate stays at that of the zone's outermost
+    /// point to within what the rounding leaves it (`ANGLE_NOISE` over the distance to the
+    /// side, both as parts of the domain). A curve passing the pole at a distance `δ` turns its
+    /// angle by about `δ/t` at a distance `t`, far more; holding its angle would swing the
+    /// links' tubes by that much.
+    pub(super) fn runs_into(&self, xs: &[[f64; 4]], e: PoleEnd) -> bool {
+        let surface = e.radial / 2;
+        let s = [self.p, self.q][surface];
+        let d = s.domain();
+        let width = if e.angular.is_multiple_of(2) {
+            d.u[1] - d.u[0]
+        } else {
+            d.v[1] - d.v[0]
+        };
+        let zone: Vec<(f64, f64)> = xs
+            .iter()
+            .filter_map(|x| {
+                let (g, _) = pole_gap(s, x[2 * surface], x[2 * surface + 1])?;
+                (g < POLE_ZONE).then_some((g, x[e.angular] / width))
+            })
+            .collect();
+        // From outside the zone (a sliver of a curve passing the pole, all of it next to the
+        // pole, gives no evidence).
+        let from_outside = xs.iter().any(|x| {
+            pole_gap(s, x[2 * surface], x[2 * surface + 1]).is_some_and(|(g, _)| g >= POLE_ZONE)
+        });
+        let Some(&(_, outer)) = zone.iter().max_by(|a, b| a.0.total_cmp(&b.0)) else {
+            return from_outside;
+        };
+        if !from_outside {
+            return false;
+        }
+        zone.iter()
+            .all(|&(g, a)| (a - outer).abs() <= ANGLE_NOISE / g.max(f64::MIN_POSITIVE))
     }
 
     /// Whether `x` lies within [`POLE_ZONE`] of the collapsed side of the pole the half runs

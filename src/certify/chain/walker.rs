@@ -656,7 +656,7 @@ impl<'a> Walker<'a> {
             _ => None,
         };
         if let (Some(_), EndReason::Boundary { surface }, Some(x)) = (&pole, end, xs.last()) {
-            self.toward_pole = self.pole_end(surface, x);
+            self.toward_pole = self.pole_end(surface, x).filter(|&e| self.runs_into(xs, e));
         }
         let nodes = self.nodes(xs);
         if end == EndReason::Singular {
