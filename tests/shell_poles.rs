@@ -120,9 +120,9 @@ fn great_circles_passing_close_to_the_poles_are_one_closed_curve_each() {
 /// and the join through the pole is proven on a cap round it (`shell/pole_cap.rs`): one
 /// closed curve, every join proven, certified as a whole. The pole join's box must hold the
 /// true circle between the two chains' ends (sampled densely round the pole, which is on it),
-/// and the edge must lie within its proven tolerance of the circle both ways (measured 8e-10
-/// for most; up to 1.6e-8 where the fit of the sphere's p-curve near a pole runs out of
-/// rounds, and the edge says so). The search, which cannot settle a collapsed side whose pole lies on
+/// and the edge must lie within its proven tolerance of the circle both ways (measured
+/// 7.9e-10 to 8.4e-10 for eight of the twelve; 6.6e-9 to 2.1e-8 on `y = −2.5·x`, where the fit
+/// of the sphere's p-curve near a pole stalls or runs out of rounds, and the edge says so). The search, which cannot settle a collapsed side whose pole lies on
 /// the plane, is complete: the cap proof covers its undecided regions. Before, each pole join
 /// was unproven ("through a pole: the curve is not certified there"), every pair's search
 /// incomplete, and the curve had no edge.
