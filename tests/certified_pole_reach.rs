@@ -8,33 +8,9 @@
 
 mod common;
 
-use common::scenes::scene_path;
-use common::shell_checks::run;
-use serde_json::{json, Value};
+use common::shell_checks::{axis_plane, nurbs_sphere, run};
+use serde_json::json;
 use ssitrace::certify::CertifiedEnd;
-
-/// The sphere of `scenes/nurbs_sphere_plane.json`, its coordinates taken in the order `axes`.
-fn sphere(axes: [usize; 3]) -> Value {
-    let text = std::fs::read_to_string(scene_path("nurbs_sphere_plane.json")).expect("scene");
-    let mut s: Value = serde_json::from_str(&text).expect("json");
-    let mut sphere = s["surfaces"][0].take();
-    for p in sphere["points"].as_array_mut().expect("points") {
-        let c = p.as_array().expect("point").clone();
-        *p = json!([c[axes[0]], c[axes[1]], c[axes[2]]]);
-    }
-    sphere
-}
-
-/// The plane `y = k·x` over `|x| ≤ 2`, `|z| ≤ 2` (corners exact), its coordinates permuted
-/// like the sphere's.
-fn plane(k: f64, axes: [usize; 3]) -> Value {
-    let corner = |x: f64, z: f64| {
-        let c = [x, k * x, z];
-        json!([c[axes[0]], c[axes[1]], c[axes[2]]])
-    };
-    json!({"kind": "bezier", "degree": [1, 1],
-           "points": [corner(-2.0, -2.0), corner(-2.0, 2.0), corner(2.0, -2.0), corner(2.0, 2.0)]})
-}
 
 /// Every branch ends unproven at a pole, and its end box (the last link's end slice) lies
 /// within 1e-10 of the pole seen on the plane (an affine map of its parameters: its corners
@@ -46,7 +22,7 @@ fn chains_into_a_pole_end_within_1e10_of_it() {
         for k in [0.3, -2.5] {
             for sphere_first in [true, false] {
                 let what = format!("axes {axes:?}, y = {k}·x, sphere first: {sphere_first}");
-                let (s, p) = (sphere(axes), plane(k, axes));
+                let (s, p) = (nurbs_sphere(axes), axis_plane(k, 0.0, axes));
                 let surfaces = if sphere_first {
                     json!([s, p])
                 } else {

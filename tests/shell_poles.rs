@@ -20,39 +20,15 @@
 
 mod common;
 
-use common::scenes::scene_path;
 use common::shell_checks::{
-    around, check_edge_with, check_edge_within, closed_and_proven, edges, run,
+    around, axis_plane, check_edge_with, check_edge_within, closed_and_proven, edges, nurbs_sphere,
+    run,
 };
-use serde_json::{json, Value};
+use serde_json::json;
 use ssitrace::certify::CertifiedEnd;
 use ssitrace::io::scene::ShellScene;
 use ssitrace::pipeline::ShellRunReport;
 use ssitrace::shell::edges::EdgeKind;
-
-/// The sphere of `scenes/nurbs_sphere_plane.json`, its coordinates taken in the order `axes`
-/// (`[0, 1, 2]` as written, pole on z; `[2, 0, 1]` puts the poles on x).
-fn sphere(axes: [usize; 3]) -> Value {
-    let text = std::fs::read_to_string(scene_path("nurbs_sphere_plane.json")).expect("scene");
-    let mut s: Value = serde_json::from_str(&text).expect("json");
-    let mut sphere = s["surfaces"][0].take();
-    for p in sphere["points"].as_array_mut().expect("points") {
-        let c = p.as_array().expect("point").clone();
-        *p = json!([c[axes[0]], c[axes[1]], c[axes[2]]]);
-    }
-    sphere
-}
-
-/// The exact plane `y = k·x + e` over `|x| ≤ 2`, `|z| ≤ 2`, its coordinates permuted like
-/// the sphere's.
-fn plane(k: f64, e: f64, axes: [usize; 3]) -> Value {
-    let corner = |x: f64, z: f64| {
-        let c = [x, k * x + e, z];
-        json!([c[axes[0]], c[axes[1]], c[axes[2]]])
-    };
-    json!({"kind": "bezier", "degree": [1, 1],
-           "points": [corner(-2.0, -2.0), corner(-2.0, 2.0), corner(2.0, -2.0), corner(2.0, 2.0)]})
-}
 
 #[test]
 fn great_circles_passing_close_to_the_poles_are_one_closed_curve_each() {
@@ -61,7 +37,8 @@ fn great_circles_passing_close_to_the_poles_are_one_closed_curve_each() {
             for m in [10, 17, 24, 30] {
                 let e = 0.5f64.powi(m);
                 let what = format!("axes {axes:?}, y = {k}·x + 2^-{m}");
-                let (scene, report) = run(json!({"surfaces": [sphere(axes), plane(k, e, axes)]}));
+                let (scene, report) =
+                    run(json!({"surfaces": [nurbs_sphere(axes), axis_plane(k, e, axes)]}));
                 closed_and_proven(&what, &report);
                 assert_eq!(report.result.curves.len(), 1, "{what}");
                 // Back in the sphere's own axes, the circle on the plane y = k·x + e.
@@ -132,7 +109,7 @@ fn great_circles_through_the_poles_are_proven_through_them() {
         for k in [0.3, 1.0, -2.5] {
             for sphere_first in [true, false] {
                 let what = format!("axes {axes:?}, y = {k}·x, sphere first: {sphere_first}");
-                let (s, p) = (sphere(axes), plane(k, 0.0, axes));
+                let (s, p) = (nurbs_sphere(axes), axis_plane(k, 0.0, axes));
                 let surfaces = if sphere_first {
                     json!([s, p])
                 } else {
@@ -264,7 +241,8 @@ fn through_the_poles(
 #[test]
 fn great_circles_along_the_joints_through_the_poles_are_one_curve_each() {
     for (what, axes) in [("y = 0", [0, 1, 2]), ("x = 0", [1, 0, 2])] {
-        let (scene, report) = run(json!({"surfaces": [sphere(axes), plane(0.0, 0.0, axes)]}));
+        let (scene, report) =
+            run(json!({"surfaces": [nurbs_sphere(axes), axis_plane(0.0, 0.0, axes)]}));
         let res = &report.result;
         assert_eq!(
             res.edge_copies, 4,
@@ -295,8 +273,9 @@ fn great_circles_along_the_joints_through_the_poles_are_one_curve_each() {
 /// proven through both poles.
 #[test]
 fn a_pass_a_trillionth_from_the_poles_keeps_tight_certificates() {
-    let (_, report) =
-        run(json!({"surfaces": [sphere([0, 1, 2]), plane(0.3, 0.5f64.powi(40), [0, 1, 2])]}));
+    let (_, report) = run(
+        json!({"surfaces": [nurbs_sphere([0, 1, 2]), axis_plane(0.3, 0.5f64.powi(40), [0, 1, 2])]}),
+    );
     let res = &report.result;
     for pair in &res.pairs {
         for b in &pair.result.branches {

@@ -51,7 +51,7 @@ pub struct CornerJoin {
     /// [`EdgeKind::Pole`] through a pole).
     pub second_edge: EdgeKind,
     /// Every point of the true curve between the two parts' ends lies in this model-space box
-    /// (the corner box's image, or the pole proof's box, `super::pole_cap`; empty when the join
+    /// (the corner box's image, or the pole proof's box, see `shell/pole_cap.rs`; empty when the join
     /// is not proven).
     pub xyz: [Interval; 3],
     /// Branches of the other piece pairs at the corner or pole whose marched points all lie in

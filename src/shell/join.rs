@@ -246,21 +246,11 @@ pub(super) fn join_and_settle(
         used.insert(e2);
         let corner = match region {
             Region::None => None,
-            Region::Corner(n) => {
-                let c = &corners[n];
-                let covered = c.proof.as_ref().map_or(Vec::new(), |pr| {
-                    corner::absorbed(pr, pairs, &by_pair, &first_branch)
-                });
-                Some(CornerJoin {
-                    second_edge: c.edges[1],
-                    xyz: c.proof.as_ref().map_or([Interval::EMPTY; 3], |pr| pr.xyz),
-                    absorbed: covered,
-                })
-            }
+            Region::Corner(n) => Some(corner_join(&corners[n], pairs, &by_pair, &first_branch)),
             Region::Pole(n) => {
-                let keep = [e1.branch, e2.branch];
                 let pr = &poles[n];
                 settled.extend(pole_cap::settled(pr, a, b, pairs, &by_pair));
+                let keep = [e1.branch, e2.branch];
                 Some(CornerJoin {
                     second_edge: EdgeKind::Pole,
                     xyz: pr.xyz,
@@ -284,6 +274,23 @@ pub(super) fn join_and_settle(
     };
     let curves = chain(index.len(), &joins, &tolerance, &closed_branch, &absorbed);
     (curves, settled)
+}
+
+/// What a corner candidate's join adds: the other edge, the corner box and the slivers it
+/// covers.
+fn corner_join(
+    c: &corner::CornerCandidate,
+    pairs: &[PieceIntersection],
+    by_pair: &HashMap<([usize; 2], [usize; 2]), usize>,
+    first_branch: &[usize],
+) -> CornerJoin {
+    CornerJoin {
+        second_edge: c.edges[1],
+        xyz: c.proof.as_ref().map_or([Interval::EMPTY; 3], |pr| pr.xyz),
+        absorbed: c.proof.as_ref().map_or(Vec::new(), |pr| {
+            corner::absorbed(pr, pairs, by_pair, first_branch)
+        }),
+    }
 }
 
 /// A join candidate: the gap, the two sites, the status, the edge and its proof's region.

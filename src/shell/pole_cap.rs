@@ -41,13 +41,14 @@
 //! Branches of the pairs of the strips' pieces whose marched points all lie in a strip are
 //! slivers of the same arc: the join absorbs them ([`absorbed`]).
 
+mod rim;
+
 use std::collections::HashMap;
 
 use inari::Interval;
 
-use super::chart::{chart_map, ChartMap};
 use super::corner::stitched;
-use super::edges::{side_coordinate, EdgeLink, PieceSide};
+use super::edges::{side_coordinate, EdgeLink};
 use super::sites::{patches, EndSite};
 use super::{Face, PieceIntersection};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
@@ -57,7 +58,8 @@ use crate::geometry::piece::Piece;
 use crate::geometry::pole::collapsed_normal;
 use crate::numeric::scalar::point;
 use crate::numeric::vec3::{cross, dot};
-use crate::pair::krawczyk::{krawczyk, BoxSurface, KrawczykResult, ParamBox};
+use crate::pair::krawczyk::BoxSurface;
+use rim::{crossing, rim};
 
 /// Strip widths tried, smallest first (normalised, exact powers of two).
 const WIDTHS: [f64; 3] = [1.0 / 65536.0, 1.0 / 4096.0, 1.0 / 256.0];
@@ -71,8 +73,6 @@ const SETTLE_MOST: f64 = 0.5;
 const MAX_LEVEL: usize = 48;
 /// Most leaves kept.
 const MAX_LEAVES: usize = 512;
-/// Most boxes the crossing search looks at per rim piece.
-const MAX_BOXES: usize = 4000;
 
 /// A proven join through a pole.
 pub(super) struct PoleProof {
@@ -232,254 +232,9 @@ fn unit(x: [f64; 3]) -> Option<[f64; 3]> {
     (n > 0.0 && n.is_finite()).then(|| x.map(|c| c / n))
 }
 
-/// A piece of the cap's rim: on the strip `strip`, parameter `fixed` (0..4) held at `value`,
-/// `free` over `range`.
-struct Rim {
-    strip: usize,
-    fixed: usize,
-    value: f64,
-    free: usize,
-    range: [f64; 2],
-    /// For a piece round the corner where this strip's inner side meets the next strip's
-    /// across a glued edge: that strip and the chart map onto its piece (the rim piece is in
-    /// this strip's parameters, continued across the edge).
-    across: Option<(usize, ChartMap)>,
-    /// The strips whose inner side the piece is part of.
-    inner_of: Vec<usize>,
-}
-
-/// The share of an inner side's range, at each glued end, given to the rim piece round that
-/// corner (a crossing on the glued edge itself, the curve running along a knot line or seam,
-/// lies inside that piece, not at the end of two).
-const CORNER_SHARE: f64 = 1.0 / 64.0;
-
-/// The rim of the cap of strips `strips` at width `w`: each strip's inner side (short of its
-/// glued ends), a piece round each corner where two strips' inner sides meet across a glued
-/// edge (`links`: another strip's end at the same end of the edge), and each strip end that is
-/// not glued.
-fn rim(
-    strips: &[Strip<'_>],
-    surface: usize,
-    face: usize,
-    w: f64,
-    links: &[EdgeLink],
-) -> Result<Vec<Rim>, &'static str> {
-    // The strip glued to the end `here` of strip `k`, which of its ends, and the chart onto it.
-    let glued = |k: usize, here: PieceSide| {
-        let mine = strips[k].side;
-        links.iter().filter(|l| l.from == here).find_map(|l| {
-            // Only the same way round, on the same range along the edge: the strips' inner
-            // values then meet exactly on it (across a reversed edge, or between different
-            // ranges, they could miss each other by a rounding).
-            let range = |st: &Strip<'_>| {
-                let d = st.patch.domain();
-                if st.across() == 0 {
-                    d.u
-                } else {
-                    d.v
-                }
-            };
-            let next = strips.iter().position(|st| {
-                l.to.face == face
-                    && !l.reversed
-                    && st.piece == l.to.piece
-                    && st.side / 2 != l.to.side / 2
-                    && st.side == mine
-                    && range(st) == range(&strips[k])
-            })?;
-            let map = chart_map(l, strips[k].patch, strips[next].patch)?;
-            Some((next, l.to.side % 2, map))
-        })
-    };
-    let mut out = Vec::new();
-    for (k, st) in strips.iter().enumerate() {
-        let d = st.patch.domain();
-        let (across, along) = (st.across(), 1 - st.across());
-        let mut range = if along == 0 { d.u } else { d.v };
-        let share = CORNER_SHARE * (range[1] - range[0]);
-        let side_value = side_coordinate(&d, st.side).1;
-        let inner = st.inner(w);
-        for e in 0..2 {
-            let here = PieceSide {
-                face,
-                piece: st.piece,
-                side: 2 * along + e,
-            };
-            let at = side_coordinate(&d, here.side).1;
-            let Some((next, next_end, map)) = glued(k, here) else {
-                out.push(Rim {
-                    strip: k,
-                    fixed: 2 * surface + along,
-                    value: at,
-                    free: 2 * surface + across,
-                    range: [side_value.min(inner), side_value.max(inner)],
-                    across: None,
-                    inner_of: Vec::new(),
-                });
-                continue;
-            };
-            // Short of the corner; the piece round it belongs to the first of the two ends.
-            // A little more than the share of the next piece its inner side leaves out, so
-            // that the two overlap whatever the rounding of the chart.
-            let reach = map
-                .chart_domain()
-                .map(|cd| 1.001 * CORNER_SHARE * cd[along].wid())
-                .filter(|r| r.is_finite() && *r > 0.0);
-            if e == 0 {
-                range[0] = at + share;
-            } else {
-                range[1] = at - share;
-            }
-            if (k, e) < (next, next_end) {
-                let reach = reach.ok_or("a corner of the cap's rim has no chart")?;
-                let corner = if e == 0 {
-                    [at - reach, at + share]
-                } else {
-                    [at - share, at + reach]
-                };
-                out.push(Rim {
-                    strip: k,
-                    fixed: 2 * surface + across,
-                    value: inner,
-                    free: 2 * surface + along,
-                    range: corner,
-                    across: Some((next, map)),
-                    inner_of: vec![k, next],
-                });
-            }
-        }
-        out.push(Rim {
-            strip: k,
-            fixed: 2 * surface + across,
-            value: inner,
-            free: 2 * surface + along,
-            range,
-            across: None,
-            inner_of: vec![k],
-        });
-    }
-    Ok(out)
-}
-
-/// The crossings of the curve with the rim piece `r` (of `surfaces`, in the order P, Q) over
-/// the leaves' hull `v` (other surface's coordinates): `Ok(Some(enclosure))` for exactly one,
-/// strictly inside the piece's range, `Ok(None)` for none.
-fn crossing(
-    surfaces: [&dyn BoxSurface; 2],
-    r: &Rim,
-    other: usize,
-    v: [Interval; 2],
-) -> Result<Option<ParamBox>, &'static str> {
-    let mut region = [Interval::ENTIRE; 4];
-    region[r.fixed] = point(r.value);
-    region[r.free] = Interval::try_from((r.range[0], r.range[1])).map_err(|_| "a rim range")?;
-    region[2 * other] = v[0];
-    region[2 * other + 1] = v[1];
-    match zeros(surfaces, region, r.fixed)?.as_slice() {
-        [] => Ok(None),
-        [e] => {
-            let f = e[r.free];
-            if f.inf() > r.range[0] && f.sup() < r.range[1] {
-                Ok(Some(*e))
-            } else {
-                Err("the curve crosses the cap's rim at a corner")
-            }
-        }
-        _ => Err("the curve crosses a piece of the cap's rim more than once"),
-    }
-}
-
 /// How far (relative to the side's range) a chain's boxes may reach past a glued end of its
 /// strip: the rounding of a chain along the knot line or seam there.
 const ALONG_SLACK: f64 = 1e-9;
-
-/// Where boxes are cut, as a fraction of their width: off the middle, so that a zero at a
-/// symmetric parameter (the middle of a knot span) is not on the cut.
-const CUT: f64 = 0.4638671875;
-
-/// The distinct zeros of `P − Q` in `region` (coordinate `fixed` a point there), each
-/// enclosed: the region is cut into boxes proven empty (disjoint images, or a Krawczyk image
-/// disjoint from the box) or proven to hold exactly one zero, and two such boxes hold the same
-/// zero when one's enclosure lies in the other or the Krawczyk test proves one zero in their
-/// hull (a zero on the cut between them).
-fn zeros(
-    surfaces: [&dyn BoxSurface; 2],
-    region: ParamBox,
-    fixed: usize,
-) -> Result<Vec<ParamBox>, &'static str> {
-    let [p, q] = surfaces;
-    let mut todo = vec![region];
-    let mut found: Vec<(ParamBox, ParamBox)> = Vec::new();
-    let mut looked = 0;
-    while let Some(y) = todo.pop() {
-        looked += 1;
-        if looked > MAX_BOXES {
-            return Err("the crossings of the cap's rim could not be settled (too many boxes)");
-        }
-        let (fp, fq) = (p.box_first_order(y[0], y[1]), q.box_first_order(y[2], y[3]));
-        if fp
-            .iter()
-            .chain(&fq)
-            .flatten()
-            .any(|x| !x.is_common_interval())
-        {
-            return Err("an image on the cap's rim is unbounded");
-        }
-        if boxes_disjoint(&fp[0], &fq[0]) {
-            continue;
-        }
-        match krawczyk(p, q, y, fixed, 30) {
-            KrawczykResult::Proven { enclosure, .. } => found.push((y, enclosure)),
-            KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
-            KrawczykResult::NotProven(_) => {
-                // The free coordinate widest in model space (its partial's length times its
-                // width).
-                let partial = |k: usize| {
-                    let f = if k < 2 { &fp } else { &fq };
-                    let c = f[1 + k % 2];
-                    (c[0].sqr() + c[1].sqr() + c[2].sqr()).sqrt().sup()
-                };
-                let k = (0..4)
-                    .filter(|&k| k != fixed)
-                    .max_by(|&a, &b| {
-                        (y[a].wid() * partial(a)).total_cmp(&(y[b].wid() * partial(b)))
-                    })
-                    .unwrap_or((fixed + 1) % 4);
-                let (lo, hi) = (y[k].inf(), y[k].sup());
-                let m = lo + CUT * (hi - lo);
-                if !(lo < m && m < hi) {
-                    return Err("the crossings of the cap's rim could not be settled");
-                }
-                let (mut a, mut b) = (y, y);
-                a[k] = Interval::try_from((lo, m)).map_err(|_| "a cut is not finite")?;
-                b[k] = Interval::try_from((m, hi)).map_err(|_| "a cut is not finite")?;
-                todo.push(a);
-                todo.push(b);
-            }
-        }
-    }
-    let inside = |e: &ParamBox, y: &ParamBox| e.iter().zip(y).all(|(a, b)| a.subset(*b));
-    let mut distinct: Vec<(ParamBox, ParamBox)> = Vec::new();
-    'next: for (y, e) in found {
-        for (dy, de) in distinct.iter_mut() {
-            if inside(&e, dy) || inside(de, &y) {
-                continue 'next;
-            }
-            if e.iter().zip(de.iter()).all(|(a, b)| !a.disjoint(*b)) {
-                let hull: ParamBox = std::array::from_fn(|i| y[i].convex_hull(dy[i]));
-                match krawczyk(p, q, hull, fixed, 30) {
-                    KrawczykResult::Proven { enclosure, .. } => {
-                        (*dy, *de) = (hull, enclosure);
-                        continue 'next;
-                    }
-                    _ => return Err("two crossings of the cap's rim could not be told apart"),
-                }
-            }
-        }
-        distinct.push((y, e));
-    }
-    Ok(distinct.into_iter().map(|(_, e)| e).collect())
-}
 
 /// The certified end of `c` at the marched end point of `site`, when it is unproven at a pole:
 /// its box, and whether it is the chain's first end.

@@ -349,15 +349,8 @@ where
                 }
                 KrawczykResult::NotProven(reason) if reason.contains("disjoint") => {}
                 KrawczykResult::NotProven(_) => {
-                    let k = (self.cut)(&y);
-                    let m = y[k].mid();
-                    let (lo, hi) = (y[k].inf(), y[k].sup());
-                    if !(lo < m && m < hi) {
-                        return Err("a box too small to cut");
-                    }
-                    let (mut a, mut b) = (y, y);
-                    a[k] = Interval::try_from((lo, m)).map_err(|_| "a cut is not finite")?;
-                    b[k] = Interval::try_from((m, hi)).map_err(|_| "a cut is not finite")?;
+                    let [a, b] =
+                        cut_box(&y, (self.cut)(&y), 0.5).ok_or("a box too small to cut")?;
                     todo.push(a);
                     todo.push(b);
                 }
@@ -365,6 +358,20 @@ where
         }
         found.ok_or("no zero")
     }
+}
+
+/// The box `y` cut across coordinate `k` at the fraction `at` of its width: `None` if the cut
+/// would not fall strictly inside (a box too small to cut) or is not finite.
+pub(super) fn cut_box(y: &ParamBox, k: usize, at: f64) -> Option<[ParamBox; 2]> {
+    let (lo, hi) = (y[k].inf(), y[k].sup());
+    let m = lo + at * (hi - lo);
+    if !(lo < m && m < hi) {
+        return None;
+    }
+    let (mut a, mut b) = (*y, *y);
+    a[k] = Interval::try_from((lo, m)).ok()?;
+    b[k] = Interval::try_from((m, hi)).ok()?;
+    Some([a, b])
 }
 
 /// Whether every point of `points` lies on `side` of the domain `d` of surface `surface` (0 for

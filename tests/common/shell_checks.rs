@@ -107,6 +107,31 @@ pub(crate) fn plane(origin: [f64; 3], e1: [f64; 3], e2: [f64; 3]) -> Value {
            "points": [at(0.0, 0.0), at(0.0, 1.0), at(1.0, 0.0), at(1.0, 1.0)]})
 }
 
+/// The NURBS sphere of `scenes/nurbs_sphere_plane.json`, its coordinates taken in the order
+/// `axes` (`[0, 1, 2]` as written, poles on z; `[2, 0, 1]` puts the poles on x).
+pub(crate) fn nurbs_sphere(axes: [usize; 3]) -> Value {
+    let text = std::fs::read_to_string(super::scenes::scene_path("nurbs_sphere_plane.json"))
+        .expect("scene");
+    let mut s: Value = serde_json::from_str(&text).expect("json");
+    let mut sphere = s["surfaces"][0].take();
+    for p in sphere["points"].as_array_mut().expect("points") {
+        let c = p.as_array().expect("point").clone();
+        *p = json!([c[axes[0]], c[axes[1]], c[axes[2]]]);
+    }
+    sphere
+}
+
+/// The plane `y = k·x + e` over `|x| ≤ 2`, `|z| ≤ 2` (exact corners for `k` any `f64` and `e`
+/// a power of two), its coordinates permuted like [`nurbs_sphere`]'s.
+pub(crate) fn axis_plane(k: f64, e: f64, axes: [usize; 3]) -> Value {
+    let corner = |x: f64, z: f64| {
+        let c = [x, k * x + e, z];
+        json!([c[axes[0]], c[axes[1]], c[axes[2]]])
+    };
+    json!({"kind": "bezier", "degree": [1, 1],
+           "points": [corner(-2.0, -2.0), corner(-2.0, 2.0), corner(2.0, -2.0), corner(2.0, 2.0)]})
+}
+
 pub(crate) fn run(scene: Value) -> (ShellScene, ShellRunReport) {
     let scene = ShellScene::from_json_value(&scene).expect("scene");
     let opts = RunOptions::from_scene_options(&scene.options);

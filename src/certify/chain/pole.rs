@@ -14,7 +14,7 @@
 //! the last marched point, a few `1e-12` from the pole on the sphere of
 //! `scenes/nurbs_sphere_plane.json`; before, they stopped at `t ≈ 3e-9`.
 
-use super::walker::{newton, Node, Walker};
+use super::walker::{newton, Node, PoleEnd, Walker};
 use super::*;
 
 /// Next to a pole, within this part of the patch's domain across from its collapsed side,
@@ -90,16 +90,6 @@ pub(super) fn refine_guide(
     newton(p, q, x, radial, x[radial])
         .map(|r| r.x)
         .filter(|y| radial != j && !moved_at_pole(p, q, &x, y))
-}
-
-/// The pole a half of a chain runs into: which coordinates run away from its side and along
-/// it, on the surface whose patch collapses there.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct PoleEnd {
-    /// The coordinate (0–3) that runs away from the collapsed side.
-    radial: usize,
-    /// The coordinate along the side (the angle about the pole).
-    angular: usize,
 }
 
 impl Walker<'_> {

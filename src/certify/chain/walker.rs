@@ -2,10 +2,19 @@
 //! joined without gaps, and the end where the half stops.
 
 use super::limit::LinkLimit;
-use super::pole::PoleEnd;
 use super::*;
 use crate::certify::lean_patch::{costlier_side, LeanPatch};
 use std::cell::Cell;
+
+/// The pole a half of a chain runs into (see `pole.rs`): which coordinates run away from its
+/// side and along it, on the surface whose patch collapses there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct PoleEnd {
+    /// The coordinate (0–3) that runs away from the collapsed side.
+    pub(super) radial: usize,
+    /// The coordinate along the side (the angle about the pole).
+    pub(super) angular: usize,
+}
 
 /// A guide point on the curve and its parameter velocity, oriented along the walk.
 #[derive(Debug, Clone, Copy)]
