@@ -58,7 +58,7 @@ use crate::geometry::piece::Piece;
 use crate::geometry::pole::collapsed_normal;
 use crate::numeric::scalar::point;
 use crate::numeric::vec3::{cross, dot};
-use crate::pair::krawczyk::BoxSurface;
+use crate::pair::krawczyk::{BoxSurface, ParamBox};
 use rim::{crossing, rim};
 
 /// Strip widths tried, smallest first (normalised, exact powers of two).
@@ -166,6 +166,56 @@ impl Strip<'_> {
         }
         Some(out)
     }
+}
+
+/// The hull of the declared parameter boxes of the parts of `other` (the leaves, cut in four
+/// until no wider than `target`) whose images meet `target`; `None` if none does (no point of
+/// `other` lies in `target`).
+fn near_parameters(
+    other: &RationalBezierPatch,
+    leaves: &[Leaf],
+    target: &[Interval; 3],
+) -> Option<[Interval; 2]> {
+    let size = crate::shell::corner::diameter(target);
+    let dom = other.domain();
+    let mut todo: Vec<([f64; 2], [f64; 2], usize)> =
+        leaves.iter().map(|l| (l.piece.s, l.piece.r, 0)).collect();
+    let mut hull: Option<[Interval; 2]> = None;
+    while let Some((s, r, level)) = todo.pop() {
+        let piece = Piece::over(other, s, r)?;
+        if boxes_disjoint(&piece.bounds(), target) {
+            continue;
+        }
+        if level >= 24 || crate::shell::corner::diameter(&piece.bounds()) <= size {
+            let d = piece.declared(&dom, 0.0);
+            hull = Some(hull.map_or(d, |h| [h[0].convex_hull(d[0]), h[1].convex_hull(d[1])]));
+            continue;
+        }
+        let (sm, rm) = (0.5 * (s[0] + s[1]), 0.5 * (r[0] + r[1]));
+        for (ss, rr) in [
+            ([s[0], sm], [r[0], rm]),
+            ([sm, s[1]], [r[0], rm]),
+            ([s[0], sm], [rm, r[1]]),
+            ([sm, s[1]], [rm, r[1]]),
+        ] {
+            todo.push((ss, rr, level + 1));
+        }
+    }
+    hull
+}
+
+/// The piece of `patch` over the declared box `y` (either range may be a point): over the
+/// normalised box round it, widened by a part in 2³⁰ of its width and at least 2⁻⁶⁰ (its
+/// control points' hull holds the patch over `y`). `None` if the box leaves the domain.
+fn thin_piece(patch: &RationalBezierPatch, y: [Interval; 2]) -> Option<Piece> {
+    let d = patch.domain();
+    let norm = |x: Interval, r: [f64; 2]| -> Option<[f64; 2]> {
+        let t = (x - point(r[0])) / (point(r[1]) - point(r[0]));
+        let pad = (t.wid() / 1073741824.0).max(1.0 / 1152921504606846976.0);
+        let (lo, hi) = ((t.inf() - pad).max(0.0), (t.sup() + pad).min(1.0));
+        (lo < hi).then_some([lo, hi])
+    };
+    Piece::over(patch, norm(y[0], d.u)?, norm(y[1], d.v)?)
 }
 
 /// A leaf of the other surface's quadtree: its piece, declared box and normal enclosure.
@@ -457,26 +507,8 @@ fn prove_at(
             h[1].convex_hull(l.declared[1]),
         ]
     });
-    // Per crossing, the strips whose inner side it is on.
-    let mut found: Vec<Vec<usize>> = Vec::new();
     let rims = rim(strips, surface, sites[0].side.face, w, links)?;
-    for r in &rims {
-        let st = &strips[r.strip];
-        let stitched = r
-            .across
-            .map(|(next, map)| stitched(st.patch, strips[next].patch, map));
-        let own: &dyn BoxSurface = match &stitched {
-            Some(s) => s,
-            None => st.patch,
-        };
-        let mut pair: [&dyn BoxSurface; 2] = [own, other];
-        if surface == 1 {
-            pair.swap(0, 1);
-        }
-        if crossing(pair, r, other_surface, hull)?.is_some() {
-            found.push(r.inner_of.clone());
-        }
-    }
+    let found = rim_crossings(strips, &rims, surface, other, &leaves, hull, &m0)?;
     let on = |c: &Vec<usize>, k: usize| c.contains(&at[k]);
     let matched = found.len() == 2
         && ((on(&found[0], 0) && on(&found[1], 1)) || (on(&found[0], 1) && on(&found[1], 0)));
@@ -526,6 +558,77 @@ fn prove_at(
 fn hull_all(xs: impl Iterator<Item = Option<Interval>>) -> Option<Interval> {
     let mut xs = xs;
     xs.try_fold(Interval::EMPTY, |h, x| Some(h.convex_hull(x?)))
+}
+
+/// Step 2 of the module documentation: the crossings of the curve with the pieces of the rim
+/// `rims` (the other surface `other`, its leaves and their hull `hull`, `m0` its normal near
+/// the pole); per crossing, the strips whose inner side it lies on.
+fn rim_crossings(
+    strips: &[Strip<'_>],
+    rims: &[rim::Rim],
+    surface: usize,
+    other: &RationalBezierPatch,
+    leaves: &[Leaf],
+    hull: [Interval; 2],
+    m0: &[f64; 3],
+) -> Result<Vec<Vec<usize>>, &'static str> {
+    let other_surface = 1 - surface;
+    let mut found: Vec<Vec<usize>> = Vec::new();
+    for r in rims {
+        let st = &strips[r.strip];
+        let stitched = r
+            .across
+            .map(|(next, map)| stitched(st.patch, strips[next].patch, map));
+        let own: &dyn BoxSurface = match &stitched {
+            Some(s) => s,
+            None => st.patch,
+        };
+        let mut pair: [&dyn BoxSurface; 2] = [own, other];
+        if surface == 1 {
+            pair.swap(0, 1);
+        }
+        // Along the other surface's normal near the pole, the two images of a box (hulls of
+        // their pieces' control points: a plain evaluation next to the pole is as wide as the
+        // net, and the axis-aligned boxes of a tilted surface overlap far from it).
+        let apart = |y: &ParamBox| -> bool {
+            if r.across.is_some() {
+                return false;
+            }
+            let o = 2 * other_surface;
+            let mine = 2 * surface;
+            let (Some(pp), Some(po)) = (
+                thin_piece(st.patch, [y[mine], y[mine + 1]]),
+                thin_piece(other, [y[o], y[o + 1]]),
+            ) else {
+                return false;
+            };
+            match (pp.range_along(m0), po.range_along(m0)) {
+                (Some(x), Some(z)) => x.disjoint(z),
+                _ => false,
+            }
+        };
+        // The other surface's parameters near this piece of the rim (all of the leaves' hull
+        // round a corner).
+        let near = if r.across.is_some() {
+            Some(hull)
+        } else {
+            let mut y = [Interval::ENTIRE; 4];
+            y[r.fixed] = point(r.value);
+            y[r.free] = Interval::try_from((r.range[0], r.range[1])).map_err(|_| "a rim range")?;
+            let mine = 2 * surface;
+            match thin_piece(st.patch, [y[mine], y[mine + 1]]) {
+                Some(piece) => near_parameters(other, leaves, &piece.bounds()),
+                None => Some(hull),
+            }
+        };
+        let Some(near) = near else {
+            continue;
+        };
+        if crossing(pair, r, other_surface, near, &apart)?.is_some() {
+            found.push(r.inner_of.clone());
+        }
+    }
+    Ok(found)
 }
 
 /// Every `x` with `⟨x, rows[i]⟩ ∈ values[i]` (three independent rows), enclosed: by Cramer's

@@ -15,7 +15,7 @@ use crate::shell::edges::{side_coordinate, EdgeLink, PieceSide};
 use crate::shell::sites::cut_box;
 
 /// Most boxes the crossing search looks at per rim piece.
-const MAX_BOXES: usize = 4000;
+const MAX_BOXES: usize = 6000;
 
 /// A piece of the cap's rim: on the strip `strip`, parameter `fixed` (0..4) held at `value`,
 /// `free` over `range`.
@@ -147,20 +147,22 @@ pub(super) fn rim(
 }
 
 /// The crossings of the curve with the rim piece `r` (of `surfaces`, in the order P, Q) over
-/// the leaves' hull `v` (other surface's coordinates): `Ok(Some(enclosure))` for exactly one,
-/// strictly inside the piece's range, `Ok(None)` for none.
+/// the leaves' hull `v` (other surface's coordinates), `apart` a further proof that a box
+/// holds no zero (the two surfaces' images separated along a direction): `Ok(Some(enclosure))`
+/// for exactly one, strictly inside the piece's range, `Ok(None)` for none.
 pub(super) fn crossing(
     surfaces: [&dyn BoxSurface; 2],
     r: &Rim,
     other: usize,
     v: [Interval; 2],
+    apart: &dyn Fn(&ParamBox) -> bool,
 ) -> Result<Option<ParamBox>, &'static str> {
     let mut region = [Interval::ENTIRE; 4];
     region[r.fixed] = point(r.value);
     region[r.free] = Interval::try_from((r.range[0], r.range[1])).map_err(|_| "a rim range")?;
     region[2 * other] = v[0];
     region[2 * other + 1] = v[1];
-    match zeros(surfaces, region, r.fixed)?.as_slice() {
+    match zeros(surfaces, region, r.fixed, apart)?.as_slice() {
         [] => Ok(None),
         [e] => {
             let f = e[r.free];
@@ -187,6 +189,7 @@ fn zeros(
     surfaces: [&dyn BoxSurface; 2],
     region: ParamBox,
     fixed: usize,
+    apart: &dyn Fn(&ParamBox) -> bool,
 ) -> Result<Vec<ParamBox>, &'static str> {
     let [p, q] = surfaces;
     let mut todo = vec![region];
@@ -206,7 +209,7 @@ fn zeros(
         {
             return Err("an image on the cap's rim is unbounded");
         }
-        if boxes_disjoint(&fp[0], &fq[0]) {
+        if boxes_disjoint(&fp[0], &fq[0]) || apart(&y) {
             continue;
         }
         match krawczyk(p, q, y, fixed, 30) {
