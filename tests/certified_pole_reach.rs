@@ -8,8 +8,7 @@
 
 mod common;
 
-use common::shell_checks::{axis_plane, nurbs_sphere, run};
-use serde_json::json;
+use common::shell_checks::{run, sphere_and_axis_plane};
 use ssitrace::certify::CertifiedEnd;
 
 /// Every branch ends unproven at a pole, and its end box (the last link's end slice) lies
@@ -22,13 +21,7 @@ fn chains_into_a_pole_end_within_1e10_of_it() {
         for k in [0.3, -2.5] {
             for sphere_first in [true, false] {
                 let what = format!("axes {axes:?}, y = {k}·x, sphere first: {sphere_first}");
-                let (s, p) = (nurbs_sphere(axes), axis_plane(k, 0.0, axes));
-                let surfaces = if sphere_first {
-                    json!([s, p])
-                } else {
-                    json!([p, s])
-                };
-                let (_, report) = run(json!({ "surfaces": surfaces }));
+                let (_, report) = run(sphere_and_axis_plane(axes, k, sphere_first));
                 // The plane's coordinates in the end boxes, and its point in the sphere's axes.
                 let side = if sphere_first { 2 } else { 0 };
                 let on_plane = |u: f64, v: f64| [4.0 * u - 2.0, k * (4.0 * u - 2.0), 4.0 * v - 2.0];

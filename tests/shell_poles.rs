@@ -22,7 +22,7 @@ mod common;
 
 use common::shell_checks::{
     around, axis_plane, check_edge_with, check_edge_within, closed_and_proven, edges, nurbs_sphere,
-    run,
+    run, sphere_and_axis_plane,
 };
 use serde_json::json;
 use ssitrace::certify::CertifiedEnd;
@@ -109,13 +109,7 @@ fn great_circles_through_the_poles_are_proven_through_them() {
         for k in [0.3, 1.0, -2.5] {
             for sphere_first in [true, false] {
                 let what = format!("axes {axes:?}, y = {k}·x, sphere first: {sphere_first}");
-                let (s, p) = (nurbs_sphere(axes), axis_plane(k, 0.0, axes));
-                let surfaces = if sphere_first {
-                    json!([s, p])
-                } else {
-                    json!([p, s])
-                };
-                let (scene, report) = run(json!({ "surfaces": surfaces }));
+                let (scene, report) = run(sphere_and_axis_plane(axes, k, sphere_first));
                 through_the_poles(&what, &scene, &report, k, axes, sphere_first);
             }
         }

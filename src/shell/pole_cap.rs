@@ -191,13 +191,7 @@ fn near_parameters(
             hull = Some(hull.map_or(d, |h| [h[0].convex_hull(d[0]), h[1].convex_hull(d[1])]));
             continue;
         }
-        let (sm, rm) = (0.5 * (s[0] + s[1]), 0.5 * (r[0] + r[1]));
-        for (ss, rr) in [
-            ([s[0], sm], [r[0], rm]),
-            ([sm, s[1]], [r[0], rm]),
-            ([s[0], sm], [rm, r[1]]),
-            ([sm, s[1]], [rm, r[1]]),
-        ] {
+        for (ss, rr) in quarters(s, r) {
             todo.push((ss, rr, level + 1));
         }
     }
@@ -260,13 +254,7 @@ fn leaves(other: &RationalBezierPatch, cap: &[Interval; 3]) -> Result<Vec<Leaf>,
             }
             continue;
         }
-        let (sm, rm) = (0.5 * (s[0] + s[1]), 0.5 * (r[0] + r[1]));
-        for (ss, rr) in [
-            ([s[0], sm], [r[0], rm]),
-            ([sm, s[1]], [r[0], rm]),
-            ([s[0], sm], [rm, r[1]]),
-            ([sm, s[1]], [rm, r[1]]),
-        ] {
+        for (ss, rr) in quarters(s, r) {
             todo.push((ss, rr, level + 1));
         }
     }
@@ -274,6 +262,17 @@ fn leaves(other: &RationalBezierPatch, cap: &[Interval; 3]) -> Result<Vec<Leaf>,
         return Err("the other surface does not come near the pole");
     }
     Ok(out)
+}
+
+/// The four quarters of the normalised box `s × r` (halved exactly: dyadic ends stay dyadic).
+fn quarters(s: [f64; 2], r: [f64; 2]) -> [([f64; 2], [f64; 2]); 4] {
+    let (sm, rm) = (0.5 * (s[0] + s[1]), 0.5 * (r[0] + r[1]));
+    [
+        ([s[0], sm], [r[0], rm]),
+        ([sm, s[1]], [r[0], rm]),
+        ([s[0], sm], [rm, r[1]]),
+        ([sm, s[1]], [rm, r[1]]),
+    ]
 }
 
 /// The unit vector along `x` (`None` if it is zero or not finite).

@@ -132,6 +132,17 @@ pub(crate) fn axis_plane(k: f64, e: f64, axes: [usize; 3]) -> Value {
            "points": [corner(-2.0, -2.0), corner(-2.0, 2.0), corner(2.0, -2.0), corner(2.0, 2.0)]})
 }
 
+/// The scene of [`nurbs_sphere`]`(axes)` and [`axis_plane`]`(k, 0, axes)` (a plane holding the
+/// sphere's axis), the sphere first or second.
+pub(crate) fn sphere_and_axis_plane(axes: [usize; 3], k: f64, sphere_first: bool) -> Value {
+    let (s, p) = (nurbs_sphere(axes), axis_plane(k, 0.0, axes));
+    if sphere_first {
+        json!({ "surfaces": [s, p] })
+    } else {
+        json!({ "surfaces": [p, s] })
+    }
+}
+
 pub(crate) fn run(scene: Value) -> (ShellScene, ShellRunReport) {
     let scene = ShellScene::from_json_value(&scene).expect("scene");
     let opts = RunOptions::from_scene_options(&scene.options);
