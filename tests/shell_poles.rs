@@ -26,6 +26,7 @@ use common::shell_checks::{
 };
 use serde_json::json;
 use ssitrace::certify::CertifiedEnd;
+use ssitrace::edge::Shortfall;
 use ssitrace::io::scene::ShellScene;
 use ssitrace::pipeline::ShellRunReport;
 use ssitrace::shell::edges::EdgeKind;
@@ -273,10 +274,11 @@ fn great_circles_along_the_joints_through_the_poles_are_one_curve_each() {
 /// `δ/t` at a distance `t`, so the chain must not hold the angle in its links next to the
 /// pole (as it does for a curve through it). Each branch's certificate stays tight (about
 /// 1e-9; holding the angle, one came back at 1.5e-4 after 2 000 links), and the curve is one,
-/// proven through both poles.
+/// proven through both poles. Its edge is poor (2e-5) and names the fit as the cause, not the
+/// certificates (it named them before).
 #[test]
 fn a_pass_a_trillionth_from_the_poles_keeps_tight_certificates() {
-    let (_, report) = run(
+    let (scene, report) = run(
         json!({"surfaces": [nurbs_sphere([0, 1, 2]), axis_plane(0.3, 0.5f64.powi(40), [0, 1, 2])]}),
     );
     let res = &report.result;
@@ -298,6 +300,21 @@ fn a_pass_a_trillionth_from_the_poles_keeps_tight_certificates() {
         "{c:?}"
     );
     assert!(c.certified_tolerance.is_some_and(|t| t <= 1e-8), "{c:?}");
+    // Its edge is poor (the sphere's p-curve turns through half a turn within about 1e-12 of
+    // the pole), and says why: the fit, not the certificates (which are far below it).
+    let es = edges("a pass 2^-40 from the poles", &scene, &report);
+    let e = &es[0];
+    eprintln!("{:.2e}: {:?}", e.edge_tolerance, e.shortfall);
+    if e.edge_tolerance > 2.0 * e.bounds.certified_tolerance.max(1e-9) {
+        assert!(
+            matches!(
+                e.shortfall,
+                Some(Shortfall::FitStalled { .. } | Shortfall::Rounds { .. })
+            ),
+            "{:?}",
+            e.shortfall
+        );
+    }
 }
 
 /// Small circles through one pole: planes through the north or south pole in tilted

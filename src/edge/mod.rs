@@ -213,7 +213,8 @@ pub struct EdgeBounds {
 pub enum Shortfall {
     /// The certificates alone (the links' radii, the true arcs at the cuts) exceed the
     /// request: no curve compared with the chain can meet it; the chain must be certified
-    /// more tightly. The coarse curves aimed a quarter above this floor.
+    /// more tightly. The coarse curves aimed a quarter above this floor (and came within twice
+    /// it: farther above, the fit is named instead).
     Certificate {
         /// The largest certified tolerance or cut share.
         floor: f64,
