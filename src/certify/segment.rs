@@ -32,7 +32,7 @@
 use crate::certify::lean_patch::{Centred, LeanPatch};
 use crate::geometry::bernstein::binomial;
 use crate::numeric::imul::mul as imul;
-use crate::numeric::scalar::point;
+use crate::numeric::scalar::{meet, point};
 #[cfg(not(target_feature = "avx512f"))]
 use crate::validated::MidRadSeries;
 use crate::validated::SeriesN;
@@ -690,14 +690,7 @@ fn prove_within(
     }
     // Every zero in Y lies in K; the image of K encloses them too.
     if let Some(k2) = image(&k) {
-        proof.k = std::array::from_fn(|r| {
-            let both = k[r].intersection(k2[r]);
-            if both.is_empty() {
-                k[r]
-            } else {
-                both
-            }
-        });
+        proof.k = std::array::from_fn(|r| meet(k[r], k2[r]));
     } else {
         proof.k = k;
     }
@@ -716,16 +709,8 @@ fn prove_within(
         lp.eval(b[0], b[1]),
         lq.eval(b[2], b[3]),
     ];
-    proof.model = std::array::from_fn(|r| {
-        all[1..].iter().fold(all[0][r], |acc, e| {
-            let both = acc.intersection(e[r]);
-            if both.is_empty() {
-                acc
-            } else {
-                both
-            }
-        })
-    });
+    proof.model =
+        std::array::from_fn(|r| all[1..].iter().fold(all[0][r], |acc, e| meet(acc, e[r])));
     Ok(proof)
 }
 

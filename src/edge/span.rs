@@ -8,7 +8,7 @@
 use super::poly::{add_up, norm_sup, taylor_shift, Poly, SPoly, SPLINE_DEGREE};
 use super::warp::{composite, Warp};
 use crate::geometry::RationalBezierPatch;
-use crate::numeric::scalar::point;
+use crate::numeric::scalar::{meet, point};
 use crate::validated::SeriesN;
 use inari::Interval;
 
@@ -252,12 +252,7 @@ pub(crate) fn model_box(
     let off = tau - m;
     std::array::from_fn(|k| {
         let mv = at[k] + (da[k] * s0 + db[k] * s1) * off;
-        let both = naive[k].intersection(mv);
-        if both.is_empty() {
-            naive[k]
-        } else {
-            both
-        }
+        meet(naive[k], mv)
     })
 }
 

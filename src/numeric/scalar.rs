@@ -123,6 +123,17 @@ pub fn interval(lo: f64, hi: f64) -> Option<Interval> {
     Interval::try_from((lo, hi)).ok()
 }
 
+/// Two enclosures of the same value combined: their intersection, or `a` where rounding left
+/// them disjoint (never empty; each encloses the value alone).
+pub fn meet(a: Interval, b: Interval) -> Interval {
+    let both = a.intersection(b);
+    if both.is_empty() {
+        a
+    } else {
+        both
+    }
+}
+
 /// The point interval `[x, x]` (an exact enclosure of `x`). Non-finite `x` gives the whole line.
 pub fn point(x: f64) -> Interval {
     <Interval as Scalar>::from_f64(x)

@@ -56,7 +56,7 @@ use crate::geometry::bezier::RationalBezierPatch;
 use crate::geometry::enclosure::boxes_disjoint;
 use crate::geometry::piece::Piece;
 use crate::geometry::pole::collapsed_normal;
-use crate::numeric::scalar::point;
+use crate::numeric::scalar::{meet, point};
 use crate::numeric::vec3::{cross, dot};
 use crate::pair::krawczyk::{BoxSurface, ParamBox};
 use rim::{crossing, rim};
@@ -369,14 +369,7 @@ fn chain_crosses(
     }
     let xp = pair[0].enclose(near[0], near[1]);
     let xq = pair[1].enclose(near[2], near[3]);
-    Ok(std::array::from_fn(|i| {
-        let both = xp[i].intersection(xq[i]);
-        if both.is_empty() {
-            xp[i]
-        } else {
-            both
-        }
-    }))
+    Ok(std::array::from_fn(|i| meet(xp[i], xq[i])))
 }
 
 /// Proves the join of `s1` and `s2` (two ends on sides of one face collapsed to the same pole,
@@ -543,14 +536,7 @@ fn prove_at(
         .iter()
         .fold(Interval::EMPTY, |h, e| h.convex_hull(dot(e, &dp)));
     let xyz = solve_frame([n0, m0, d], [along_n, along_m, along_d]);
-    Ok(std::array::from_fn(|i| {
-        let both = xyz[i].intersection(cap[i]);
-        if both.is_empty() {
-            xyz[i]
-        } else {
-            both
-        }
-    }))
+    Ok(std::array::from_fn(|i| meet(xyz[i], cap[i])))
 }
 
 /// The hull of the intervals, `None` if one is missing.

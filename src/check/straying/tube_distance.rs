@@ -4,7 +4,7 @@
 use inari::Interval;
 
 use crate::certify::curve::TubePiece;
-use crate::numeric::scalar::point;
+use crate::numeric::scalar::{meet, point};
 
 /// The reported polynomial and its derivative at `tau` (floating point).
 pub(crate) fn eval_with_derivative(t: &TubePiece, tau: f64) -> ([f64; 4], [f64; 4]) {
@@ -86,12 +86,7 @@ fn enclose_poly(coeffs: &[Interval], tau: Interval) -> Interval {
         .rev()
         .fold(point(0.0), |acc, (k, &ck)| acc * tau + ck * point(k as f64));
     let centred = horner(c) + deriv * (tau - c);
-    let both = natural.intersection(centred);
-    if both.is_empty() {
-        natural
-    } else {
-        both
-    }
+    meet(natural, centred)
 }
 
 /// Rigorous lower bound of the max-norm distance from `y` to the piece's *true* curve (the
