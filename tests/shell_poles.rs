@@ -22,7 +22,7 @@ mod common;
 
 use common::shell_checks::{
     around, axis_plane, check_edge_with, check_edge_within, closed_and_proven, edges, nurbs_sphere,
-    run, sphere_and_axis_plane,
+    run, sphere_and_axis_plane, split_sphere,
 };
 use serde_json::json;
 use ssitrace::certify::CertifiedEnd;
@@ -317,6 +317,57 @@ fn a_pass_a_trillionth_from_the_poles_keeps_tight_certificates() {
     }
 }
 
+/// Poles shared by several faces: the sphere split along its knot lines into four quarter
+/// turns, eight octants (the equator a face edge too), three faces of unequal turns, and four
+/// quarters of which one has its u reversed; planes through the axis off the joints, and along
+/// them (`y = 0` on the seam and a face edge, `x = 0` on two face edges); the sphere first or
+/// second. The cap round each pole is made of the strips of every face's pieces there, glued
+/// across the faces' shared edges as across knot lines. Each must give the same as the whole
+/// sphere: one closed curve, proven through both poles (the checks of
+/// [`great_circles_through_the_poles_are_proven_through_them`]). Before, the pole joins were
+/// only looked for within one face: each curve came back open in two pieces, the searches
+/// round the poles incomplete. Along the edges of the reversed face, the copies of the curve
+/// kept alternated between the two faces and could not be joined (the copy in the face listed
+/// first is now kept).
+#[test]
+fn poles_shared_by_several_faces_are_crossed_by_one_closed_curve() {
+    let quarters = |flip: bool| -> Vec<([usize; 4], bool)> {
+        (0..4).map(|q| ([q, q + 1, 0, 2], flip && q == 1)).collect()
+    };
+    let octants = (0..8)
+        .map(|k| ([k / 2, k / 2 + 1, k % 2, k % 2 + 1], false))
+        .collect();
+    let three = vec![
+        ([0, 1, 0, 2], false),
+        ([1, 2, 0, 2], false),
+        ([2, 4, 0, 2], false),
+    ];
+    let splits = [
+        ("four quarters", quarters(false)),
+        ("eight octants", octants),
+        ("three faces", three),
+        ("four quarters, one reversed", quarters(true)),
+    ];
+    for (name, faces) in &splits {
+        for (k, axes, sphere_first) in [
+            (0.3, [0, 1, 2], true),
+            (-2.5, [0, 1, 2], false),
+            (0.0, [0, 1, 2], true),
+            (0.0, [1, 0, 2], false),
+        ] {
+            let (sphere, plane) = (split_sphere(axes, faces), axis_plane(k, 0.0, axes));
+            let scene = if sphere_first {
+                json!({"surfaces": [sphere, plane]})
+            } else {
+                json!({"surfaces": [plane, sphere]})
+            };
+            let what = format!("{name}: y = {k}·x, axes {axes:?}, sphere first: {sphere_first}");
+            let (scene, report) = run(scene);
+            through_the_poles(&what, &scene, &report, k, axes, sphere_first);
+        }
+    }
+}
+
 /// Small circles through one pole: planes through the north or south pole in tilted
 /// directions (not holding the axis; the plane's corners rounded, so it passes the pole to
 /// within rounding). One closed curve each, its search complete, every join proven, the
@@ -326,17 +377,6 @@ fn a_pass_a_trillionth_from_the_poles_keeps_tight_certificates() {
 /// budget). Before, every such pole join was unproven.
 #[test]
 fn small_circles_through_one_pole_are_proven_through_it() {
-    let unit = |v: [f64; 3]| {
-        let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        v.map(|c| c / n)
-    };
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
     for (pole, n) in [
         ([0.0, 0.0, 1.0], [0.3, -0.5, 0.8]),
         ([0.0, 0.0, -1.0], [-0.6, 0.2, -0.4]),
@@ -344,8 +384,7 @@ fn small_circles_through_one_pole_are_proven_through_it() {
     ] {
         let what = format!("pole {pole:?}, normal {n:?}");
         let n = unit(n);
-        let e1 = unit(cross(n, [0.0, 0.0, 1.0]));
-        let e2 = cross(n, e1);
+        let (e1, e2) = plane_frame(n);
         let corner = |a: f64, b: f64| -> Vec<f64> {
             (0..3)
                 .map(|i| pole[i] + 2.0 * a * e1[i] + 2.0 * b * e2[i])
@@ -353,47 +392,82 @@ fn small_circles_through_one_pole_are_proven_through_it() {
         };
         let cut = json!({"kind": "bezier", "degree": [1, 1],
             "points": [corner(-1.0, -1.0), corner(-1.0, 1.0), corner(1.0, -1.0), corner(1.0, 1.0)]});
-        let (scene, report) = run(json!({"surfaces": [nurbs_sphere([0, 1, 2]), cut]}));
-        let res = &report.result;
-        assert!(res.is_complete(), "{what}: search incomplete");
-        assert_eq!(res.curves.len(), 1, "{what}: {:?}", res.curves);
-        let c = &res.curves[0];
-        assert!(
-            c.closed && c.joins.iter().all(|j| j.status.is_proven()),
-            "{what}: {c:?}"
-        );
-        let tol = c.certified_tolerance.expect("certified as a whole");
-        assert!(tol <= 1e-6, "{what}: {tol:e}");
-        // The circle: centre (n·X)·n, radius √(1 − (n·X)²), in the plane spanned by e1, e2.
-        let h = (0..3).map(|i| n[i] * pole[i]).sum::<f64>();
-        let (centre, radius) = (n.map(|c| c * h), (1.0 - h * h).sqrt());
-        let at = |t: f64| -> [f64; 3] {
-            std::array::from_fn(|i| centre[i] + radius * (t.cos() * e1[i] + t.sin() * e2[i]))
-        };
-        // The pole's angle on the circle.
-        let d: [f64; 3] = std::array::from_fn(|i| pole[i] - centre[i]);
-        let t0 = (0..3)
-            .map(|i| d[i] * e2[i])
-            .sum::<f64>()
-            .atan2((0..3).map(|i| d[i] * e1[i]).sum::<f64>());
-        let j = c
-            .joins
-            .iter()
-            .find(|j| j.edge == EdgeKind::Pole)
-            .expect("a pole join");
-        let bx = j.corner.as_ref().expect("its box").xyz;
-        // The arc nearer the pole than both chains' ends lies between them: in the box.
-        let reach = chain_ends(res, &scene, j, 0)
-            .iter()
-            .map(|p| (0..3).map(|i| (p[i] - pole[i]).powi(2)).sum::<f64>().sqrt())
-            .fold(f64::INFINITY, f64::min);
-        assert!(reach < 1e-6, "{what}: chains end {reach:e} from the pole");
-        for m in 0..=200 {
-            let x = at(t0 + reach / radius * (m as f64 / 100.0 - 1.0));
-            assert!(
-                (0..3).all(|i| bx[i].inf() <= x[i] && x[i] <= bx[i].sup()),
-                "{what}: the circle at {x:?} is outside the pole join's box {bx:?}"
-            );
+        // The whole sphere, and the sphere as four quarter faces sharing the poles.
+        let quarters: Vec<_> = (0..4).map(|q| ([q, q + 1, 0, 2], false)).collect();
+        let spheres = [
+            nurbs_sphere([0, 1, 2]),
+            json!(split_sphere([0, 1, 2], &quarters)),
+        ];
+        for (sphere, faces) in spheres.into_iter().zip([1, 4]) {
+            let what = format!("{what}, {faces} face(s)");
+            small_circle_through(&what, json!({"surfaces": [sphere, cut.clone()]}), pole, n);
         }
     }
+}
+
+/// The checks of [`small_circles_through_one_pole_are_proven_through_it`] on one scene: the
+/// plane through `pole` with unit normal `n`, against the sphere.
+fn small_circle_through(what: &str, scene: serde_json::Value, pole: [f64; 3], n: [f64; 3]) {
+    let (e1, e2) = plane_frame(n);
+    let (scene, report) = run(scene);
+    let res = &report.result;
+    assert!(res.is_complete(), "{what}: search incomplete");
+    assert_eq!(res.curves.len(), 1, "{what}: {:?}", res.curves);
+    let c = &res.curves[0];
+    assert!(
+        c.closed && c.joins.iter().all(|j| j.status.is_proven()),
+        "{what}: {c:?}"
+    );
+    let tol = c.certified_tolerance.expect("certified as a whole");
+    assert!(tol <= 1e-6, "{what}: {tol:e}");
+    // The circle: centre (n·X)·n, radius √(1 − (n·X)²), in the plane spanned by e1, e2.
+    let h = (0..3).map(|i| n[i] * pole[i]).sum::<f64>();
+    let (centre, radius) = (n.map(|c| c * h), (1.0 - h * h).sqrt());
+    let at = |t: f64| -> [f64; 3] {
+        std::array::from_fn(|i| centre[i] + radius * (t.cos() * e1[i] + t.sin() * e2[i]))
+    };
+    // The pole's angle on the circle.
+    let d: [f64; 3] = std::array::from_fn(|i| pole[i] - centre[i]);
+    let t0 = (0..3)
+        .map(|i| d[i] * e2[i])
+        .sum::<f64>()
+        .atan2((0..3).map(|i| d[i] * e1[i]).sum::<f64>());
+    let j = c
+        .joins
+        .iter()
+        .find(|j| j.edge == EdgeKind::Pole)
+        .expect("a pole join");
+    let bx = j.corner.as_ref().expect("its box").xyz;
+    // The arc nearer the pole than both chains' ends lies between them: in the box.
+    let reach = chain_ends(res, &scene, j, 0)
+        .iter()
+        .map(|p| (0..3).map(|i| (p[i] - pole[i]).powi(2)).sum::<f64>().sqrt())
+        .fold(f64::INFINITY, f64::min);
+    assert!(reach < 1e-6, "{what}: chains end {reach:e} from the pole");
+    for m in 0..=200 {
+        let x = at(t0 + reach / radius * (m as f64 / 100.0 - 1.0));
+        assert!(
+            (0..3).all(|i| bx[i].inf() <= x[i] && x[i] <= bx[i].sup()),
+            "{what}: the circle at {x:?} is outside the pole join's box {bx:?}"
+        );
+    }
+}
+
+/// `v` scaled to unit length.
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    v.map(|c| c / n)
+}
+
+/// Two unit vectors spanning the plane of unit normal `n` (not along z): `e1` horizontal.
+fn plane_frame(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let e1 = unit(cross(n, [0.0, 0.0, 1.0]));
+    (e1, cross(n, e1))
 }

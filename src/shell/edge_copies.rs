@@ -10,11 +10,14 @@
 //! pieces' size), the two sides are the two sides of one shared edge ([`shared_edges`]), the
 //! other surface's piece is the same, and their end points coincide in model space (either way
 //! round, within [`MARCH_JOIN_TOLERANCE`](super::sites::MARCH_JOIN_TOLERANCE)). Of the two,
-//! the copy whose certificate reaches both true ends is kept, then the one on the lower side
-//! of its piece (so the copies kept along one line all lie on the same side of it and join
-//! each other across knot lines rather than across corners), then the tighter certificate,
-//! then the one traced first. Dropping claims nothing: the kept copy's certificate covers the
+//! the copy whose certificate reaches both true ends is kept, then the one in the face listed
+//! first (along an edge two faces share), then the one on the lower side of its piece (so the
+//! copies kept along one line all lie on the same side of it, whatever each face's
+//! parametrisation, and join each other across knot lines rather than across corners), then
+//! the tighter certificate, then the one traced first. Dropping claims nothing: the kept copy's certificate covers the
 //! same curve; the test is in `f64` because it only decides what is reported twice.
+
+use std::cmp::Reverse;
 
 use super::edges::{shared_edges, side_coordinate, PieceSide};
 use super::sites::{marched_gap, patches, SIDE_TOLERANCE};
@@ -125,15 +128,17 @@ fn same_ends(p1: &[CurvePoint], p2: &[CurvePoint]) -> bool {
 }
 
 /// How good a copy is (greater is better): its certificate reaches both true ends, it is
-/// certified, then it lies on the lower side of its piece (`u = u0` or `v = v0`: so that all the
-/// copies kept along one line lie in the pieces on the same side of it, and the kept branches
-/// join across the knot lines that cross the line, not across corners), then the lower certified
-/// tolerance.
-fn rank(t: &TracedBranch, side: PieceSide) -> (bool, bool, bool, f64) {
+/// certified, then it lies in the face listed first, then on the lower side of its piece
+/// (`u = u0` or `v = v0`). So all the copies kept along one line lie in the pieces on the same
+/// side of it (across a face edge by the faces' order, which does not depend on which way
+/// each face's parameters run), and the kept branches join across the knot lines that cross
+/// the line, not across corners. Then the lower certified tolerance.
+fn rank(t: &TracedBranch, side: PieceSide) -> (bool, bool, Reverse<usize>, bool, f64) {
     let c = t.certified();
     (
         c.is_some_and(|c| c.ends.iter().all(CertifiedEnd::reaches_true_end)),
         c.is_some(),
+        Reverse(side.face),
         side.side.is_multiple_of(2),
         -t.certified_tolerance().unwrap_or(f64::INFINITY),
     )

@@ -37,8 +37,9 @@ pub enum EdgeKind {
     Seam,
     /// Equal boundary control rows in two faces.
     FaceEdge,
-    /// Two sides of one face collapsed to the same pole: not an edge, but where a curve through
-    /// the pole passes from one piece to another (such a join is never proven).
+    /// Two sides collapsed to the same pole (of one face, or of faces of one shell sharing it):
+    /// not an edge, but where a curve through the pole passes from one piece to another (such
+    /// a join is proven on a cap round the pole, `shell/pole_cap.rs`).
     Pole,
 }
 

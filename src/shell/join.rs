@@ -27,7 +27,7 @@
 //!    true end points then lie in that region, where the curve meets the edge only once, so
 //!    they are the same point. Otherwise the join is [`JoinStatus::Unproven`] with the reason;
 //!    with the marching method it is [`JoinStatus::Marched`].
-//!    A join through a pole (two ends on sides of one face collapsed to the same point) is
+//!    A join through a pole (two ends on sides of one shell collapsed to the same point) is
 //!    proven on a cap round the pole (`pole_cap.rs`), its arc held in a model box.
 //! 4. The joins chain the branches into [`JoinedCurve`]s: ordered parts with orientations,
 //!    closed when the chain comes back to its first part. Every branch is in exactly one curve
@@ -311,8 +311,8 @@ enum Region {
 /// and still be joined there as one curve passing through it.
 const STRAIGHT_THROUGH: f64 = 1e-3;
 
-/// Joins through a pole: two ends that the marcher ended on sides of one face collapsed to the
-/// same pole, against the same piece of the other surface, leaving the pole in opposite
+/// Joins through a pole: two ends that the marcher ended on sides of one shell (one face or
+/// several faces sharing the pole) collapsed to the same pole, against the same piece of the other surface, leaving the pole in opposite
 /// directions (to [`STRAIGHT_THROUGH`]): a curve through a sphere's pole arrives on one piece's
 /// pole side and leaves from another's, straight on (and two lines crossing at a cone's apex
 /// pair up by their lines). No chain reaches the pole (its parameters degenerate there): the
@@ -350,7 +350,6 @@ fn pole_candidates(
         for (y, s2) in sites.iter().enumerate().skip(x + 1) {
             let (q1, q2) = (&pairs[s1.pair], &pairs[s2.pair]);
             let same = s2.surface == s1.surface
-                && s2.side.face == s1.side.face
                 && q1.faces[other] == q2.faces[other]
                 && q1.pieces[other] == q2.pieces[other]
                 && pole(s2) == Some(p1);

@@ -1,17 +1,19 @@
 //! Joins through a pole, proven on a cap round it.
 //!
-//! A curve through the pole `X` of a face (a side of some of its pieces that the patch maps to
+//! A curve through the pole `X` of a shell (a side of some of its pieces that the patch maps to
 //! `X`: a sphere's pole, the end of any surface of revolution meeting its axis) comes back as
 //! two branches, one in each piece it arrives and leaves by, each ending unproven a little short
 //! of the pole: a chain cannot reach it, because every point of the collapsed side is a
 //! parameter of `X` and the parameters degenerate there. [`prove`] proves that the two branches
 //! are one curve through (or past) the pole, and encloses the arc between their chains' ends.
 //!
-//! **The cap.** `F` is the part of the face within a normalised width `w` of the collapsed
-//! sides of all its pieces at `X` (each piece's *strip*): strips of neighbouring pieces meet on
-//! their shared knot line or seam, so `F` is a disc round `X` on the surface, whose rim is
-//! made of the strips' inner sides and of those strip ends that are a side of the face (a
-//! piece of a surface of revolution of less than a full turn). `V` covers every part of the
+//! **The cap.** `F` is the part of the shell within a normalised width `w` of the collapsed
+//! sides of all its pieces at `X`, in every face that has one there (each piece's *strip*; a
+//! sphere split into faces along meridians has its poles on every face): strips of
+//! neighbouring pieces meet on their shared knot line, seam or face edge, so `F` is a disc
+//! round `X` on the surface, whose rim is made of the strips' inner sides and of those strip
+//! ends that are not glued to another strip (a piece of a surface of revolution of less than a
+//! full turn, or an edge whose two sides are parametrised differently). `V` covers every part of the
 //! other surface's piece whose image meets `F`'s bounding box (quadtree leaves, all strictly
 //! inside that piece).
 //!
@@ -78,10 +80,9 @@ const MAX_LEAVES: usize = 512;
 pub(super) struct PoleProof {
     /// Every point of the true curve between the two branches' ends lies in this model box.
     pub(super) xyz: [Interval; 3],
-    /// The pole's surface (0 or 1), face and strips (piece, collapsed side).
+    /// The pole's surface (0 or 1) and strips (face, piece, collapsed side).
     surface: usize,
-    face: usize,
-    strips: Vec<(usize, usize)>,
+    strips: Vec<(usize, usize, usize)>,
     /// The other surface's face and piece.
     other: [usize; 2],
     /// The strips' normalised width (the widest proven: the box may come from a narrower
@@ -89,8 +90,9 @@ pub(super) struct PoleProof {
     width: f64,
 }
 
-/// One piece of the face at the pole: the strip along its collapsed side `side`.
+/// One piece of a face at the pole: the strip along its collapsed side `side`.
 struct Strip<'a> {
+    face: usize,
     piece: usize,
     patch: &'a RationalBezierPatch,
     side: usize,
@@ -372,7 +374,7 @@ fn chain_crosses(
     Ok(std::array::from_fn(|i| meet(xp[i], xq[i])))
 }
 
-/// Proves the join of `s1` and `s2` (two ends on sides of one face collapsed to the same pole,
+/// Proves the join of `s1` and `s2` (two ends on sides of one shell collapsed to the same pole,
 /// against the same piece of the other surface) through the pole; see the module
 /// documentation. `links` are the shared edges of the pole's shell.
 pub(super) fn prove(
@@ -386,25 +388,27 @@ pub(super) fn prove(
     let surface = s1.surface;
     let pair = patches(a, b, &pairs[s1.pair]);
     let x = pair[surface].collapsed_sides()[s1.side.side].ok_or("no pole on the side")?;
-    let face = &[a, b][surface][s1.side.face];
-    let strips: Vec<Strip<'_>> = face
-        .pieces()
+    // Every piece of every face of the shell with a side collapsed to the pole.
+    let strips: Vec<Strip<'_>> = [a, b][surface]
         .iter()
         .enumerate()
-        .flat_map(|(k, p)| {
-            (0..4)
-                .filter(move |&sd| p.collapsed_sides()[sd] == Some(x))
-                .map(move |side| Strip {
-                    piece: k,
-                    patch: p,
-                    side,
-                })
+        .flat_map(|(f, face)| {
+            face.pieces().iter().enumerate().flat_map(move |(k, p)| {
+                (0..4)
+                    .filter(move |&sd| p.collapsed_sides()[sd] == Some(x))
+                    .map(move |side| Strip {
+                        face: f,
+                        piece: k,
+                        patch: p,
+                        side,
+                    })
+            })
         })
         .collect();
     let index = |s: &EndSite<'_>| {
-        strips
-            .iter()
-            .position(|st| st.piece == s.side.piece && st.side == s.side.side)
+        strips.iter().position(|st| {
+            st.face == s.side.face && st.piece == s.side.piece && st.side == s.side.side
+        })
     };
     let (Some(k1), Some(k2)) = (index(s1), index(s2)) else {
         return Err("an end is not on a side at the pole");
@@ -420,8 +424,7 @@ pub(super) fn prove(
                 let mut proof = PoleProof {
                     xyz,
                     surface,
-                    face: s1.side.face,
-                    strips: strips.iter().map(|s| (s.piece, s.side)).collect(),
+                    strips: strips.iter().map(|s| (s.face, s.piece, s.side)).collect(),
                     other: [
                         other_pair.faces[1 - surface],
                         other_pair.pieces[1 - surface],
@@ -499,7 +502,7 @@ fn prove_at(
             h[1].convex_hull(l.declared[1]),
         ]
     });
-    let rims = rim(strips, surface, sites[0].side.face, w, links)?;
+    let rims = rim(strips, surface, w, links)?;
     let found = rim_crossings(strips, &rims, surface, other, &leaves, hull, &m0)?;
     let on = |c: &Vec<usize>, k: usize| c.contains(&at[k]);
     let matched = found.len() == 2
@@ -638,15 +641,23 @@ fn strip_pairs<'a>(
 ) -> Vec<(usize, Strip<'a>)> {
     let s = proof.surface;
     let mut out = Vec::new();
-    for &(piece, side) in &proof.strips {
+    for &(face, piece, side) in &proof.strips {
         let (mut faces, mut pcs) = ([0; 2], [0; 2]);
-        faces[s] = proof.face;
+        faces[s] = face;
         pcs[s] = piece;
         faces[1 - s] = proof.other[0];
         pcs[1 - s] = proof.other[1];
         if let Some(&k) = by_pair.get(&(faces, pcs)) {
-            let patch = &[a, b][s][proof.face].pieces()[piece];
-            out.push((k, Strip { piece, patch, side }));
+            let patch = &[a, b][s][face].pieces()[piece];
+            out.push((
+                k,
+                Strip {
+                    face,
+                    piece,
+                    patch,
+                    side,
+                },
+            ));
         }
     }
     out
@@ -658,9 +669,11 @@ fn undecided_reach(proof: &PoleProof, strips: &[Strip<'_>], pairs: &[PieceInters
     let s = proof.surface;
     let mut most = 0.0f64;
     for pi in pairs {
-        let theirs =
-            pi.faces[s] == proof.face && [pi.faces[1 - s], pi.pieces[1 - s]] == proof.other;
-        let Some(st) = strips.iter().find(|st| theirs && st.piece == pi.pieces[s]) else {
+        let theirs = [pi.faces[1 - s], pi.pieces[1 - s]] == proof.other;
+        let Some(st) = strips
+            .iter()
+            .find(|st| theirs && st.face == pi.faces[s] && st.piece == pi.pieces[s])
+        else {
             continue;
         };
         let d = st.patch.domain();

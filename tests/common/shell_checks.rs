@@ -121,6 +121,40 @@ pub(crate) fn nurbs_sphere(axes: [usize; 3]) -> Value {
     sphere
 }
 
+/// The faces of a split [`nurbs_sphere`]`(axes)`: face `[u0, u1, v0, v1]` is the part over
+/// the knot spans `u ∈ [u0, u1]` (quarter turns, 0 to 4) and `v ∈ [v0, v1]` (0 to 2, pole to
+/// pole), with its own clamped knot vectors (the sphere's, cut exactly). With `flip`, the
+/// face's rows in u are listed the other way round (the same surface, its u reversed).
+pub(crate) fn split_sphere(axes: [usize; 3], faces: &[([usize; 4], bool)]) -> Vec<Value> {
+    let sphere = nurbs_sphere(axes);
+    let (points, weights) = (&sphere["points"], &sphere["weights"]);
+    let nv = 5;
+    let knots = |lo: usize, hi: usize| -> Vec<usize> {
+        let mut k = vec![lo];
+        k.extend((lo..=hi).flat_map(|x| [x, x]));
+        k.push(hi);
+        k
+    };
+    faces
+        .iter()
+        .map(|&([u0, u1, v0, v1], flip)| {
+            let mut rows: Vec<usize> = (2 * u0..=2 * u1).collect();
+            if flip {
+                rows.reverse();
+            }
+            let at = |i: usize, j: usize| i * nv + j;
+            let cells = || {
+                rows.iter()
+                    .flat_map(|&i| (2 * v0..=2 * v1).map(move |j| at(i, j)))
+            };
+            json!({"kind": "nurbs", "degree": [2, 2],
+                   "knots": [knots(u0, u1), knots(v0, v1)],
+                   "points": cells().map(|c| points[c].clone()).collect::<Vec<_>>(),
+                   "weights": cells().map(|c| weights[c].clone()).collect::<Vec<_>>()})
+        })
+        .collect()
+}
+
 /// The plane `y = k·x + e` over `|x| ≤ 2`, `|z| ≤ 2` (exact corners for `k` any `f64` and `e`
 /// a power of two), its coordinates permuted like [`nurbs_sphere`]'s.
 pub(crate) fn axis_plane(k: f64, e: f64, axes: [usize; 3]) -> Value {

@@ -45,7 +45,6 @@ const CORNER_SHARE: f64 = 1.0 / 64.0;
 pub(super) fn rim(
     strips: &[Strip<'_>],
     surface: usize,
-    face: usize,
     w: f64,
     links: &[EdgeLink],
 ) -> Result<Vec<Rim>, &'static str> {
@@ -65,7 +64,7 @@ pub(super) fn rim(
                 }
             };
             let next = strips.iter().position(|st| {
-                l.to.face == face
+                st.face == l.to.face
                     && !l.reversed
                     && st.piece == l.to.piece
                     && st.side / 2 != l.to.side / 2
@@ -86,7 +85,7 @@ pub(super) fn rim(
         let inner = st.inner(w);
         for e in 0..2 {
             let here = PieceSide {
-                face,
+                face: st.face,
                 piece: st.piece,
                 side: 2 * along + e,
             };
