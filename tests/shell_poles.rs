@@ -400,14 +400,72 @@ fn small_circles_through_one_pole_are_proven_through_it() {
         ];
         for (sphere, faces) in spheres.into_iter().zip([1, 4]) {
             let what = format!("{what}, {faces} face(s)");
-            small_circle_through(&what, json!({"surfaces": [sphere, cut.clone()]}), pole, n);
+            small_circle_through(
+                &what,
+                json!({"surfaces": [sphere, cut.clone()]}),
+                pole,
+                n,
+                1e-6,
+            );
+        }
+    }
+}
+
+/// Small circles through one pole on planes at 60° to 76° to the sphere there: the join's box
+/// must be nearly as tight as the chains' certificates. The crossing search on the cap's rim
+/// separated the two surfaces' pieces along the plane's normal only where the piece of the
+/// rim's side had a normalised parameter off 1 by more than an ulp (a pad of 2⁻⁶⁰ was lost to
+/// the rounding next to 1, and no piece was made): on the north pole's side `v = 1` every
+/// such test failed, the search ran out of boxes on the smallest caps, and only a cap 16
+/// times wider was proven. Measured: 1.1e-9 to 2.6e-9 (the chains end about 5e-10 short of
+/// the pole on either side); on four other such planes 1.4e-9 to 2.1e-9 and 0.07 to 0.5 s
+/// per scene, where it was 1.0e-7 to 1.3e-7 and 0.7 to 3.4 s.
+#[test]
+fn small_circles_through_a_pole_at_steep_angles_have_tight_boxes() {
+    for n in [
+        [0.62, -0.35, 0.41],
+        [-0.8, 0.45, -0.3],
+        [0.15, 0.95, 0.25],
+        [-0.5, -0.7, 0.5],
+    ] {
+        let n = unit(n);
+        let pole = [0.0, 0.0, 1.0];
+        let (e1, e2) = plane_frame(n);
+        let corner = |a: f64, b: f64| -> Vec<f64> {
+            (0..3)
+                .map(|i| pole[i] + 2.0 * a * e1[i] + 2.0 * b * e2[i])
+                .collect()
+        };
+        let cut = json!({"kind": "bezier", "degree": [1, 1],
+            "points": [corner(-1.0, -1.0), corner(-1.0, 1.0), corner(1.0, -1.0), corner(1.0, 1.0)]});
+        let quarters: Vec<_> = (0..4).map(|q| ([q, q + 1, 0, 2], false)).collect();
+        let spheres = [
+            nurbs_sphere([0, 1, 2]),
+            json!(split_sphere([0, 1, 2], &quarters)),
+        ];
+        for (sphere, faces) in spheres.into_iter().zip([1, 4]) {
+            let what = format!("normal {n:?}, {faces} face(s)");
+            small_circle_through(
+                &what,
+                json!({"surfaces": [sphere, cut.clone()]}),
+                pole,
+                n,
+                3e-9,
+            );
         }
     }
 }
 
 /// The checks of [`small_circles_through_one_pole_are_proven_through_it`] on one scene: the
-/// plane through `pole` with unit normal `n`, against the sphere.
-fn small_circle_through(what: &str, scene: serde_json::Value, pole: [f64; 3], n: [f64; 3]) {
+/// plane through `pole` with unit normal `n`, against the sphere; the curve certified within
+/// `most`.
+fn small_circle_through(
+    what: &str,
+    scene: serde_json::Value,
+    pole: [f64; 3],
+    n: [f64; 3],
+    most: f64,
+) {
     let (e1, e2) = plane_frame(n);
     let (scene, report) = run(scene);
     let res = &report.result;
@@ -419,7 +477,8 @@ fn small_circle_through(what: &str, scene: serde_json::Value, pole: [f64; 3], n:
         "{what}: {c:?}"
     );
     let tol = c.certified_tolerance.expect("certified as a whole");
-    assert!(tol <= 1e-6, "{what}: {tol:e}");
+    eprintln!("{what}: certified {tol:e}");
+    assert!(tol <= most, "{what}: {tol:e}");
     // The circle: centre (n·X)·n, radius √(1 − (n·X)²), in the plane spanned by e1, e2.
     let h = (0..3).map(|i| n[i] * pole[i]).sum::<f64>();
     let (centre, radius) = (n.map(|c| c * h), (1.0 - h * h).sqrt());

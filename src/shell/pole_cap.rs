@@ -201,14 +201,17 @@ fn near_parameters(
 }
 
 /// The piece of `patch` over the declared box `y` (either range may be a point): over the
-/// normalised box round it, widened by a part in 2³⁰ of its width and at least 2⁻⁶⁰ (its
-/// control points' hull holds the patch over `y`). `None` if the box leaves the domain.
+/// normalised box round it, widened by a part in 2³⁰ of its width and at least 2⁻⁶⁰ or an ulp
+/// (its control points' hull holds the patch over `y`). `None` if the box leaves the domain.
 fn thin_piece(patch: &RationalBezierPatch, y: [Interval; 2]) -> Option<Piece> {
     let d = patch.domain();
     let norm = |x: Interval, r: [f64; 2]| -> Option<[f64; 2]> {
         let t = (x - point(r[0])) / (point(r[1]) - point(r[0]));
         let pad = (t.wid() / 1073741824.0).max(1.0 / 1152921504606846976.0);
-        let (lo, hi) = ((t.inf() - pad).max(0.0), (t.sup() + pad).min(1.0));
+        // At least an ulp each way: next to 1 a pad of 2⁻⁶⁰ is lost to the rounding, and a
+        // point range would give no piece.
+        let lo = (t.inf() - pad).min(t.inf().next_down()).max(0.0);
+        let hi = (t.sup() + pad).max(t.sup().next_up()).min(1.0);
         (lo < hi).then_some([lo, hi])
     };
     Piece::over(patch, norm(y[0], d.u)?, norm(y[1], d.v)?)
@@ -433,13 +436,20 @@ pub(super) fn prove(
                 };
                 // A wider cap, when the search left regions round the pole that this one
                 // does not hold: the proof at that width covers them (its box is not kept).
+                // Just wider than they reach, else the next widths tried that reach as far.
                 let wanted = undecided_reach(&proof, &strips, pairs);
                 let wider = (wanted * 1.125).min(SETTLE_MOST);
-                if wanted >= w
-                    && wider > wanted
-                    && prove_at(a, b, pairs, [s1, s2], [k1, k2], &strips, x, wider, links).is_ok()
-                {
-                    proof.width = wider;
+                let tries = (wider > wanted)
+                    .then_some(wider)
+                    .into_iter()
+                    .chain(WIDTHS.into_iter().filter(|&c| c > wanted));
+                if wanted >= w {
+                    for c in tries {
+                        if prove_at(a, b, pairs, [s1, s2], [k1, k2], &strips, x, c, links).is_ok() {
+                            proof.width = c;
+                            break;
+                        }
+                    }
                 }
                 return Ok(proof);
             }
