@@ -317,6 +317,44 @@ mod tests {
     }
 
     #[test]
+    fn a_weighted_fit_follows_the_heavy_samples() {
+        // One coordinate is a cubic but for a jump of 1e-3 in its last few samples, weighted
+        // 1e-9 there; the other is the cubic, weighted 1 (so it alone cannot tell): fitted
+        // per coordinate, the first follows the cubic where its weight is 1, the second
+        // everywhere.
+        let coarse = [0.0, 1.0, 2.0];
+        let knots = knots_on(&coarse, |_| 1);
+        let f = |s: f64| s * s * s - s;
+        let n = 200;
+        let mut samples = Vec::new();
+        let mut weights = Vec::new();
+        for k in 0..=n {
+            let s = 2.0 * k as f64 / n as f64;
+            let far = k > n - 4;
+            samples.push((s, [f(s) + if far { 1e-3 } else { 0.0 }, f(s)]));
+            weights.push([if far { 1e-9 } else { 1.0 }, 1.0]);
+        }
+        let ends = [[f(0.0); 2], [f(2.0); 2]];
+        let plain = least_squares(&knots, &samples, ends);
+        let pts = least_squares_weighted(&knots, &samples, &weights, ends);
+        let curve = |pts: Vec<[f64; 2]>| BSpline::<2> {
+            degree: DEGREE,
+            knots: knots.clone(),
+            points: pts,
+        };
+        let (plain, fit) = (curve(plain), curve(pts));
+        let mut worst_plain = 0.0f64;
+        for k in 0..=150 {
+            let s = k as f64 / 100.0;
+            let x = fit.eval(s);
+            assert!((x[0] - f(s)).abs() < 1e-9, "{s}: {x:?}");
+            assert!((x[1] - f(s)).abs() < 1e-12, "{s}: {x:?}");
+            worst_plain = worst_plain.max((plain.eval(s)[0] - f(s)).abs());
+        }
+        assert!(worst_plain > 1e-6, "{worst_plain}");
+    }
+
+    #[test]
     fn least_squares_reproduces_a_polynomial() {
         let coarse = [0.0, 1.0, 2.0];
         let knots = knots_on(&coarse, |i| if i == 2 { DEGREE - 1 } else { 1 });
