@@ -3,7 +3,7 @@
 //! multiplicity, each as long as its arc length, with its warp), coarse curves fitted over
 //! them, and the proven bounds, refined ([`refine`]) until they meet the target tolerance.
 
-use super::fit::{knots_on, least_squares, on_fine_spans};
+use super::fit::{knots_on, least_squares, least_squares_weighted, on_fine_spans};
 use super::poly::{self, eval_mid, Poly, SPLINE_DEGREE as DEGREE};
 use super::span::{bounds, box_diameter, model_box, SpanBounds, SpanFixed};
 use super::warp::{arc_length_warp, Warp};
@@ -111,7 +111,7 @@ fn fit_part(d: &PartData, spans: &[Span], knots_s: &[f64], breaks: Vec<Break>) -
         }
     }
     let xyz = least_squares(&knots, &s3, d.ends_xyz);
-    let params = least_squares(&knots, &s4, d.ends_param);
+    let params = least_squares_weighted(&knots, &s4, &image_weights(d.pt, &s4), d.ends_param);
     let c3 = on_fine_spans(&knots, &xyz, &coarse, fine);
     let c4 = on_fine_spans(&knots, &params, &coarse, fine);
     let bounds = spans[start..end]
@@ -137,6 +137,45 @@ fn fit_part(d: &PartData, spans: &[Span], knots_s: &[f64], breaks: Vec<Break>) -
         bounds,
     }
 }
+
+/// Weights of the p-curves' samples `s4` (per sample, per parameter `σ, t, u, v`): the length
+/// of the surface's derivative in that parameter there, so that the fit weighs each
+/// parameter's error by what it moves the p-curve's image (the bounds are `|∂P/∂σ|·δ_σ +
+/// |∂P/∂t|·δ_t`). Next to a sphere's pole the longitude moves the image by almost nothing and the
+/// chain's longitude wanders (by 2e-6 on `y = −2.5·x`): fitted unweighted, the p-curve ringed by
+/// 1e-8 in the longitude all along the meridian, where it counts. Each weight is at least
+/// [`LEAST_WEIGHT`] times its parameter's largest (a collapsed side's zero derivative would
+/// leave its control points undetermined).
+fn image_weights(pt: &Part, s4: &[(f64, [f64; 4])]) -> Vec<[f64; 4]> {
+    let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let mut w: Vec<[f64; 4]> = s4
+        .iter()
+        .map(|(_, x)| {
+            let [_, ps, pt_] = pt.p.first_derivs(x[0], x[1]);
+            let [_, qu, qv] = pt.q.first_derivs(x[2], x[3]);
+            [len(ps), len(pt_), len(qu), len(qv)]
+        })
+        .collect();
+    for d in 0..4 {
+        let most = w
+            .iter()
+            .map(|x| x[d])
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max);
+        let least = if most > 0.0 { LEAST_WEIGHT * most } else { 1.0 };
+        for x in &mut w {
+            x[d] = if x[d].is_finite() {
+                x[d].max(least)
+            } else {
+                least
+            };
+        }
+    }
+    w
+}
+
+/// The least weight of a p-curve sample relative to its parameter's largest ([`image_weights`]).
+const LEAST_WEIGHT: f64 = 1e-9;
 
 /// The largest distance of a part's curves from the reported curve on the spans of `tube`
 /// (on all its spans when none is on it).

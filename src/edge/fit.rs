@@ -64,6 +64,37 @@ pub(crate) fn least_squares<const D: usize>(
     samples: &[(f64, [f64; D])],
     ends: [[f64; D]; 2],
 ) -> Vec<[f64; D]> {
+    weighted(knots, samples, |_| 1.0, ends)
+}
+
+/// [`least_squares`] per coordinate, the residual of coordinate `d` at sample `i` weighted by
+/// `weights[i][d]` (positive): each coordinate is fitted on its own, so that where one
+/// coordinate barely moves the curve's image (a sphere's longitude next to its pole) its
+/// samples cannot pull the fit away from the others' (guidance only).
+pub(crate) fn least_squares_weighted<const D: usize>(
+    knots: &[f64],
+    samples: &[(f64, [f64; D])],
+    weights: &[[f64; D]],
+    ends: [[f64; D]; 2],
+) -> Vec<[f64; D]> {
+    let mut out = vec![[0.0; D]; knots.len() - DEGREE - 1];
+    for d in 0..D {
+        let one: Vec<(f64, [f64; 1])> = samples.iter().map(|(s, x)| (*s, [x[d]])).collect();
+        let fit = weighted(knots, &one, |i| weights[i][d], ends.map(|e| [e[d]]));
+        for (o, f) in out.iter_mut().zip(fit) {
+            o[d] = f[0];
+        }
+    }
+    out
+}
+
+/// [`least_squares`] with the row of sample `i` scaled by `weight(i)`.
+fn weighted<const D: usize>(
+    knots: &[f64],
+    samples: &[(f64, [f64; D])],
+    weight: impl Fn(usize) -> f64,
+    ends: [[f64; D]; 2],
+) -> Vec<[f64; D]> {
     let n = knots.len() - DEGREE - 1;
     let free = n.saturating_sub(2);
     let mut out = vec![ends[0]; n];
@@ -80,7 +111,7 @@ pub(crate) fn least_squares<const D: usize>(
     const W: usize = DEGREE + 1;
     let mut r = vec![[0.0f64; W]; free];
     let mut rb = vec![[0.0f64; D]; free];
-    for (s, x) in samples {
+    for (k, (s, x)) in samples.iter().enumerate() {
         let (first, nb) = basis(knots, n, *s);
         let mut rhs: [f64; D] = std::array::from_fn(|d| x[d] - a[d]);
         // The row over the free columns first - 1 .. first - 1 + DEGREE (column i is control
@@ -97,6 +128,11 @@ pub(crate) fn least_squares<const D: usize>(
             } else {
                 v[j] = *w;
             }
+        }
+        let wk = weight(k);
+        if wk != 1.0 {
+            v.iter_mut().for_each(|x| *x *= wk);
+            rhs.iter_mut().for_each(|x| *x *= wk);
         }
         for j in 0..W {
             let col = base + j as isize;
@@ -278,6 +314,44 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_weighted_fit_follows_the_heavy_samples() {
+        // One coordinate is a cubic but for a jump of 1e-3 in its last few samples, weighted
+        // 1e-9 there; the other is the cubic, weighted 1 (so it alone cannot tell): fitted
+        // per coordinate, the first follows the cubic where its weight is 1, the second
+        // everywhere.
+        let coarse = [0.0, 1.0, 2.0];
+        let knots = knots_on(&coarse, |_| 1);
+        let f = |s: f64| s * s * s - s;
+        let n = 200;
+        let mut samples = Vec::new();
+        let mut weights = Vec::new();
+        for k in 0..=n {
+            let s = 2.0 * k as f64 / n as f64;
+            let far = k > n - 4;
+            samples.push((s, [f(s) + if far { 1e-3 } else { 0.0 }, f(s)]));
+            weights.push([if far { 1e-9 } else { 1.0 }, 1.0]);
+        }
+        let ends = [[f(0.0); 2], [f(2.0); 2]];
+        let plain = least_squares(&knots, &samples, ends);
+        let pts = least_squares_weighted(&knots, &samples, &weights, ends);
+        let curve = |pts: Vec<[f64; 2]>| BSpline::<2> {
+            degree: DEGREE,
+            knots: knots.clone(),
+            points: pts,
+        };
+        let (plain, fit) = (curve(plain), curve(pts));
+        let mut worst_plain = 0.0f64;
+        for k in 0..=150 {
+            let s = k as f64 / 100.0;
+            let x = fit.eval(s);
+            assert!((x[0] - f(s)).abs() < 1e-9, "{s}: {x:?}");
+            assert!((x[1] - f(s)).abs() < 1e-12, "{s}: {x:?}");
+            worst_plain = worst_plain.max((plain.eval(s)[0] - f(s)).abs());
+        }
+        assert!(worst_plain > 1e-6, "{worst_plain}");
     }
 
     #[test]

@@ -20,7 +20,8 @@
 //!   of degree 8 on a few of the fine knots: the 3D curve and the two
 //!   p-curves share its knots. Interior knots are simple (C7), raised (up to 8, C0) only where
 //!   refining a single fine span cannot meet the target otherwise. Control points are fitted
-//!   by least squares to samples `P(y(w(r)))`, `y(w(r))` (`f64`, guidance only), the part's
+//!   by least squares to samples `P(y(w(r)))`, `y(w(r))` (`f64`, guidance only; the p-curves
+//!   per parameter, each sample weighted by the surface's derivative in it), the part's
 //!   ends fixed; the parts' 3D curves share their end points and are joined with knots of
 //!   multiplicity 8 (so each part's stretch is exactly a B-spline on the p-curves' knots).
 //! - **Bounds**, per fine span: the coarse spline's polynomial on the span is enclosed by
