@@ -21,8 +21,8 @@
 mod common;
 
 use common::shell_checks::{
-    around, axis_plane, check_edge_with, closed_and_proven, edges, nurbs_sphere, run,
-    sphere_and_axis_plane, split_sphere,
+    around, axis_plane, check_edge_with, check_edge_within, closed_and_proven, edges, nurbs_sphere,
+    run, sphere_and_axis_plane, split_sphere,
 };
 use serde_json::json;
 use ssitrace::certify::CertifiedEnd;
@@ -374,10 +374,12 @@ fn poles_shared_by_several_faces_are_crossed_by_one_closed_curve() {
 /// Small circles through one pole: planes through the north or south pole in tilted
 /// directions (not holding the axis; the plane's corners rounded, so it passes the pole to
 /// within rounding). One closed curve each, its search complete, every join proven, the
-/// join's box holding the true circle round the pole (sampled within the chains' reach of it).
-/// Measured: certified tolerances 8.8e-10, 2.9e-9 and 4.7e-7 (the last where the plane meets
-/// the sphere at a smaller angle and only the widest cap is proven in the crossing search's
-/// budget). Before, every such pole join was unproven.
+/// join's box holding the true circle round the pole (sampled within the chains' reach of it),
+/// the edge within its tolerance of the circle both ways. The same on the sphere as four
+/// quarter faces sharing the poles. Measured: certified tolerances 3.3e-10, 1.1e-9 and 3.6e-8
+/// (the last where the plane meets the sphere at 37°, and its chains stop about 2e-8 short of
+/// the pole), edges 9.8e-10, 1.9e-9 and 7.2e-8; stop 29 had 8.8e-10, 2.9e-9 and 4.7e-7, and
+/// before it every such pole join was unproven.
 #[test]
 fn small_circles_through_one_pole_are_proven_through_it() {
     for (pole, n) in [
@@ -414,15 +416,23 @@ fn small_circles_through_one_pole_are_proven_through_it() {
     }
 }
 
-/// Small circles through one pole on planes at 60° to 76° to the sphere there: the join's box
-/// must be nearly as tight as the chains' certificates. The crossing search on the cap's rim
-/// separated the two surfaces' pieces along the plane's normal only where the piece of the
-/// rim's side had a normalised parameter off 1 by more than an ulp (a pad of 2⁻⁶⁰ was lost to
-/// the rounding next to 1, and no piece was made): on the north pole's side `v = 1` every
-/// such test failed, the search ran out of boxes on the smallest caps, and only a cap 16
-/// times wider was proven. Measured: 1.1e-9 to 2.6e-9 (the chains end about 5e-10 short of
-/// the pole on either side); on four other such planes 1.4e-9 to 2.1e-9 and 0.07 to 0.5 s
-/// per scene, where it was 1.0e-7 to 1.3e-7 and 0.7 to 3.4 s.
+/// Small circles through one pole on planes at 60° to 76° to the sphere there, on one face and
+/// on four: the whole curve certified within the request (1e-9), its edge too. Two causes
+/// kept it far above:
+/// - The crossing search on the cap's rim separated the two surfaces' pieces along the
+///   plane's normal only where the piece of the rim's side had a normalised parameter off 1
+///   by more than an ulp (a pad of 2⁻⁶⁰ was lost to the rounding next to 1, and no piece was
+///   made): on the north pole's side every such test failed, the search ran out of boxes on
+///   the smallest caps, and only a cap 16 times wider was proven (boxes of 1e-7).
+/// - The chains stopped about 5e-10 short of the pole (links did not contract): the plane's
+///   rounding there (1e-15) leaves the curve's longitude known to about `1e-15/t`, and the
+///   sphere's second partials over such a range, on the net as given, are differences of
+///   terms near the pole as wide as it. On a half whose march ends at a pole, the links are
+///   now proven on both patches moved so that the pole is the origin (`LeanPatch::moved`).
+///
+/// Measured: certified 2.9e-10 to 4.5e-10, edges 8.9e-10 to 1.0e-9 with 57 to 73 control
+/// points (the circle within 4e-11 to 8e-11 of them); before, 1.0e-7 to 1.3e-7 and 0.7 to
+/// 3.4 s per scene on four other such planes, now 0.07 to 0.5 s.
 #[test]
 fn small_circles_through_a_pole_at_steep_angles_have_tight_boxes() {
     for n in [
@@ -453,7 +463,7 @@ fn small_circles_through_a_pole_at_steep_angles_have_tight_boxes() {
                 json!({"surfaces": [sphere, cut.clone()]}),
                 pole,
                 n,
-                3e-9,
+                1e-9,
             );
         }
     }
@@ -513,6 +523,25 @@ fn small_circle_through(
             "{what}: the circle at {x:?} is outside the pole join's box {bx:?}"
         );
     }
+    // The edge, both ways against the circle, within twice the certificate (at least the
+    // request): `h` across the circle's plane, `ρ` from its axis.
+    let off = |x: &[f64; 3]| {
+        let d: [f64; 3] = std::array::from_fn(|i| x[i] - centre[i]);
+        let h = (0..3).map(|i| d[i] * n[i]).sum::<f64>();
+        let rho = ((0..3).map(|i| d[i] * d[i]).sum::<f64>() - h * h)
+            .max(0.0)
+            .sqrt();
+        (h * h + (rho - radius) * (rho - radius)).sqrt()
+    };
+    let es = edges(what, &scene, &report);
+    assert_eq!(es.len(), 1, "{what}");
+    let most = (2.0 * tol).max(1e-9);
+    let (a, b) = check_edge_within(what, &es[0], &scene.shells, &off, &around(at), 8, most);
+    eprintln!(
+        "{what}: edge {:e}, {} control points, measured {a:e} / {b:e}",
+        es[0].edge_tolerance,
+        es[0].curve.points.len()
+    );
 }
 
 /// `v` scaled to unit length.

@@ -709,8 +709,11 @@ fn prove_within(
         lp.eval(b[0], b[1]),
         lq.eval(b[2], b[3]),
     ];
-    proof.model =
-        std::array::from_fn(|r| all[1..].iter().fold(all[0][r], |acc, e| meet(acc, e[r])));
+    // Back by the shift the lean forms were moved by (both alike, see `LeanPatch::moved`).
+    let shift = lean[0].shift();
+    proof.model = std::array::from_fn(|r| {
+        all[1..].iter().fold(all[0][r], |acc, e| meet(acc, e[r])) + point(shift[r])
+    });
     Ok(proof)
 }
 

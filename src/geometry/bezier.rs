@@ -16,7 +16,7 @@ use crate::geometry::bernstein::{
     bernstein, bernstein_first, bernstein_values, binomial, forward_difference,
 };
 use crate::geometry::surface::{Domain, ParametricSurface, SurfaceDerivs, Vec3};
-use crate::numeric::scalar::Scalar;
+use crate::numeric::scalar::{point, Scalar};
 use inari::Interval;
 
 /// A surface point with all first and second partial derivatives, over any [`Scalar`].
@@ -75,109 +75,10 @@ impl PartialEq for RationalBezierPatch {
     }
 }
 
-/// Whether `x` is a non-empty interval with finite bounds; the typed problem otherwise.
-pub(crate) fn check_interval(x: Interval) -> std::result::Result<(), InputProblem> {
-    if x.is_empty() {
-        return Err(InputProblem::InvertedInterval {
-            lo: f64::NAN,
-            hi: f64::NAN,
-        });
-    }
-    if !x.inf().is_finite() || !x.sup().is_finite() {
-        return Err(InputProblem::NonFinite);
-    }
-    Ok(())
-}
+mod checks;
 
-/// Validate a domain: finite bounds and positive width in both directions.
-pub(crate) fn check_domain(domain: &Domain) -> Result<()> {
-    for (k, [lo, hi]) in [domain.u, domain.v].into_iter().enumerate() {
-        if !lo.is_finite() || !hi.is_finite() {
-            return Err(Error::input(
-                format!("domain[{k}]"),
-                InputProblem::NonFinite,
-            ));
-        }
-        if lo >= hi {
-            return Err(Error::input(
-                format!("domain[{k}]"),
-                InputProblem::EmptyDomain { lo, hi },
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// Checks Cartesian control data of `count` points: the point count, every coordinate finite
-/// and non-empty, and the weights (all 1 when `None`) of the right count, finite and positive.
-/// Errors name `points`, `points[k][c]`, `weights` or `weights[k]`.
-pub(crate) fn check_control_data(
-    points: &[[Interval; 3]],
-    weights: Option<Vec<Interval>>,
-    count: usize,
-) -> Result<Vec<Interval>> {
-    if points.len() != count {
-        return Err(Error::input(
-            "points",
-            InputProblem::WrongCount {
-                expected: count,
-                found: points.len(),
-            },
-        ));
-    }
-    for (k, p) in points.iter().enumerate() {
-        for (c, x) in p.iter().enumerate() {
-            check_interval(*x).map_err(|e| Error::input(format!("points[{k}][{c}]"), e))?;
-        }
-    }
-    let weights = match weights {
-        Some(w) => {
-            if w.len() != count {
-                return Err(Error::input(
-                    "weights",
-                    InputProblem::WrongCount {
-                        expected: count,
-                        found: w.len(),
-                    },
-                ));
-            }
-            for (k, x) in w.iter().enumerate() {
-                check_interval(*x).map_err(|e| Error::input(format!("weights[{k}]"), e))?;
-                if x.inf() <= 0.0 {
-                    return Err(Error::input(
-                        format!("weights[{k}]"),
-                        InputProblem::NonPositiveWeight,
-                    ));
-                }
-            }
-            w
-        }
-        None => vec![Interval::from_f64(1.0); count],
-    };
-    Ok(weights)
-}
-
-/// Validate a degree and return the number of control points it needs.
-fn check_degree(degree: [usize; 2]) -> Result<usize> {
-    for (k, d) in degree.into_iter().enumerate() {
-        if d == 0 {
-            return Err(Error::input(
-                format!("degree[{k}]"),
-                InputProblem::BadDegree(0),
-            ));
-        }
-    }
-    let [m, n] = degree.map(|d| d.checked_add(1));
-    m.zip(n)
-        .and_then(|(m, n)| m.checked_mul(n))
-        .filter(|&c| c < (1 << 24))
-        .ok_or_else(|| {
-            Error::input(
-                "degree",
-                InputProblem::WrongShape("degree too large".into()),
-            )
-        })
-}
+use checks::check_degree;
+pub(crate) use checks::{check_control_data, check_domain, check_interval};
 
 impl RationalBezierPatch {
     /// A patch from Cartesian control points `(x, y, z)` and optional weights (all 1 if `None`),
@@ -334,6 +235,29 @@ impl RationalBezierPatch {
     pub(crate) fn with_collapsed_sides(mut self, sides: [Option<[f64; 3]>; 4]) -> Self {
         self.collapsed = sides;
         self
+    }
+
+    /// The patch moved by `−by` (every point `P(u, v) − by`, enclosed: the homogeneous net
+    /// `(w·x − w·c_x, …, w)` in interval arithmetic); its collapsed sides are not marked.
+    /// `None` if the moved net cannot be a patch (it overflows). Evaluations of differences
+    /// and derivatives near `by` are tighter on it: next to a pole `X` moved to the origin,
+    /// the numerator of every term is small, and the quotient rule's terms no longer cancel
+    /// from values near `X`.
+    pub(crate) fn translated(&self, by: [f64; 3]) -> Option<Self> {
+        let moved = self
+            .homogeneous
+            .iter()
+            .map(|h| {
+                let w = h[3];
+                [
+                    h[0] - w * point(by[0]),
+                    h[1] - w * point(by[1]),
+                    h[2] - w * point(by[2]),
+                    w,
+                ]
+            })
+            .collect();
+        Self::from_homogeneous(self.degree, moved, self.domain).ok()
     }
 
     /// The homogeneous interval control net `(w·x, w·y, w·z, w)`, index `i*(n+1)+j`.

@@ -143,6 +143,23 @@ pub(crate) fn pole_scaled_normal(
     collapsed_normal(&piece, *side, poles[*side]?)
 }
 
+/// The one pole of the two patches (the point of their collapsed sides), if they have one and
+/// no other. The link proofs write both patches moved so that it is the origin
+/// (`LeanPatch::moved`): there `P(σ, t) − X =
+/// t·G(σ, t)`, and the second partials in `σ` over a link's tube, which on the net as given
+/// are differences of terms near `X` (each as wide as the tube's `σ` range), are `t` times
+/// smaller. A link next to the pole then contracts although the rounding of the other
+/// surface's point there leaves the curve's `σ` known only to about `1e-15/t`.
+pub(crate) fn common_pole(p: &RationalBezierPatch, q: &RationalBezierPatch) -> Option<[f64; 3]> {
+    let mut poles = p
+        .collapsed_sides()
+        .into_iter()
+        .chain(q.collapsed_sides())
+        .flatten();
+    let x = poles.next()?;
+    poles.all(|y| y == x).then_some(x)
+}
+
 #[cfg(test)]
 #[path = "pole/tests.rs"]
-mod tests;
+pub(crate) mod tests;

@@ -13,6 +13,13 @@
 //! predictor is rigorous: the proof bounds the curve's offsets from it). The links then reach
 //! the last marched point, a few `1e-12` from the pole on the sphere of
 //! `scenes/nurbs_sphere_plane.json`; before, they stopped at `t ≈ 3e-9`.
+//!
+//! On a half whose march ends at a pole the links are proven on both patches moved so that
+//! the pole is the origin (`geometry::pole::common_pole`, `LeanPatch::moved`): the other
+//! surface's rounding there leaves `σ` known to about `1e-15/t`, and over such a range the
+//! second partials of the net as given are differences of terms near the pole, each as wide;
+//! moved, they are `t` times smaller. Small circles through the pole (planes at 60° to 76°)
+//! then reach within a few `1e-12` of it as great circles do; they stopped at `5e-10`.
 
 use super::walker::{newton, Node, PoleEnd, Walker};
 use super::*;

@@ -4,6 +4,7 @@
 use super::limit::LinkLimit;
 use super::*;
 use crate::certify::lean_patch::{costlier_side, LeanPatch};
+use crate::geometry::pole::common_pole;
 use std::cell::Cell;
 
 /// The pole a half of a chain runs into (see `pole.rs`): which coordinates run away from its
@@ -95,10 +96,16 @@ pub(super) struct Walker<'a> {
     pub(super) toward_singular: Option<[f64; 4]>,
     /// The pole the march ran into, if it did (see `pole.rs`).
     pub(super) toward_pole: Option<PoleEnd>,
+    /// Whether the march of the half being walked ended at a pole (running into it or
+    /// passing within rounding of it).
+    march_at_pole: bool,
     /// Scaled length and model width of the last link added.
     pub(super) prev: Option<(f64, f64)>,
     /// Both patches in the form the link proofs evaluate.
     lean: [LeanPatch<'a>; 2],
+    /// The same moved so that the patches' one pole is the origin, for the links of a half
+    /// next to the pole it runs into ([`Self::lean_for`]).
+    lean_at_pole: Option<[LeanPatch<'a>; 2]>,
     /// The first coordinate (0 for `P`, 2 for `Q`) of the patch that costs at least four times the
     /// other to evaluate, if one does (see [`Self::along`]).
     costly_side: Option<usize>,
@@ -125,6 +132,9 @@ impl<'a> Walker<'a> {
         opts: &'a ChainOptions,
     ) -> Self {
         let lean = [LeanPatch::new(p), LeanPatch::new(q)];
+        // For links next to a pole, both forms moved so that it is the origin (see `pole.rs`).
+        let lean_at_pole = common_pole(p, q)
+            .and_then(|x| Some([LeanPatch::moved(p, x)?, LeanPatch::moved(q, x)?]));
         Walker {
             p,
             q,
@@ -140,9 +150,11 @@ impl<'a> Walker<'a> {
             l_pred: None,
             toward_singular: None,
             toward_pole: None,
+            march_at_pole: false,
             prev: None,
             costly_side: costlier_side(&lean),
             lean,
+            lean_at_pole,
             jets: Cell::new([None; 2]),
         }
     }
@@ -251,6 +263,15 @@ impl<'a> Walker<'a> {
         attempt
     }
 
+    /// The forms a link is proven on: moved to the pole on a half whose march ended there
+    /// (`pole.rs`), else as given.
+    fn lean_for(&self) -> [&LeanPatch<'a>; 2] {
+        match &self.lean_at_pole {
+            Some([p, q]) if self.march_at_pole => [p, q],
+            _ => [&self.lean[0], &self.lean[1]],
+        }
+    }
+
     fn try_link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Option<Link> {
         let j = self.along(a, b)?;
         let pred = self.predictor(j, a, b)?;
@@ -265,7 +286,7 @@ impl<'a> Walker<'a> {
                 need[r] = need[r].max((m[i] - o[r]).mag());
             }
         }
-        let proof = prove_segment([&self.lean[0], &self.lean[1]], pred, [lo, hi], need).ok()?;
+        let proof = prove_segment(self.lean_for(), pred, [lo, hi], need).ok()?;
         if !musts.iter().all(|m| proof.tube_contains(m)) {
             return None;
         }
@@ -664,6 +685,7 @@ impl<'a> Walker<'a> {
             EndReason::Boundary { surface } => xs.last().and_then(|x| self.pole_at(surface, x)),
             _ => None,
         };
+        self.march_at_pole = pole.is_some();
         if let (Some(_), EndReason::Boundary { surface }, Some(x)) = (&pole, end, xs.last()) {
             self.toward_pole = self.pole_end(surface, x).filter(|&e| self.runs_into(xs, e));
         }
