@@ -167,7 +167,9 @@ fn symmetric(v: f64) -> Interval {
 
 /// The bounds of one fine span with fixed data `fixed`, the coarse p-curves' polynomial `c4`
 /// (all four coordinates) and the coarse 3D curve's `c3` on the same span (enclosed, in the
-/// span's `r`), over a tube piece with radii `radius_param`, `radius_xyz`.
+/// span's `r`), over a tube piece with radii `radius_param`, `radius_xyz`. Only the
+/// derivatives of `p` and `q` are used: either may be its patch moved by any vector
+/// (`RationalBezierPatch::translated`, tighter next to a pole).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn bounds(
     p: &RationalBezierPatch,
