@@ -381,31 +381,30 @@ fn small_circles_through_one_pole_are_proven_through_it() {
         ([0.0, 0.0, 1.0], [0.9, 0.1, 0.2]),
     ] {
         let what = format!("pole {pole:?}, normal {n:?}");
-        let n = unit(n);
-        let (e1, e2) = plane_frame(n);
-        let corner = |a: f64, b: f64| -> Vec<f64> {
-            (0..3)
-                .map(|i| pole[i] + 2.0 * a * e1[i] + 2.0 * b * e2[i])
-                .collect()
-        };
-        let cut = json!({"kind": "bezier", "degree": [1, 1],
-            "points": [corner(-1.0, -1.0), corner(-1.0, 1.0), corner(1.0, -1.0), corner(1.0, 1.0)]});
-        // The whole sphere, and the sphere as four quarter faces sharing the poles.
-        let quarters: Vec<_> = (0..4).map(|q| ([q, q + 1, 0, 2], false)).collect();
-        let spheres = [
-            nurbs_sphere([0, 1, 2]),
-            json!(split_sphere([0, 1, 2], &quarters)),
-        ];
-        for (sphere, faces) in spheres.into_iter().zip([1, 4]) {
-            let what = format!("{what}, {faces} face(s)");
-            small_circle_through(
-                &what,
-                json!({"surfaces": [sphere, cut.clone()]}),
-                pole,
-                n,
-                1e-6,
-            );
-        }
+        small_circles_on_one_and_four_faces(&what, pole, unit(n), 1e-6);
+    }
+}
+
+/// [`small_circle_through`] on the plane through `pole` with unit normal `n` against the
+/// whole sphere, and against the sphere as four quarter faces sharing the poles.
+fn small_circles_on_one_and_four_faces(what: &str, pole: [f64; 3], n: [f64; 3], most: f64) {
+    let (e1, e2) = plane_frame(n);
+    let corner = |a: f64, b: f64| -> Vec<f64> {
+        (0..3)
+            .map(|i| pole[i] + 2.0 * a * e1[i] + 2.0 * b * e2[i])
+            .collect()
+    };
+    let cut = json!({"kind": "bezier", "degree": [1, 1],
+        "points": [corner(-1.0, -1.0), corner(-1.0, 1.0), corner(1.0, -1.0), corner(1.0, 1.0)]});
+    let quarters: Vec<_> = (0..4).map(|q| ([q, q + 1, 0, 2], false)).collect();
+    let spheres = [
+        nurbs_sphere([0, 1, 2]),
+        json!(split_sphere([0, 1, 2], &quarters)),
+    ];
+    for (sphere, faces) in spheres.into_iter().zip([1, 4]) {
+        let what = format!("{what}, {faces} face(s)");
+        let scene = json!({"surfaces": [sphere, cut.clone()]});
+        small_circle_through(&what, scene, pole, n, most);
     }
 }
 
@@ -434,31 +433,8 @@ fn small_circles_through_a_pole_at_steep_angles_have_tight_boxes() {
         [0.15, 0.95, 0.25],
         [-0.5, -0.7, 0.5],
     ] {
-        let n = unit(n);
-        let pole = [0.0, 0.0, 1.0];
-        let (e1, e2) = plane_frame(n);
-        let corner = |a: f64, b: f64| -> Vec<f64> {
-            (0..3)
-                .map(|i| pole[i] + 2.0 * a * e1[i] + 2.0 * b * e2[i])
-                .collect()
-        };
-        let cut = json!({"kind": "bezier", "degree": [1, 1],
-            "points": [corner(-1.0, -1.0), corner(-1.0, 1.0), corner(1.0, -1.0), corner(1.0, 1.0)]});
-        let quarters: Vec<_> = (0..4).map(|q| ([q, q + 1, 0, 2], false)).collect();
-        let spheres = [
-            nurbs_sphere([0, 1, 2]),
-            json!(split_sphere([0, 1, 2], &quarters)),
-        ];
-        for (sphere, faces) in spheres.into_iter().zip([1, 4]) {
-            let what = format!("normal {n:?}, {faces} face(s)");
-            small_circle_through(
-                &what,
-                json!({"surfaces": [sphere, cut.clone()]}),
-                pole,
-                n,
-                1e-9,
-            );
-        }
+        let what = format!("normal {n:?}");
+        small_circles_on_one_and_four_faces(&what, [0.0, 0.0, 1.0], unit(n), 1e-9);
     }
 }
 
