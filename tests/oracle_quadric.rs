@@ -632,6 +632,18 @@ fn polar_sphere_pieces_against_planes() {
     assert_clean(&fig);
 }
 
+/// Polar pairs the soaks found wanting, each now clean: 3 010 292, a plane passing about 1e-6
+/// from the pole that leaves the piece by its side `u = 1` next to the pole (its chain's links
+/// there did not contract on the net as given, the half stopped with "close branches", and the
+/// arc was traced again twice with finer steps: three copies; the links now fall back on the
+/// patches moved so that the pole is the origin), and 3 010 134, which a first form of that
+/// fallback had ended with a singular box beside the pole.
+#[test]
+fn polar_pairs_the_soaks_found() {
+    let fig = run_with_progress([3_010_292, 3_010_134].into_iter(), 0, check_polar_pair);
+    assert_clean(&fig);
+}
+
 /// Pieces whose boundary meridian lies in the plane or within 1e-12 to 1e-6 of it
 /// ([`edge_pair`]): the curve runs along P's boundary, or beside it.
 #[test]

@@ -19,7 +19,10 @@
 //! surface's rounding there leaves `σ` known to about `1e-15/t`, and over such a range the
 //! second partials of the net as given are differences of terms near the pole, each as wide;
 //! moved, they are `t` times smaller. Small circles through the pole (planes at 60° to 76°)
-//! then reach within a few `1e-12` of it as great circles do; they stopped at `5e-10`.
+//! then reach within a few `1e-12` of it as great circles do; they stopped at `5e-10`. On
+//! other halves of a pair with a pole, a link the net as given does not prove is tried on the
+//! moved forms too (a curve passing 1e-6 from the pole and leaving by a side next to it was
+//! otherwise cut short there and traced three times).
 
 use super::walker::{newton, Node, PoleEnd, Walker};
 use super::*;

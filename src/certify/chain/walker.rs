@@ -96,8 +96,8 @@ pub(super) struct Walker<'a> {
     pub(super) toward_singular: Option<[f64; 4]>,
     /// The pole the march ran into, if it did (see `pole.rs`).
     pub(super) toward_pole: Option<PoleEnd>,
-    /// Whether the march of the half being walked ended at a pole (running into it or
-    /// passing within rounding of it).
+    /// Whether the march of the half being walked ended at a pole (running into it, or
+    /// passing it within rounding): its links are tried on the moved forms first.
     march_at_pole: bool,
     /// Scaled length and model width of the last link added.
     pub(super) prev: Option<(f64, f64)>,
@@ -263,16 +263,43 @@ impl<'a> Walker<'a> {
         attempt
     }
 
-    /// The forms a link is proven on: moved to the pole on a half whose march ended there
-    /// (`pole.rs`), else as given.
-    fn lean_for(&self) -> [&LeanPatch<'a>; 2] {
-        match &self.lean_at_pole {
-            Some([p, q]) if self.march_at_pole => [p, q],
-            _ => [&self.lean[0], &self.lean[1]],
+    /// A link from `a` to `b`. When the patches have one pole, the link proofs may also use
+    /// both moved so that the pole is the origin (`pole.rs`): on a half whose march ended at
+    /// the pole, first (and the forms as given where that is not proven within the tolerance:
+    /// the narrower of the two); elsewhere only where the forms as given prove nothing (a
+    /// curve passing close to the pole, whose links there did not contract).
+    fn try_link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Option<Link> {
+        let given = [&self.lean[0], &self.lean[1]];
+        let Some([p, q]) = &self.lean_at_pole else {
+            return self.link_on(given, a, b, must_end);
+        };
+        let moved = [p, q];
+        if !self.march_at_pole {
+            return self
+                .link_on(given, a, b, must_end)
+                .or_else(|| self.link_on(moved, a, b, must_end));
+        }
+        let first = self.link_on(moved, a, b, must_end);
+        if first
+            .as_ref()
+            .is_some_and(|l| l.radius_xyz <= self.opts.required_tolerance)
+        {
+            return first;
+        }
+        match (first, self.link_on(given, a, b, must_end)) {
+            (Some(x), Some(y)) => Some(if y.radius_xyz < x.radius_xyz { y } else { x }),
+            (x, y) => x.or(y),
         }
     }
 
-    fn try_link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Option<Link> {
+    /// [`Self::try_link`] on the forms `lean`.
+    fn link_on(
+        &self,
+        lean: [&LeanPatch<'a>; 2],
+        a: &Node,
+        b: &Node,
+        must_end: Option<&[Interval; 4]>,
+    ) -> Option<Link> {
         let j = self.along(a, b)?;
         let pred = self.predictor(j, a, b)?;
         let musts: Vec<&[Interval; 4]> = self.join.iter().chain(must_end).collect();
@@ -286,7 +313,7 @@ impl<'a> Walker<'a> {
                 need[r] = need[r].max((m[i] - o[r]).mag());
             }
         }
-        let proof = prove_segment(self.lean_for(), pred, [lo, hi], need).ok()?;
+        let proof = prove_segment(lean, pred, [lo, hi], need).ok()?;
         if !musts.iter().all(|m| proof.tube_contains(m)) {
             return None;
         }
