@@ -315,7 +315,8 @@ fn a_pass_a_trillionth_from_the_poles_keeps_tight_certificates() {
 
 /// Poles shared by several faces: the sphere split along its knot lines into four quarter
 /// turns, eight octants (the equator a face edge too), three faces of unequal turns, and four
-/// quarters of which one has its u reversed; planes through the axis off the joints, and along
+/// quarters of which one has its u or its v reversed (its poles then on the other side, its
+/// edges with its neighbours reversed); planes through the axis off the joints, and along
 /// them (`y = 0` on the seam and a face edge, `x = 0` on two face edges); the sphere first or
 /// second. The cap round each pole is made of the strips of every face's pieces there, glued
 /// across the faces' shared edges as across knot lines. Each must give the same as the whole
@@ -324,25 +325,38 @@ fn a_pass_a_trillionth_from_the_poles_keeps_tight_certificates() {
 /// only looked for within one face: each curve came back open in two pieces, the searches
 /// round the poles incomplete. Along the edges of the reversed face, the copies of the curve
 /// kept alternated between the two faces and could not be joined (the copy in the face listed
-/// first is now kept).
+/// first is now kept). With the v reversed, the strips were not glued across its edges (only
+/// the same way round on equal ranges were): their ends were rim pieces from the pole out, the
+/// curve crossed them at the pole, and the pole joins stayed unproven; strips are now glued
+/// wherever the edge maps one's side and inner side exactly onto the other's.
 #[test]
 fn poles_shared_by_several_faces_are_crossed_by_one_closed_curve() {
-    let quarters = |flip: bool| -> Vec<([usize; 4], bool)> {
-        (0..4).map(|q| ([q, q + 1, 0, 2], flip && q == 1)).collect()
+    // Four quarters, the second one's parameters reversed as `flip` says.
+    let quarters = |flip: [bool; 2]| -> Vec<([usize; 4], [bool; 2])> {
+        (0..4)
+            .map(|q| ([q, q + 1, 0, 2], if q == 1 { flip } else { [false; 2] }))
+            .collect()
     };
     let octants = (0..8)
-        .map(|k| ([k / 2, k / 2 + 1, k % 2, k % 2 + 1], false))
+        .map(|k| ([k / 2, k / 2 + 1, k % 2, k % 2 + 1], [false; 2]))
         .collect();
     let three = vec![
-        ([0, 1, 0, 2], false),
-        ([1, 2, 0, 2], false),
-        ([2, 4, 0, 2], false),
+        ([0, 1, 0, 2], [false; 2]),
+        ([1, 2, 0, 2], [false; 2]),
+        ([2, 4, 0, 2], [false; 2]),
     ];
     let splits = [
-        ("four quarters", quarters(false)),
+        ("four quarters", quarters([false; 2])),
         ("eight octants", octants),
         ("three faces", three),
-        ("four quarters, one reversed", quarters(true)),
+        (
+            "four quarters, one with u reversed",
+            quarters([true, false]),
+        ),
+        (
+            "four quarters, one with v reversed",
+            quarters([false, true]),
+        ),
     ];
     for (name, faces) in &splits {
         for (k, axes, sphere_first) in [
@@ -396,7 +410,7 @@ fn small_circles_on_one_and_four_faces(what: &str, pole: [f64; 3], n: [f64; 3], 
     };
     let cut = json!({"kind": "bezier", "degree": [1, 1],
         "points": [corner(-1.0, -1.0), corner(-1.0, 1.0), corner(1.0, -1.0), corner(1.0, 1.0)]});
-    let quarters: Vec<_> = (0..4).map(|q| ([q, q + 1, 0, 2], false)).collect();
+    let quarters: Vec<_> = (0..4).map(|q| ([q, q + 1, 0, 2], [false; 2])).collect();
     let spheres = [
         nurbs_sphere([0, 1, 2]),
         json!(split_sphere([0, 1, 2], &quarters)),

@@ -13,7 +13,7 @@
 //! neighbouring pieces meet on their shared knot line, seam or face edge, so `F` is a disc
 //! round `X` on the surface, whose rim is made of the strips' inner sides and of those strip
 //! ends that are not glued to another strip (a piece of a surface of revolution of less than a
-//! full turn, or an edge whose two sides are parametrised differently). `V` covers every part of the
+//! full turn, or an edge that maps neither strip's sides exactly onto the other's). `V` covers every part of the
 //! other surface's piece whose image meets `F`'s bounding box (quadtree leaves, all strictly
 //! inside that piece).
 //!

@@ -123,9 +123,10 @@ pub(crate) fn nurbs_sphere(axes: [usize; 3]) -> Value {
 
 /// The faces of a split [`nurbs_sphere`]`(axes)`: face `[u0, u1, v0, v1]` is the part over
 /// the knot spans `u ∈ [u0, u1]` (quarter turns, 0 to 4) and `v ∈ [v0, v1]` (0 to 2, pole to
-/// pole), with its own clamped knot vectors (the sphere's, cut exactly). With `flip`, the
-/// face's rows in u are listed the other way round (the same surface, its u reversed).
-pub(crate) fn split_sphere(axes: [usize; 3], faces: &[([usize; 4], bool)]) -> Vec<Value> {
+/// pole), with its own clamped knot vectors (the sphere's, cut exactly). With `flip[0]`
+/// (`flip[1]`), the face's rows in u (in v) are listed the other way round: the same surface,
+/// that parameter reversed.
+pub(crate) fn split_sphere(axes: [usize; 3], faces: &[([usize; 4], [bool; 2])]) -> Vec<Value> {
     let sphere = nurbs_sphere(axes);
     let (points, weights) = (&sphere["points"], &sphere["weights"]);
     let nv = 5;
@@ -139,13 +140,17 @@ pub(crate) fn split_sphere(axes: [usize; 3], faces: &[([usize; 4], bool)]) -> Ve
         .iter()
         .map(|&([u0, u1, v0, v1], flip)| {
             let mut rows: Vec<usize> = (2 * u0..=2 * u1).collect();
-            if flip {
+            let mut cols: Vec<usize> = (2 * v0..=2 * v1).collect();
+            if flip[0] {
                 rows.reverse();
+            }
+            if flip[1] {
+                cols.reverse();
             }
             let at = |i: usize, j: usize| i * nv + j;
             let cells = || {
                 rows.iter()
-                    .flat_map(|&i| (2 * v0..=2 * v1).map(move |j| at(i, j)))
+                    .flat_map(|&i| cols.iter().map(move |&j| at(i, j)))
             };
             json!({"kind": "nurbs", "degree": [2, 2],
                    "knots": [knots(u0, u1), knots(v0, v1)],

@@ -8,6 +8,7 @@ use inari::Interval;
 
 use super::Strip;
 use crate::geometry::enclosure::boxes_disjoint;
+use crate::geometry::surface::Domain;
 use crate::numeric::scalar::point;
 use crate::pair::krawczyk::{krawczyk, BoxSurface, KrawczykResult, ParamBox};
 use crate::shell::chart::{chart_map, ChartMap};
@@ -50,28 +51,29 @@ pub(super) fn rim(
 ) -> Result<Vec<Rim>, &'static str> {
     // The strip glued to the end `here` of strip `k`, which of its ends, and the chart onto it.
     let glued = |k: usize, here: PieceSide| {
-        let mine = strips[k].side;
+        let mine = &strips[k];
+        let dk = mine.patch.domain();
         links.iter().filter(|l| l.from == here).find_map(|l| {
-            // Only the same way round, on the same range along the edge: the strips' inner
-            // values then meet exactly on it (across a reversed edge, or between different
-            // ranges, they could miss each other by a rounding).
-            let range = |st: &Strip<'_>| {
-                let d = st.patch.domain();
-                if st.across() == 0 {
-                    d.u
-                } else {
-                    d.v
-                }
+            // Only where the edge maps this strip's collapsed side and inner side exactly onto
+            // the other's (either way round, any parametrisation): the two inner sides then
+            // meet exactly on the edge (else they could miss each other by a rounding).
+            let onto = |a: f64, b: f64, dn: &Domain| {
+                let m = l.map_along(point(a), &dk, dn);
+                m.inf() == b && m.sup() == b
             };
             let next = strips.iter().position(|st| {
+                let dn = st.patch.domain();
                 st.face == l.to.face
-                    && !l.reversed
                     && st.piece == l.to.piece
                     && st.side / 2 != l.to.side / 2
-                    && st.side == mine
-                    && range(st) == range(&strips[k])
+                    && onto(
+                        side_coordinate(&dk, mine.side).1,
+                        side_coordinate(&dn, st.side).1,
+                        &dn,
+                    )
+                    && onto(mine.inner(w), st.inner(w), &dn)
             })?;
-            let map = chart_map(l, strips[k].patch, strips[next].patch)?;
+            let map = chart_map(l, mine.patch, strips[next].patch)?;
             Some((next, l.to.side % 2, map))
         })
     };
