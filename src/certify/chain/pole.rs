@@ -24,7 +24,7 @@
 //! moved forms too (a curve passing 1e-6 from the pole and leaving by a side next to it was
 //! otherwise cut short there and traced three times).
 
-use super::walker::{newton, Node, PoleEnd, Walker};
+use super::walker::{newton, Link, Node, PoleEnd, Walker};
 use super::*;
 
 /// Next to a pole, within this part of the patch's domain across from its collapsed side,
@@ -102,7 +102,41 @@ pub(super) fn refine_guide(
         .filter(|y| radial != j && !moved_at_pole(p, q, &x, y))
 }
 
-impl Walker<'_> {
+impl<'a> Walker<'a> {
+    /// A link from `a` to `b`. When the patches have one pole, the link proofs may also use
+    /// both moved so that the pole is the origin (`pole.rs`): on a half whose march ended at
+    /// the pole, first (and the forms as given where that is not proven within the tolerance:
+    /// the narrower of the two); elsewhere only where the forms as given prove nothing (a
+    /// curve passing close to the pole, whose links there did not contract).
+    pub(super) fn try_link(
+        &self,
+        a: &Node,
+        b: &Node,
+        must_end: Option<&[Interval; 4]>,
+    ) -> Option<Link> {
+        let given = [&self.lean[0], &self.lean[1]];
+        let Some([p, q]) = &self.lean_at_pole else {
+            return self.link_on(given, a, b, must_end);
+        };
+        let moved = [p, q];
+        if !self.march_at_pole {
+            return self
+                .link_on(given, a, b, must_end)
+                .or_else(|| self.link_on(moved, a, b, must_end));
+        }
+        let first = self.link_on(moved, a, b, must_end);
+        if first
+            .as_ref()
+            .is_some_and(|l| l.radius_xyz <= self.opts.required_tolerance)
+        {
+            return first;
+        }
+        match (first, self.link_on(given, a, b, must_end)) {
+            (Some(x), Some(y)) => Some(if y.radius_xyz < x.radius_xyz { y } else { x }),
+            (x, y) => x.or(y),
+        }
+    }
+
     /// The pole end of a half whose march ended at a pole of `surface` (0 for P, 1 for Q) at
     /// the marched point `x`.
     pub(super) fn pole_end(&self, surface: usize, x: &[f64; 4]) -> Option<PoleEnd> {

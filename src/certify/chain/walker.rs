@@ -98,14 +98,14 @@ pub(super) struct Walker<'a> {
     pub(super) toward_pole: Option<PoleEnd>,
     /// Whether the march of the half being walked ended at a pole (running into it, or
     /// passing it within rounding): its links are tried on the moved forms first.
-    march_at_pole: bool,
+    pub(super) march_at_pole: bool,
     /// Scaled length and model width of the last link added.
     pub(super) prev: Option<(f64, f64)>,
     /// Both patches in the form the link proofs evaluate.
-    lean: [LeanPatch<'a>; 2],
+    pub(super) lean: [LeanPatch<'a>; 2],
     /// The same moved so that the patches' one pole is the origin, for the links of a half
     /// next to the pole it runs into ([`Self::lean_for`]).
-    lean_at_pole: Option<[LeanPatch<'a>; 2]>,
+    pub(super) lean_at_pole: Option<[LeanPatch<'a>; 2]>,
     /// The first coordinate (0 for `P`, 2 for `Q`) of the patch that costs at least four times the
     /// other to evaluate, if one does (see [`Self::along`]).
     costly_side: Option<usize>,
@@ -263,37 +263,8 @@ impl<'a> Walker<'a> {
         attempt
     }
 
-    /// A link from `a` to `b`. When the patches have one pole, the link proofs may also use
-    /// both moved so that the pole is the origin (`pole.rs`): on a half whose march ended at
-    /// the pole, first (and the forms as given where that is not proven within the tolerance:
-    /// the narrower of the two); elsewhere only where the forms as given prove nothing (a
-    /// curve passing close to the pole, whose links there did not contract).
-    fn try_link(&self, a: &Node, b: &Node, must_end: Option<&[Interval; 4]>) -> Option<Link> {
-        let given = [&self.lean[0], &self.lean[1]];
-        let Some([p, q]) = &self.lean_at_pole else {
-            return self.link_on(given, a, b, must_end);
-        };
-        let moved = [p, q];
-        if !self.march_at_pole {
-            return self
-                .link_on(given, a, b, must_end)
-                .or_else(|| self.link_on(moved, a, b, must_end));
-        }
-        let first = self.link_on(moved, a, b, must_end);
-        if first
-            .as_ref()
-            .is_some_and(|l| l.radius_xyz <= self.opts.required_tolerance)
-        {
-            return first;
-        }
-        match (first, self.link_on(given, a, b, must_end)) {
-            (Some(x), Some(y)) => Some(if y.radius_xyz < x.radius_xyz { y } else { x }),
-            (x, y) => x.or(y),
-        }
-    }
-
     /// [`Self::try_link`] on the forms `lean`.
-    fn link_on(
+    pub(super) fn link_on(
         &self,
         lean: [&LeanPatch<'a>; 2],
         a: &Node,
