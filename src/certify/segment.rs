@@ -504,6 +504,9 @@ pub(crate) enum SegmentFailure {
     Singular,
     /// The Krawczyk image does not fit inside the box (segment too long, or near-singular).
     NotContracting,
+    /// The two patches' forms are moved by different vectors (`LeanPatch::moved`): their
+    /// differences are not the patches', and nothing is proven.
+    MovedApart,
 }
 
 /// A proven segment: for every `x_j ∈ x0 + xi` the curve meets the tube in exactly one point,
@@ -582,6 +585,9 @@ pub(crate) fn prove_segment(
     x_range: [f64; 2],
     need: [f64; 3],
 ) -> Result<SegmentProof, SegmentFailure> {
+    if lean[0].shift() != lean[1].shift() {
+        return Err(SegmentFailure::MovedApart);
+    }
     // The patches' forms are truncated to a window: the predictor's range over the segment and
     // room for the offsets' box. Should the tube leave it, the proof runs again on whole forms.
     let xi = hull(x_range[0], x_range[1]) - point(pred.x0);
@@ -709,7 +715,7 @@ fn prove_within(
         lp.eval(b[0], b[1]),
         lq.eval(b[2], b[3]),
     ];
-    // Back by the shift the lean forms were moved by (both alike, see `LeanPatch::moved`).
+    // Back by the shift the lean forms were moved by (both alike: `prove_segment` checks).
     let shift = lean[0].shift();
     proof.model = std::array::from_fn(|r| {
         all[1..].iter().fold(all[0][r], |acc, e| meet(acc, e[r])) + point(shift[r])

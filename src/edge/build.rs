@@ -8,6 +8,7 @@ use super::poly::{self, eval_mid, Poly, SPLINE_DEGREE as DEGREE};
 use super::span::{bounds, box_diameter, model_box, SpanBounds, SpanFixed};
 use super::warp::{arc_length_warp, Warp};
 use super::{BSpline, Edge, EdgeBounds, EdgeError, PCurve, Part, Seg, Shortfall};
+use crate::geometry::pole::moved_to_pole;
 use crate::geometry::RationalBezierPatch;
 use refine::{coarsen, refine_all};
 
@@ -90,19 +91,11 @@ struct PartData<'a> {
     /// Per cut of the part: its tube and the share of its bound that the fit does not change.
     cuts: Vec<(usize, f64)>,
     /// Its patches moved so that a pole of theirs is the origin, when they have one
-    /// ([`derivative_patch`]).
+    /// (`geometry::pole::moved_to_pole`): only their derivatives are taken, and next to a
+    /// pole those of the net as given are differences of terms near it, each as wide as the
+    /// box they are taken over (a span passing 1e-12 from it had its image bound `|DP·δ|` at
+    /// 2e-5); moved, they are as small as the distance to the pole.
     moved: [Option<RationalBezierPatch>; 2],
-}
-
-/// The patch to enclose `s`'s derivatives on: `s` moved so that its pole is the origin, if it
-/// has one (`RationalBezierPatch::translated`; the same derivatives). Next to a pole the
-/// derivatives of the net as given are differences of terms near the pole, each as wide as
-/// the box they are taken over: a span passing 1e-12 from it had its image bound `|DP·δ|` at
-/// 2e-5, the fit's refinement stalled, and the edge stopped there; moved, the terms are as
-/// small as the distance to the pole.
-fn derivative_patch(s: &RationalBezierPatch) -> Option<RationalBezierPatch> {
-    let pole = s.collapsed_sides().into_iter().flatten().next()?;
-    s.translated(pole)
 }
 
 /// Fits the coarse curves of one part on the breakpoints `breaks` and bounds them.
@@ -451,7 +444,7 @@ fn assemble_with(
             ends_xyz: [start3, end3],
             ends_param: [start4, end4],
             cuts,
-            moved: [derivative_patch(pt.p), derivative_patch(pt.q)],
+            moved: [moved_to_pole(pt.p), moved_to_pole(pt.q)],
         });
     }
     let build = |goal: f64| -> Result<(Edge, Vec<PartFit>, bool), EdgeError> {

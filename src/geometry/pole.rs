@@ -145,8 +145,7 @@ pub(crate) fn pole_scaled_normal(
 
 /// The one pole of the two patches (the point of their collapsed sides), if they have one and
 /// no other. The link proofs write both patches moved so that it is the origin
-/// (`LeanPatch::moved`): there `P(σ, t) − X =
-/// t·G(σ, t)`, and the second partials in `σ` over a link's tube, which on the net as given
+/// (`LeanPatch::moved`): there `P(σ, t) − X = t·G(σ, t)`, and the second partials in `σ` over a link's tube, which on the net as given
 /// are differences of terms near `X` (each as wide as the tube's `σ` range), are `t` times
 /// smaller. A link next to the pole then contracts although the rounding of the other
 /// surface's point there leaves the curve's `σ` known only to about `1e-15/t`.
@@ -158,6 +157,12 @@ pub(crate) fn common_pole(p: &RationalBezierPatch, q: &RationalBezierPatch) -> O
         .flatten();
     let x = poles.next()?;
     poles.all(|y| y == x).then_some(x)
+}
+
+/// `s` moved so that its (first) pole is the origin ([`RationalBezierPatch::translated`]),
+/// if it has one: the same derivatives, enclosed far tighter next to the pole.
+pub(crate) fn moved_to_pole(s: &RationalBezierPatch) -> Option<RationalBezierPatch> {
+    s.translated(s.collapsed_sides().into_iter().flatten().next()?)
 }
 
 #[cfg(test)]

@@ -103,8 +103,8 @@ pub(super) struct Walker<'a> {
     pub(super) prev: Option<(f64, f64)>,
     /// Both patches in the form the link proofs evaluate.
     pub(super) lean: [LeanPatch<'a>; 2],
-    /// The same moved so that the patches' one pole is the origin, for the links of a half
-    /// next to the pole it runs into ([`Self::lean_for`]).
+    /// The same moved so that the patches' one pole is the origin, for links near it
+    /// ([`Self::try_link`], in `pole.rs`).
     pub(super) lean_at_pole: Option<[LeanPatch<'a>; 2]>,
     /// The first coordinate (0 for `P`, 2 for `Q`) of the patch that costs at least four times the
     /// other to evaluate, if one does (see [`Self::along`]).
