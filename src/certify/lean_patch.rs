@@ -38,6 +38,8 @@ use std::rc::Rc;
 #[derive(Debug, Clone)]
 pub(crate) struct LeanPatch<'a> {
     patch: Cow<'a, RationalBezierPatch>,
+    /// The patch as given (before any move: the moved net is an interval one).
+    source: &'a RationalBezierPatch,
     /// The patch is moved by `−shift` ([`LeanPatch::moved`]): every value is `P − shift`.
     shift: [f64; 3],
     power: PowerNet,
@@ -54,7 +56,7 @@ impl<'a> LeanPatch<'a> {
     /// The patch with its differences: Cartesian if all its weights are equal and exact,
     /// homogeneous otherwise.
     pub(crate) fn new(patch: &'a RationalBezierPatch) -> Self {
-        Self::of(Cow::Borrowed(patch), [0.0; 3])
+        Self::of(Cow::Borrowed(patch), patch, [0.0; 3])
     }
 
     /// The patch moved by `−by` ([`RationalBezierPatch::translated`]): its values are
@@ -62,13 +64,18 @@ impl<'a> LeanPatch<'a> {
     /// next to a point `by` where the numerators of a rational patch's terms nearly cancel (a
     /// pole), its second partials are far tighter. `None` if the moved net overflows.
     pub(crate) fn moved(patch: &'a RationalBezierPatch, by: [f64; 3]) -> Option<Self> {
-        Some(Self::of(Cow::Owned(patch.translated(by)?), by))
+        Some(Self::of(Cow::Owned(patch.translated(by)?), patch, by))
     }
 
-    fn of(patch: Cow<'a, RationalBezierPatch>, shift: [f64; 3]) -> Self {
+    fn of(
+        patch: Cow<'a, RationalBezierPatch>,
+        source: &'a RationalBezierPatch,
+        shift: [f64; 3],
+    ) -> Self {
         let power = PowerNet::of(&patch).unwrap_or_else(|| PowerNet::homogeneous(&patch));
         LeanPatch {
             patch,
+            source,
             shift,
             power,
             last: RefCell::new(None),
@@ -78,6 +85,11 @@ impl<'a> LeanPatch<'a> {
     /// What every value of the patch is moved by (subtracted): zero unless [`Self::moved`].
     pub(crate) fn shift(&self) -> [f64; 3] {
         self.shift
+    }
+
+    /// The patch as given, not moved (its differences are the lean form's).
+    pub(crate) fn source(&self) -> &'a RationalBezierPatch {
+        self.source
     }
 
     /// The relative cost of an evaluation: coefficients per coordinate times the coordinates

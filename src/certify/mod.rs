@@ -18,6 +18,7 @@ pub mod contact_cover;
 mod contact_net;
 pub mod contact_patch;
 pub mod curve;
+mod exact_residual;
 mod jet;
 mod lean_patch;
 pub mod ode;

@@ -29,6 +29,7 @@
 //! solution series, no a-priori box over the diagonal in all four parameters, no Lohner
 //! wrapping; one Taylor form of `F` along a known polynomial and one interval Jacobian.
 
+use crate::certify::exact_residual::exact_residual;
 use crate::certify::lean_patch::{Centred, LeanPatch};
 use crate::geometry::bernstein::binomial;
 use crate::numeric::imul::mul as imul;
@@ -199,6 +200,28 @@ fn back<const N: usize>(s: SeriesN<N>) -> SeriesN<N> {
 fn both_along(p: &Centred<'_>, q: &Centred<'_>, y: &[Long; 4]) -> [[Long; 3]; 2] {
     let y = y.each_ref().map(fast);
     [p.eval(y[0], y[1]).map(back), q.eval(y[2], y[3]).map(back)]
+}
+
+/// Narrows the residual's value at the centre, `g_c`'s first coefficients, to the exact
+/// residual there ([`exact_residual`]) when the centre's point is exact (`f64` coordinates)
+/// and so are both patches; the interval evaluation leaves tens of ulps of the model's size in
+/// it, which over nearly tangent surfaces sets the tube.
+fn with_exact_residual(g_c: &mut [Long; 3], at_centre: &[Long; 4], lean: [&LeanPatch<'_>; 2]) {
+    let x = at_centre.each_ref().map(|s| s.coeff(0));
+    if x.iter().any(|v| v.inf() != v.sup()) {
+        return;
+    }
+    let x = x.map(|v| v.inf());
+    let Some(exact) = exact_residual(lean[0].source(), lean[1].source(), &x) else {
+        return;
+    };
+    for (g, e) in g_c.iter_mut().zip(exact) {
+        let mut c = [point(0.0); ORDER + 2];
+        let kept = g.coeffs();
+        c[..kept.len()].copy_from_slice(kept);
+        c[0] = meet(c[0], e);
+        *g = Long::new(&c[..kept.len()]);
+    }
 }
 
 /// `P − Q` from [`both_along`].
@@ -584,6 +607,7 @@ pub(crate) fn prove_segment(
     pred: Predictor,
     x_range: [f64; 2],
     need: [f64; 3],
+    precise: bool,
 ) -> Result<SegmentProof, SegmentFailure> {
     if lean[0].shift() != lean[1].shift() {
         return Err(SegmentFailure::MovedApart);
@@ -597,10 +621,10 @@ pub(crate) fn prove_segment(
         let room = 1.5 * need[r];
         window[i] = o[r] + inari::interval!(-room, room).unwrap_or(Interval::ENTIRE);
     }
-    match prove_within(lean, pred, x_range, need, Some(window)) {
+    match prove_within(lean, pred, x_range, need, Some(window), precise) {
         Ok(proof) => Ok(proof),
         Err(Some(failure)) => Err(failure),
-        Err(None) => prove_within(lean, pred, x_range, need, None)
+        Err(None) => prove_within(lean, pred, x_range, need, None, precise)
             .map_err(|f| f.unwrap_or(SegmentFailure::Singular)),
     }
 }
@@ -613,11 +637,18 @@ fn prove_within(
     x_range: [f64; 2],
     need: [f64; 3],
     window: Option<[Interval; 4]>,
+    precise: bool,
 ) -> Result<SegmentProof, Option<SegmentFailure>> {
     let j = pred.along;
     let free = others(j);
     let xi = hull(x_range[0], x_range[1]) - point(pred.x0);
-    let centre = xi.mid();
+    // Any centre in Ξ serves; ξ = 0 (the link's start) makes the centre's point the
+    // predictor's exact (x0, c[0]), whose residual can be exact (`with_exact_residual`).
+    let centre = if precise && xi.contains(0.0) {
+        0.0
+    } else {
+        xi.mid()
+    };
     let tau = xi - point(centre);
     // F and J_o along the predictor: Taylor coefficients at the centre, and over all of Ξ (for
     // the Lagrange remainders); both patches written around the predictor's point at the centre.
@@ -631,7 +662,10 @@ fn prove_within(
     );
     let pq_c = both_along(&lp, &lq, &at_centre);
     let pq_o = both_along(&lp, &lq, &pred.series(&sh_o, xi, ORDER + 2));
-    let (g_c, g_o) = (residual(&pq_c), residual(&pq_o));
+    let (mut g_c, g_o) = (residual(&pq_c), residual(&pq_o));
+    if precise {
+        with_exact_residual(&mut g_c, &at_centre, lean);
+    }
     let j_c = jacobian(&lp, &lq, &pred.series(&sh_c, point(centre), 3), &free);
     let j_o = jacobian(&lp, &lq, &pred.series(&sh_o, xi, 4), &free);
     // The preconditioner follows the Jacobian along the segment: C(τ) = C0 + C1·τ + C2·τ², the

@@ -76,6 +76,7 @@ impl PartialEq for RationalBezierPatch {
 }
 
 mod checks;
+mod exact;
 
 use checks::check_degree;
 pub(crate) use checks::{check_control_data, check_domain, check_interval};

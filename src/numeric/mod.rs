@@ -3,6 +3,7 @@
 //! 3-vector helpers.
 
 pub mod dot;
+pub(crate) mod dyadic;
 pub mod imul;
 pub mod rounding;
 pub mod scalar;

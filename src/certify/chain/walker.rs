@@ -240,7 +240,12 @@ impl<'a> Walker<'a> {
         if let Some((_, _, jet)) = kept.iter().flatten().find(|(m, k, _)| *k == j && same(m)) {
             return Some(*jet);
         }
-        let jet = self.node_jet(n, j)?;
+        // On nearly tangent surfaces the node is first moved onto the curve (exact residual);
+        // not where its jet is pinned next to a pole.
+        let onto = (self.precise_at(&n.x) && self.pole_angular_at(&n.x).is_none())
+            .then(|| self.precise_node(n, j))
+            .flatten();
+        let jet = self.node_jet(onto.as_ref().unwrap_or(n), j)?;
         kept = [Some((*n, j, jet)), kept[0]];
         self.jets.set(kept);
         Some(jet)
@@ -284,7 +289,8 @@ impl<'a> Walker<'a> {
                 need[r] = need[r].max((m[i] - o[r]).mag());
             }
         }
-        let proof = prove_segment(lean, pred, [lo, hi], need).ok()?;
+        let precise = self.precise_at(&a.x);
+        let proof = prove_segment(lean, pred, [lo, hi], need, precise).ok()?;
         if !musts.iter().all(|m| proof.tube_contains(m)) {
             return None;
         }
