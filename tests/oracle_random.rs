@@ -350,6 +350,20 @@ fn a_march_that_jumped_onto_a_loop_goes_round_it_once() {
     assert_eq!(fig.unproven_ends, 0, "{:?}", fig.notes);
 }
 
+/// Seed 9 580 666 (stop 31's 100 000-pair soak): a curve enters through the side `x = 0` at
+/// `y = 0.54112`, runs round and leaves through it at `y = 0.53692`, nearly along the side, so
+/// that beside the side its two arcs are 1e-5 apart. The march stepped past the exit onto the
+/// entering arc and stopped on its own path (an unproven end), and the search's start at the
+/// exit counted as covered by that jumping chord. A step whose first-order guess leaves a domain
+/// (by a short step) now lands on the boundary between first: the branch ends at the exit,
+/// proven.
+#[test]
+fn an_exit_beside_the_curve_s_own_entry_ends_the_branch() {
+    let fig = run([9_580_666].into_iter());
+    assert_clean(&fig);
+    assert_eq!(fig.unproven_ends, 0, "{:?}", fig.notes);
+}
+
 #[test]
 fn ends_at_marcher_jumps_are_proven() {
     let fig = run([

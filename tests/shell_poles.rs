@@ -383,9 +383,9 @@ fn poles_shared_by_several_faces_are_crossed_by_one_closed_curve() {
 /// within rounding). One closed curve each, its search complete, every join proven, the
 /// join's box holding the true circle round the pole (sampled within the chains' reach of it),
 /// the edge within its tolerance of the circle both ways. The same on the sphere as four
-/// quarter faces sharing the poles. Measured: certified tolerances 3.3e-10, 1.1e-9 and 3.6e-8
-/// (the last where the plane meets the sphere at 37°, and its chains stop about 2e-8 short of
-/// the pole), edges 9.8e-10, 1.9e-9 and 7.2e-8; stop 29 had 8.8e-10, 2.9e-9 and 4.7e-7, and
+/// quarter faces sharing the poles. Measured (whole sphere, in the order below): certified
+/// tolerances 3.6e-8 (the first, whose plane meets the sphere at 37°: its chains stop about
+/// 2e-8 short of the pole), 1.1e-9 and 3.3e-10; stop 29 had 4.7e-7, 2.9e-9 and 8.8e-10, and
 /// before it every such pole join was unproven.
 #[test]
 fn small_circles_through_one_pole_are_proven_through_it() {

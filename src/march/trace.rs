@@ -358,6 +358,31 @@ where
             return half;
         };
 
+        // The step's first-order guess leaves a domain but its Newton point is inside: the
+        // curve may leave between them and the point lie on another arc beside the exit (two
+        // arcs 1e-5 apart at a side, the march jumping from one onto the other past the exit).
+        // A landing on the boundary between, ahead of the current point, ends the half there.
+        // Only where the guess is a short step in every parameter (a tenth of its domain; next
+        // to a pole the angular parameter's rate is no guide).
+        let (tp, tq) = (cur.frame.tangent_p, cur.frame.tangent_q);
+        let step = [tp[0], tp[1], tq[0], tq[1]].map(|d| pred.arc * d);
+        let guess: [f64; 4] = std::array::from_fn(|i| cur.x[i] + step[i]);
+        let short = (0..4).all(|i| {
+            let [lo, hi] = [dp.u, dp.v, dq.u, dq.v][i];
+            step[i].abs() <= 0.1 * (hi - lo)
+        });
+        if short
+            && inside(&r.x, &dp, &dq, opts.domain_tolerance)
+            && !inside(&guess, &dp, &dq, opts.domain_tolerance)
+        {
+            if let Some((node, surface)) = land_on_boundary(p, q, &cur, guess, opts) {
+                add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
+                half.events.push(make_event(EventKind::BoundaryEnd, &node));
+                half.nodes.push(node);
+                half.end = EndReason::Boundary { surface };
+                return half;
+            }
+        }
         if !inside(&r.x, &dp, &dq, opts.domain_tolerance) {
             match land_on_boundary(p, q, &cur, r.x, opts) {
                 Some((node, surface)) => {
