@@ -3,7 +3,7 @@
 //!
 //! A polynomial in `f64` data evaluated at an `f64` point is a dyadic rational, so this gives
 //! a residual `P(σ, t) − Q(u, v)` at an exact point with no rounding but the last division
-//! (`crate::certify::exact_residual`). Interval arithmetic loses tens of ulps of the model's
+//! (the certifier's exact residual). Interval arithmetic loses tens of ulps of the model's
 //! size there, and over nearly tangent surfaces that rounding, divided by the sine of the
 //! angle between the normals, is what a link's tube cannot get below. Only `num-bigint`'s
 //! integers are used: no crate offers exact dyadic numbers with outward conversion to `f64`
