@@ -11,19 +11,20 @@ use crate::geometry::{ParametricSurface, RationalBezierPatch, Vec3};
 use crate::pair::branch_point::locate_singular_point_within;
 use crate::pair::tangent::normals_sine_sqr;
 
-/// Below this sine of the angle between the normals a link is proven on exact residuals
-/// ([`Walker::precise_at`]): the interval residual's rounding (tens of ulps of the model's
-/// size, 2e-14 on a cone of size 3) over the sine then reaches a fifth of a tight tolerance.
+/// Below this sine of the angle between the normals a link too wide is proven again on exact
+/// residuals ([`Walker::precise_at`]): the interval residual's rounding (tens of ulps of the
+/// model's size, 2e-14 on a cone of size 3) over the sine then reaches a fifth of a tight
+/// tolerance.
 /// Not above it: the exact residual is taken at the link's start, and the Taylor form centred
 /// there ranges the residual over the link less tightly than one centred in its middle (torus
 /// pieces at a sine of 4e-4 went from 2e-9 to 1.5e-7 with a threshold of 1e-3).
 const PRECISE_SINE: f64 = 1e-4;
 
 impl Walker<'_> {
-    /// Whether links from `x` are proven on exact residuals: the surfaces are nearly tangent
-    /// there ([`PRECISE_SINE`]), so the rounding of the residual over the sine would set the
-    /// tube, and the nodes are moved onto the curve by an exact Newton step
-    /// ([`Self::precise_node`]).
+    /// Whether a link from `x` wider than the aim is proven again on exact residuals: the
+    /// surfaces are nearly tangent there ([`PRECISE_SINE`]), so the rounding of the residual
+    /// over the sine can set the tube; the nodes there are moved onto the curve by an exact
+    /// Newton step ([`Self::precise_node`]).
     pub(super) fn precise_at(&self, x: &[f64; 4]) -> bool {
         normals_sine_sqr(self.p, self.q, x) < PRECISE_SINE * PRECISE_SINE
     }
