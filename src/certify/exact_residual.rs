@@ -32,11 +32,7 @@ pub(crate) fn exact_residual(
     let mut out = [point(0.0); 3];
     for r in 0..3 {
         let num = &(&hp[r] * &hq[3]) - &(&hq[r] * &hp[3]);
-        out[r] = if num.is_zero() {
-            point(0.0)
-        } else {
-            num.enclosure()? / den
-        };
+        out[r] = num.enclosure()? / den;
     }
     out.iter()
         .all(|v| v.inf().is_finite() && v.sup().is_finite())

@@ -718,3 +718,20 @@ impl ParametricSurface for RationalBezierPatch {
         crate::geometry::collapsed::distinct_poles(&self.collapsed)
     }
 }
+
+/// Test fixture: a quarter of the unit cylinder `x² + y² = 1`, `0 ≤ z ≤ 1` (rational, degree
+/// 2 × 1, weights `cos 45°` on the middle row), over `domain`.
+#[cfg(test)]
+pub(crate) fn quarter_cylinder_over(domain: crate::geometry::Domain) -> RationalBezierPatch {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let net = [
+        [1.0, 0.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 0.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let w = [1.0, 1.0, h, h, 1.0, 1.0];
+    RationalBezierPatch::from_f64_points([2, 1], &net, Some(&w), domain).unwrap()
+}

@@ -401,3 +401,55 @@ where
         .reduce(|a, b| if b.1 > a.1 { b } else { a })
         .map(|(i, _)| usize::from(i >= 2))
 }
+
+/// Whether the half leaves a domain on the step from `cur` to its Newton point `x`: `None` if
+/// not; else the landing on the boundary between (`None` inside if none is found). `x` outside
+/// a domain leaves it; `x` inside may too, past an exit it stepped over ([`exit_before`]).
+pub(crate) fn leaves_domains<S1, S2>(
+    p: &S1,
+    q: &S2,
+    cur: &Node,
+    x: &[f64; 4],
+    arc: f64,
+    opts: &MarchOptions,
+) -> Option<Option<(Node, usize)>>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    if !inside(x, &p.domain(), &q.domain(), opts.domain_tolerance) {
+        return Some(land_on_boundary(p, q, cur, *x, opts));
+    }
+    exit_before(p, q, cur, arc, opts).map(Some)
+}
+
+/// Where the curve leaves a domain between `cur` and the step's Newton point, which is inside
+/// (the caller checks): the step's first-order guess (`arc` along the parameter tangent) leaves a
+/// domain, by a short step (a tenth of each domain; next to a pole the angular parameter's rate
+/// is no guide), and a landing on the boundary between lies ahead of `cur`. Beside a side, a
+/// curve's exit can lie 1e-5 from its own entering arc, and Newton from past the exit lands on
+/// that arc: the march jumped.
+fn exit_before<S1, S2>(
+    p: &S1,
+    q: &S2,
+    cur: &Node,
+    arc: f64,
+    opts: &MarchOptions,
+) -> Option<(Node, usize)>
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let (dp, dq) = (p.domain(), q.domain());
+    let (tp, tq) = (cur.frame.tangent_p, cur.frame.tangent_q);
+    let step = [tp[0], tp[1], tq[0], tq[1]].map(|d| arc * d);
+    let guess: [f64; 4] = std::array::from_fn(|i| cur.x[i] + step[i]);
+    let short = (0..4).all(|i| {
+        let [lo, hi] = [dp.u, dp.v, dq.u, dq.v][i];
+        step[i].abs() <= 0.1 * (hi - lo)
+    });
+    let jumped = short && !inside(&guess, &dp, &dq, opts.domain_tolerance);
+    jumped
+        .then(|| land_on_boundary(p, q, cur, guess, opts))
+        .flatten()
+}

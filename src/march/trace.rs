@@ -42,7 +42,7 @@ use crate::error::{Error, InputProblem, Result};
 use crate::geometry::surface::pair_bounds as bounds;
 use crate::geometry::{ParametricSurface, Vec3};
 use crate::march::boundary::{
-    boundary_surface_of, enters, land_on_boundary, onto_boundary, touching,
+    boundary_surface_of, enters, leaves_domains, onto_boundary, touching,
 };
 use crate::march::branch::{Branch, BranchStatus, CurvePoint, EndReason, Event, EventKind};
 use crate::march::circle_step::circular_step;
@@ -279,41 +279,7 @@ where
 ///
 /// Each step: the step limit near singular points ([`step_limit`]), the prediction, the closing
 /// test ([`closing_turning`]), the Newton correction ([`correct`]), then the boundary
-/// ([`land_on_boundary`]) and singular-point rules.
-/// Where the curve leaves a domain between `cur` and the step's Newton point `x` although `x`
-/// is inside: the step's first-order guess (`arc` along the parameter tangent) leaves a
-/// domain, by a short step (a tenth of each domain; next to a pole the angular parameter's rate
-/// is no guide), and a landing on the boundary between lies ahead of `cur`. Beside a side, a
-/// curve's exit can lie 1e-5 from its own entering arc, and Newton from past the exit lands on
-/// that arc: the march jumped.
-fn exit_before<S1, S2>(
-    p: &S1,
-    q: &S2,
-    cur: &Node,
-    arc: f64,
-    x: &[f64; 4],
-    opts: &MarchOptions,
-) -> Option<(Node, usize)>
-where
-    S1: ParametricSurface + ?Sized,
-    S2: ParametricSurface + ?Sized,
-{
-    let (dp, dq) = (p.domain(), q.domain());
-    let (tp, tq) = (cur.frame.tangent_p, cur.frame.tangent_q);
-    let step = [tp[0], tp[1], tq[0], tq[1]].map(|d| arc * d);
-    let guess: [f64; 4] = std::array::from_fn(|i| cur.x[i] + step[i]);
-    let short = (0..4).all(|i| {
-        let [lo, hi] = [dp.u, dp.v, dq.u, dq.v][i];
-        step[i].abs() <= 0.1 * (hi - lo)
-    });
-    let jumped = short
-        && inside(x, &dp, &dq, opts.domain_tolerance)
-        && !inside(&guess, &dp, &dq, opts.domain_tolerance);
-    jumped
-        .then(|| land_on_boundary(p, q, cur, guess, opts))
-        .flatten()
-}
-
+/// ([`leaves_domains`]) and singular-point rules.
 fn march_half<S1, S2>(
     p: &S1,
     q: &S2,
@@ -326,7 +292,6 @@ where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
-    let (dp, dq) = (p.domain(), q.domain());
     let poles = [p.poles(), q.poles()];
     let size = model_size(p, q);
     let mut half = Half {
@@ -392,9 +357,8 @@ where
             return half;
         };
 
-        let exit = exit_before(p, q, &cur, pred.arc, &r.x, opts);
-        if exit.is_some() || !inside(&r.x, &dp, &dq, opts.domain_tolerance) {
-            match exit.or_else(|| land_on_boundary(p, q, &cur, r.x, opts)) {
+        if let Some(landing) = leaves_domains(p, q, &cur, &r.x, pred.arc, opts) {
+            match landing {
                 Some((node, surface)) => {
                     add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
                     half.events.push(make_event(EventKind::BoundaryEnd, &node));

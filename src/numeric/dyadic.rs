@@ -54,11 +54,6 @@ impl Dyadic {
         })
     }
 
-    /// Whether the value is zero.
-    pub(crate) fn is_zero(&self) -> bool {
-        self.m.is_zero()
-    }
-
     /// An interval holding the value: its bounds are the nearest `f64`s at most one unit in the
     /// 53rd bit away on either side (exact when the value is an `f64`). `None` if the value is
     /// outside the normal range of `f64` (it would overflow or lose bits to underflow).

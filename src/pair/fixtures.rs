@@ -101,21 +101,5 @@ pub(crate) fn square_graph(terms: Vec<(u32, u32, f64)>) -> crate::geometry::Rati
 /// A quarter of the unit cylinder `x² + y² = 1`, `0 ≤ z ≤ 1` (rational, degree 2 × 1, weights
 /// `cos 45°` on the middle row), over the unit square.
 pub(crate) fn quarter_cylinder() -> crate::geometry::RationalBezierPatch {
-    let h = std::f64::consts::FRAC_1_SQRT_2;
-    let net = [
-        [1.0, 0.0, 0.0],
-        [1.0, 0.0, 1.0],
-        [1.0, 1.0, 0.0],
-        [1.0, 1.0, 1.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 1.0, 1.0],
-    ];
-    let w = [1.0, 1.0, h, h, 1.0, 1.0];
-    crate::geometry::RationalBezierPatch::from_f64_points(
-        [2, 1],
-        &net,
-        Some(&w),
-        crate::geometry::Domain::UNIT,
-    )
-    .unwrap()
+    crate::geometry::bezier::quarter_cylinder_over(crate::geometry::Domain::UNIT)
 }

@@ -14,42 +14,32 @@ impl RationalBezierPatch {
     /// homogeneous net, from that net. `None` if any of those numbers is an interval wider than
     /// a point (the patch is then not one exact surface) or `u`, `v` are not finite.
     pub(crate) fn homogeneous_exact(&self, u: f64, v: f64) -> Option<[Dyadic; 4]> {
-        let point = |x: inari::Interval| (x.inf() == x.sup()).then(|| Dyadic::from_f64(x.inf()));
+        // The four numbers of a control point as exact values (`None` unless all are points).
+        let exact = |c: &[inari::Interval; 4]| -> Option<[Dyadic; 4]> {
+            let x = c.map(|x| {
+                (x.inf() == x.sup())
+                    .then(|| Dyadic::from_f64(x.inf()))
+                    .flatten()
+            });
+            let [a, b, c, d] = x;
+            Some([a?, b?, c?, d?])
+        };
         let net: Vec<[Dyadic; 4]> = match &self.cartesian {
+            // (x, y, z, w) → (w·x, w·y, w·z, w), exactly.
             Some(cart) => cart
                 .iter()
-                .map(|c| {
-                    let w = point(c[3])??;
-                    let mut h = [Dyadic::zero(), Dyadic::zero(), Dyadic::zero(), w.clone()];
-                    for k in 0..3 {
-                        h[k] = &point(c[k])?? * &w;
-                    }
-                    Some(h)
-                })
+                .map(|c| exact(c).map(|[x, y, z, w]| [&x * &w, &y * &w, &z * &w, w]))
                 .collect::<Option<_>>()?,
-            None => self
-                .homogeneous
-                .iter()
-                .map(|h| Some([point(h[0])??, point(h[1])??, point(h[2])??, point(h[3])??]))
-                .collect::<Option<_>>()?,
+            None => self.homogeneous.iter().map(exact).collect::<Option<_>>()?,
         };
+        let zero4 = || std::array::from_fn::<Dyadic, 4, _>(|_| Dyadic::zero());
         let [m, n] = self.degree;
         let d = self.domain;
         let bu = basis(m, u, d.u)?;
         let bv = basis(n, v, d.v)?;
-        let mut out = [
-            Dyadic::zero(),
-            Dyadic::zero(),
-            Dyadic::zero(),
-            Dyadic::zero(),
-        ];
+        let mut out = zero4();
         for (i, bi) in bu.iter().enumerate() {
-            let mut row = [
-                Dyadic::zero(),
-                Dyadic::zero(),
-                Dyadic::zero(),
-                Dyadic::zero(),
-            ];
+            let mut row = zero4();
             for (j, bj) in bv.iter().enumerate() {
                 let h = &net[i * (n + 1) + j];
                 for k in 0..4 {
@@ -86,35 +76,12 @@ mod tests {
     use crate::geometry::RationalBezierPatch;
     use crate::numeric::scalar::point;
     use crate::Domain;
-    use inari::Interval;
 
     fn quarter_cylinder() -> RationalBezierPatch {
-        let h = std::f64::consts::FRAC_1_SQRT_2;
-        RationalBezierPatch::new(
-            [2, 1],
-            vec![
-                [1.0, 0.0, 0.0],
-                [1.0, 0.0, 1.0],
-                [1.0, 1.0, 0.0],
-                [1.0, 1.0, 1.0],
-                [0.0, 1.0, 0.0],
-                [0.0, 1.0, 1.0],
-            ]
-            .into_iter()
-            .map(|p| p.map(point))
-            .collect(),
-            Some(
-                vec![1.0, 1.0, h, h, 1.0, 1.0]
-                    .into_iter()
-                    .map(point)
-                    .collect::<Vec<Interval>>(),
-            ),
-            Domain {
-                u: [0.25, 2.0],
-                v: [-1.0, 3.0],
-            },
-        )
-        .unwrap()
+        crate::geometry::bezier::quarter_cylinder_over(Domain {
+            u: [0.25, 2.0],
+            v: [-1.0, 3.0],
+        })
     }
 
     #[test]
