@@ -26,7 +26,14 @@ pub struct MarchOptions {
     pub newton_tolerance: f64,
     /// Newton gives up after this many corrections.
     pub max_newton_iterations: usize,
-    /// A point is singular when `|N^P × N^Q| < singular_sine · |N^P| |N^Q|`.
+    /// A point is singular when `|N^P × N^Q| < singular_sine · |N^P| |N^Q|` (default 1e-7).
+    ///
+    /// Below about that the curve cannot be told from a singular one in `f64`: a Newton point
+    /// is off the curve by the residual's rounding over the sine (1e-9 at a sine of 1e-7 on a
+    /// model of size 1), and where nearly tangent surfaces make the curve turn round, its
+    /// radius there is about the sine over the normals' relative curvature. Above it the march
+    /// goes round such a turn (at 1e-6, the former default, it stopped there and the curve came
+    /// back as two branches ending at a "singular point" that is none).
     pub singular_sine: f64,
     /// Below this sine of the normal angle, while it decreases, the step is limited to half the
     /// distance at which it would reach zero, so the marcher approaches a singular point
@@ -66,7 +73,7 @@ impl Default for MarchOptions {
             max_points: 20_000,
             newton_tolerance: 1e-10,
             max_newton_iterations: 12,
-            singular_sine: 1e-6,
+            singular_sine: 1e-7,
             watch_sine: 0.05,
             parallel_tolerance: 1e-9,
             first_step_fraction: 0.01,

@@ -31,6 +31,10 @@
 //!   point itself, located by Gauss–Newton. With `cross_singular` the march continues straight
 //!   through the node's unused exit (each arc once), and the closing test then accepts rotation
 //!   index 0.
+//! - **Another curve**: a Newton point where the direction of travel runs against
+//!   `N^P × N^Q` while no singular point lies between it and the last point is on another curve
+//!   (on nearly tangent surfaces, the other arm of a curve that turns round); the step is
+//!   halved as after a Newton failure.
 //! - **Own path**: a point back on the half's own earlier path, away from its start, with the
 //!   same direction (`closing::on_own_path`: a loop of another curve reached after a jump, or a loop
 //!   whose closing test failed) ends the half before it goes round again.
@@ -220,8 +224,9 @@ fn predict_capped(
 }
 
 /// Corrects the prediction `first` (made within `limit`) onto the curve by Newton in the
-/// plane through the predicted point, halving the step up to three times if Newton fails or
-/// jumps too far. Returns the refined point, if any, and the number of retries.
+/// plane through the predicted point, halving the step up to three times if Newton fails,
+/// jumps too far or lands on another curve ([`jumped`]). Returns the refined point, if any, and
+/// the number of retries.
 fn correct<S1, S2>(
     p: &S1,
     q: &S2,
@@ -261,14 +266,33 @@ where
             opts.newton_tolerance,
             opts.max_newton_iterations,
         ) {
-            // Reject a jump that went backwards or much farther than predicted.
+            // Reject a jump that went backwards or much farther than predicted, or onto another
+            // curve.
             let moved = (p.point(r.x[0], r.x[1]) - cur.frame.xyz).norm();
-            if moved <= 3.0 * len + opts.newton_tolerance {
+            if moved <= 3.0 * len + opts.newton_tolerance && !jumped(p, q, cur, &r.x, opts) {
                 return (Some(r), retried);
             }
         }
     }
     (None, retried)
+}
+
+/// Whether the step from `cur` to the curve point `x` landed on another curve: the direction
+/// of travel against `N^P × N^Q` turned over (on a regular arc it never does) and no singular
+/// point lies between. On nearly tangent surfaces a curve that turns round (normals 1e-7
+/// apart at the turn) runs back beside itself, its two arms about the sine over the normals'
+/// relative curvature apart; a step out of the turn can land on the other arm, which runs
+/// the other way along the curve, and the march would trace that arm again.
+fn jumped<S1, S2>(p: &S1, q: &S2, cur: &Node, x: &[f64; 4], opts: &MarchOptions) -> bool
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let chord = p.point(x[0], x[1]) - cur.frame.xyz;
+    let node = node_at(p, q, *x, 0, Some(chord));
+    node.flipped != cur.flipped
+        && node.frame.sine >= opts.singular_sine
+        && singular_between(p, q, cur, &node, opts).is_none()
 }
 
 /// Marches from `start` (tangent oriented along the direction of travel) until a stop rule fires.

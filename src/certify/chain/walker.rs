@@ -178,6 +178,30 @@ impl<'a> Walker<'a> {
         })
     }
 
+    /// How well `x_i` serves as the along coordinate from `a` to `b`: its smaller scaled speed at
+    /// the two ends, if it moves between them the way both velocities point.
+    fn along_score(&self, a: &Node, b: &Node, i: usize) -> Option<f64> {
+        let d = b.x[i] - a.x[i];
+        let ok = d != 0.0 && d.signum() == a.t[i].signum() && d.signum() == b.t[i].signum();
+        ok.then(|| a.t[i].abs().min(b.t[i].abs()) / self.scales[i])
+    }
+
+    /// The coordinates other than `j` that move monotonically from `a` to `b`, best first (none
+    /// next to a pole, where the coordinate is fixed). Unlike [`Self::along`] this takes slow
+    /// ones too: a coordinate at a quarter of the fastest one's speed is the one to graph over
+    /// where the fastest turns.
+    fn other_alongs(&self, a: &Node, b: &Node, j: usize) -> Vec<usize> {
+        if self.pole_along(a, b).is_some() {
+            return Vec::new();
+        }
+        let mut ranked: Vec<(usize, f64)> = (0..4)
+            .filter(|&i| i != j)
+            .filter_map(|i| self.along_score(a, b, i).map(|s| (i, s)))
+            .collect();
+        ranked.sort_by(|x, y| y.1.total_cmp(&x.1));
+        ranked.into_iter().map(|(i, _)| i).collect()
+    }
+
     /// The along coordinate for a link from `a` to `b`: monotone between them with both
     /// velocities agreeing, the largest scaled speed (on the costlier patch, see
     /// [`Self::costly_side`], if that is at least half of it); the previous link's if nearly as
@@ -186,11 +210,7 @@ impl<'a> Walker<'a> {
         if let Some(j) = self.pole_along(a, b) {
             return Some(j);
         }
-        let score = |i: usize| {
-            let d = b.x[i] - a.x[i];
-            let ok = d != 0.0 && d.signum() == a.t[i].signum() && d.signum() == b.t[i].signum();
-            ok.then(|| a.t[i].abs().min(b.t[i].abs()) / self.scales[i])
-        };
+        let score = |i: usize| self.along_score(a, b, i);
         let top = (0..4)
             .map(|i| a.t[i].abs() / self.scales[i])
             .fold(0.0, f64::max);
@@ -269,6 +289,17 @@ impl<'a> Walker<'a> {
     }
 
     /// [`Self::try_link`] on the forms `lean`.
+    ///
+    /// On nearly tangent surfaces a link wider than the aim (or failing) is tried again on the
+    /// exact residual, then graphed over each other acceptable coordinate (on the exact
+    /// residual), and the narrowest proof kept. Near a singular point (the cylinders' nodes)
+    /// the width is the conditioning's whatever the form: proving every link there twice, the
+    /// second form centred at the link's start, cost a sixth more links and 1.6 times the
+    /// chain's time, so the retries are only for links that need them. The other coordinates
+    /// serve where the fastest one is about to turn (the vertex of a curve that turns within
+    /// 1e-7 on nearly tangent surfaces): graphed over it the curve has a branch point just
+    /// past the link, and the tube there stayed at 1.5e-9 however short the link; graphed
+    /// over the coordinate that keeps moving, 1e-14.
     pub(super) fn link_on(
         &self,
         lean: [&LeanPatch<'a>; 2],
@@ -277,6 +308,37 @@ impl<'a> Walker<'a> {
         must_end: Option<&[Interval; 4]>,
     ) -> Option<Link> {
         let j = self.along(a, b)?;
+        let aim = 0.5 * self.opts.required_tolerance;
+        let mut best = self.link_along(lean, j, a, b, must_end, false);
+        let wide = |l: &Option<Link>| l.as_ref().is_none_or(|l| l.radius_xyz > aim);
+        if !wide(&best) || !self.precise_at(&a.x) {
+            return best;
+        }
+        let retries = std::iter::once(j).chain(self.other_alongs(a, b, j));
+        for k in retries {
+            if let Some(e) = self.link_along(lean, k, a, b, must_end, true) {
+                if best.as_ref().is_none_or(|b| e.radius_xyz < b.radius_xyz) {
+                    best = Some(e);
+                }
+            }
+            if !wide(&best) {
+                break;
+            }
+        }
+        best
+    }
+
+    /// One attempt at the link from `a` to `b` graphed over `x_j`, on the exact residual at
+    /// the link's start if `exact` (see [`prove_segment`]).
+    fn link_along(
+        &self,
+        lean: [&LeanPatch<'a>; 2],
+        j: usize,
+        a: &Node,
+        b: &Node,
+        must_end: Option<&[Interval; 4]>,
+        exact: bool,
+    ) -> Option<Link> {
         let pred = self.predictor(j, a, b)?;
         let musts: Vec<&[Interval; 4]> = self.join.iter().chain(must_end).collect();
         let (mut lo, mut hi) = (a.x[j].min(b.x[j]), a.x[j].max(b.x[j]));
@@ -294,29 +356,11 @@ impl<'a> Walker<'a> {
         // the range when the link reaches past it to take in the closing join.
         let to = if dir > 0.0 { hi } else { lo };
         let cover_from = if dir > 0.0 { lo } else { hi };
-        let attempt = |exact: bool| {
-            let proof = prove_segment(lean, pred, [lo, hi], need, exact).ok()?;
-            if !musts.iter().all(|m| proof.tube_contains(m)) {
-                return None;
-            }
-            let (rp, rx) = self.radii(&proof, a.x[j], cover_from)?;
-            Some((proof, rp, rx))
-        };
-        // On nearly tangent surfaces a link wider than the aim (or failing) is tried again on
-        // the exact residual, and the narrower kept: near a singular point (the cylinders'
-        // nodes) the width is the conditioning's, and proving every link there twice, the
-        // second form centred at the link's start, cost a sixth more links and 1.6 times the
-        // chain's time.
-        let aim = 0.5 * self.opts.required_tolerance;
-        let mut best = attempt(false);
-        if best.as_ref().is_none_or(|b| b.2 > aim) && self.precise_at(&a.x) {
-            if let Some(e) = attempt(true) {
-                if best.as_ref().is_none_or(|b| e.2 < b.2) {
-                    best = Some(e);
-                }
-            }
+        let proof = prove_segment(lean, pred, [lo, hi], need, exact).ok()?;
+        if !musts.iter().all(|m| proof.tube_contains(m)) {
+            return None;
         }
-        let (proof, radius_param, radius_xyz) = best?;
+        let (radius_param, radius_xyz) = self.radii(&proof, a.x[j], cover_from)?;
         Some(Link {
             proof,
             from: a.x[j],
