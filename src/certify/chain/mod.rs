@@ -45,6 +45,7 @@ use inari::Interval;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
+mod along;
 mod leave;
 mod limit;
 mod output;
