@@ -11,6 +11,7 @@ mod options;
 mod repair;
 mod result;
 mod run;
+mod turns;
 
 pub use options::{
     Engine, Method, Options, COVER_EVALUATIONS, COVER_LEAF, DEFAULT_MAX_STEPS, LENGTH_BUDGET_FACTOR,

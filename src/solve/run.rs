@@ -12,6 +12,7 @@ use super::repair::uncovered_starts;
 use super::result::{
     end_box, BranchCertificate, CertifyStats, Stats, SurfaceIntersection, TracedBranch,
 };
+use super::turns::join_turns;
 use crate::certify::contact::certify_contact_events;
 use crate::certify::{
     certify_branch, certify_chain, CertifiedBranch, CertifyOptions, ChainOptions, StepBudget,
@@ -66,7 +67,7 @@ pub fn intersect(
     };
     let started = Instant::now();
     let deadline = opts.time_limit.map(|limit| started + limit);
-    let outcome = march_all(p, q, &march, &opts.search);
+    let mut outcome = march_all(p, q, &march, &opts.search);
     let march_seconds = started.elapsed().as_secs_f64();
     let mut marched = outcome.intersection.branches;
     let mut boundary_ends: Vec<_> = marched
@@ -92,9 +93,23 @@ pub fn intersect(
     let mut contact_error = None;
     if opts.method.certifies() {
         let certifying = Instant::now();
+        // Arms of a turn too tight for the march, joined where the chain proves the curve
+        // through it (`turns.rs`), with their certificates.
+        let mut joined = join_turns(
+            p,
+            q,
+            (&mut marched, &mut boundary_ends),
+            (&mut outcome.nodes, &mut outcome.intersection.events),
+            &|b| certify_within(p, q, b, opts, deadline),
+            &|b| check_branch_ends(p, q, b, &opts.boundary),
+        );
         let mut certs: Vec<BranchCertificate> = marched
             .par_iter()
-            .map(|b| certify_within(p, q, b, opts, deadline))
+            .zip(joined.par_iter_mut())
+            .map(|(b, c)| {
+                c.take()
+                    .unwrap_or_else(|| certify_within(p, q, b, opts, deadline))
+            })
             .collect();
         let retraced = retrace_uncovered(
             p,
