@@ -13,20 +13,27 @@ impl Walker<'_> {
         ok.then(|| a.t[i].abs().min(b.t[i].abs()) / self.scales[i])
     }
 
-    /// The coordinates other than `j` that move monotonically from `a` to `b`, best first (none
-    /// next to a pole, where the coordinate is fixed). Unlike [`Self::along`] this takes slow
-    /// ones too: a coordinate at a quarter of the fastest one's speed is the one to graph over
-    /// where the fastest turns.
-    pub(super) fn other_alongs(&self, a: &Node, b: &Node, j: usize) -> Vec<usize> {
+    /// The coordinates other than `j` that move monotonically from `a` to `b`, best first, each
+    /// with whether [`Self::along`] would take it (at least a quarter of the fastest speed);
+    /// none next to a pole, where the coordinate is fixed. Slow ones are listed too: one just
+    /// under a quarter of the fastest one's speed is the one to graph over where the fastest
+    /// turns.
+    pub(super) fn other_alongs(&self, a: &Node, b: &Node, j: usize) -> Vec<(usize, bool)> {
         if self.pole_along(a, b).is_some() {
             return Vec::new();
         }
+        let top = (0..4)
+            .map(|i| a.t[i].abs() / self.scales[i])
+            .fold(0.0, f64::max);
         let mut ranked: Vec<(usize, f64)> = (0..4)
             .filter(|&i| i != j)
             .filter_map(|i| self.along_score(a, b, i).map(|s| (i, s)))
             .collect();
         ranked.sort_by(|x, y| y.1.total_cmp(&x.1));
-        ranked.into_iter().map(|(i, _)| i).collect()
+        ranked
+            .into_iter()
+            .map(|(i, s)| (i, s >= 0.25 * top))
+            .collect()
     }
 
     /// The along coordinate for a link from `a` to `b`: monotone between them with both

@@ -42,6 +42,9 @@ pub(super) struct Link {
     pub(super) tightened: bool,
     /// Why the link was kept although wider than the tolerance (`None`: it is not).
     pub(super) limit: Option<LinkLimit>,
+    /// Whether it is graphed over a coordinate slower than [`Walker::along`] would take (see
+    /// [`Walker::link_on`]): such a link is never kept wider than the tolerance.
+    pub(super) slow: bool,
 }
 
 impl Link {
@@ -249,10 +252,11 @@ impl<'a> Walker<'a> {
         if !wide(&best) || !self.precise_at(&a.x) {
             return best;
         }
-        let retries = std::iter::once(j).chain(self.other_alongs(a, b, j));
-        for k in retries {
-            if let Some(e) = self.link_along(lean, k, a, b, must_end, true) {
+        let retries = std::iter::once((j, true)).chain(self.other_alongs(a, b, j));
+        for (k, fast) in retries {
+            if let Some(mut e) = self.link_along(lean, k, a, b, must_end, true) {
                 if best.as_ref().is_none_or(|b| e.radius_xyz < b.radius_xyz) {
+                    e.slow = !fast;
                     best = Some(e);
                 }
             }
@@ -310,6 +314,7 @@ impl<'a> Walker<'a> {
             end_slice: proof.box_over(to, to),
             tightened: false,
             limit: None,
+            slow: false,
         })
     }
 
@@ -507,7 +512,8 @@ impl<'a> Walker<'a> {
                 // point; keep it (the certificate then reports a tolerance above the
                 // requested one, and why, instead of failing).
                 Attempt::TooWide(mut link)
-                    if wider.is_some_and(|w| link.radius_xyz > 0.5 * w)
+                    if !link.slow
+                        && wider.is_some_and(|w| link.radius_xyz > 0.5 * w)
                         && (link.radius_xyz <= self.rounding_floor(&cur)
                             || (scaled_dist(&cur.x, &tgt.x, &self.scales) < FLOOR_LINK
                                 && self.conditioning_only(&cur.x, &tgt.x))) =>
