@@ -781,3 +781,18 @@ fn a_march_out_of_a_tight_turn_stays_on_its_arm() {
     assert_eq!(fig.unproven_ends, 0, "{:?}", fig.notes);
     assert_eq!(fig.branches, 1, "one branch");
 }
+
+/// A trace that stops with a Newton failure next to a tight turn (seed 8 702 966, a cone against
+/// a plane 1e-8 from tangent; normals 1.4e-7 apart at the turn), beside a branch that goes round
+/// the turn from boundary to boundary. Its points there are off the curve by the residual's
+/// rounding over that sine (up to 7e-9), and the other branch's tubes there are graphed over a
+/// coordinate that moves 450 times slower than the curve's fastest one, so the points were in
+/// none of them and the arc was reported twice. It is now dropped as the copy it is: one branch.
+#[test]
+fn a_trace_stopped_beside_a_tight_turn_is_no_second_copy() {
+    let fig = run([8_702_966].into_iter());
+    assert_eq!(fig.soundness_violations, 0, "{:?}", fig.notes);
+    assert_eq!(fig.missed_points, 0, "{:?}", fig.notes);
+    assert_eq!(fig.twice, 0, "{:?}", fig.notes);
+    assert_eq!(fig.branches, 1, "one branch");
+}

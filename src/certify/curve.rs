@@ -110,24 +110,53 @@ impl TubePiece {
         y
     }
 
-    /// Whether the parameters `x` lie in a cover-chain piece (one with an along parameter): the
-    /// along coordinate in the piece's range and the others within the proven radius (plus
-    /// `slack` scaled by the domain widths `scales`) of the reported curve there. An `f64` test:
-    /// it decides what is reported or traced again, it proves nothing.
+    /// Whether the parameters `x` lie in a cover-chain piece (one with an along parameter): within
+    /// `slack` (scaled by the domain widths `scales`) of a point of the tube, i.e. of the
+    /// reported curve at an along coordinate within `slack` of `x`'s, with the others within the
+    /// proven radius plus `slack`. An `f64` test: it decides what is reported or traced again,
+    /// it proves nothing.
+    ///
+    /// The along coordinate may move by `slack` too: on a piece graphed over a slow coordinate
+    /// (the other ones 450 times faster, beside the tight turn of a curve on nearly tangent
+    /// surfaces), a marched point off the curve by its own rounding along the curve is off the
+    /// reported curve at its exact along coordinate by that much times 450.
     pub(crate) fn holds(&self, x: &[f64; 4], scales: &[f64; 4], slack: f64) -> bool {
         let Some(along) = self.along else {
             return false;
         };
         let j = along.index;
         let start = self.eval(0.0)[j];
+        let reach = slack * scales[j];
         let tau = (x[j] - start) * self.coeffs.get(1).map_or(1.0, |c| c[j].signum());
-        if !(0.0..=self.h).contains(&tau) {
+        if !(-reach..=self.h + reach).contains(&tau) {
             return false;
         }
+        let tau = tau.clamp(0.0, self.h);
         let y = self.eval(tau);
+        let dy = self.derivative(tau);
+        // Move along the reported curve by δ (|δ| ≤ reach) to meet the fastest other coordinate.
+        let fastest = (0..4).filter(|&k| k != j).max_by(|&a, &b| {
+            (dy[a] / scales[a])
+                .abs()
+                .total_cmp(&(dy[b] / scales[b]).abs())
+        });
+        let delta = fastest
+            .filter(|&m| dy[m] != 0.0)
+            .map_or(0.0, |m| ((x[m] - y[m]) / dy[m]).clamp(-reach, reach));
         (0..4)
             .filter(|&k| k != j)
-            .all(|k| (x[k] - y[k]).abs() <= self.radius_param + slack * scales[k])
+            .all(|k| (x[k] - y[k] - dy[k] * delta).abs() <= self.radius_param + slack * scales[k])
+    }
+
+    /// The derivative of the reported parameters in `τ` at `tau`.
+    fn derivative(&self, tau: f64) -> [f64; 4] {
+        let mut d = [0.0; 4];
+        for (n, c) in self.coeffs.iter().enumerate().skip(1).rev() {
+            for i in 0..4 {
+                d[i] = d[i] * tau + n as f64 * c[i];
+            }
+        }
+        d
     }
 }
 

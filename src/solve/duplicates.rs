@@ -20,6 +20,7 @@ use crate::certify::{CertifiedBranch, CertifiedEnd, TubePiece};
 use crate::geometry::surface::pair_widths;
 use crate::geometry::RationalBezierPatch;
 use crate::march::branch::{Branch, CurvePoint, EndReason};
+use crate::pair::tangent::normals_sine_sqr;
 
 /// Which branches are duplicates (see the module documentation): a branch is tested against the
 /// branches not dropped before it and all after it, those whose certificate stops short first.
@@ -47,12 +48,29 @@ pub(crate) fn duplicate_branches(
         dropped[i] = !others.is_empty()
             && inner_points(&marched[i]).iter().all(|pt| {
                 let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
-                others
-                    .iter()
-                    .any(|t| t.holds(&x, &scales, newton_tolerance))
+                let slack = newton_tolerance.max(rounding_offset(p, q, pt));
+                others.iter().any(|t| t.holds(&x, &scales, slack))
             });
     }
     dropped
+}
+
+/// Ulps of the model's coordinates that an `f64` evaluation of `P − Q` rounds by (a few per
+/// operation of the patches' evaluation).
+const RESIDUAL_ULPS: f64 = 16.0;
+
+/// How far rounding alone can put the marched point `pt` off its curve, in parameters: the
+/// residual's rounding over the sine of the normals' angle there (at most 1e-6). Next to the
+/// tight turn of a curve on nearly tangent surfaces (normals 1.4e-7 apart) a march's points
+/// were up to 7e-9 off, and a trace that stopped there was not seen as a copy of the branch
+/// that went round the turn (an arc reported twice). Two distinct curves that close are about
+/// a sine over the normals' relative curvature apart, far more at any sine the march resolves
+/// (above 1e-7).
+fn rounding_offset(p: &RationalBezierPatch, q: &RationalBezierPatch, pt: &CurvePoint) -> f64 {
+    let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+    let size = 1.0 + pt.xyz.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let sine = normals_sine_sqr(p, q, &x).sqrt();
+    (RESIDUAL_ULPS * f64::EPSILON * size / sine).min(1e-6)
 }
 
 /// The marched points a copy must hold: all but an end point on a domain boundary or at a
