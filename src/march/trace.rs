@@ -61,7 +61,7 @@ use crate::march::step_limit::{
 use crate::march::tangent_step::tangent_step;
 use crate::march::StepPrediction;
 use crate::pair::branch_point::SingularNode;
-use crate::pair::newton::{refine, Constraint, Refined};
+use crate::pair::newton::{refine, Constraint};
 use crate::pair::tangent::{curve_frame, parameter_direction};
 
 /// Counts describing one traced branch.
@@ -225,8 +225,8 @@ fn predict_capped(
 
 /// Corrects the prediction `first` (made within `limit`) onto the curve by Newton in the
 /// plane through the predicted point, halving the step up to three times if Newton fails,
-/// jumps too far or lands on another curve ([`jumped`]). Returns the refined point, if any, and
-/// the number of retries.
+/// jumps too far or lands on another curve ([`settle`]). Returns the Newton point and its
+/// settled node, if any, and the number of retries.
 fn correct<S1, S2>(
     p: &S1,
     q: &S2,
@@ -235,7 +235,7 @@ fn correct<S1, S2>(
     cur: &Node,
     first: StepPrediction,
     mut limit: StepLimit,
-) -> (Option<Refined>, usize)
+) -> (Option<([f64; 4], Node)>, usize)
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
@@ -268,31 +268,43 @@ where
         ) {
             // Reject a jump that went backwards or much farther than predicted, or onto another
             // curve.
-            let moved = (p.point(r.x[0], r.x[1]) - cur.frame.xyz).norm();
-            if moved <= 3.0 * len + opts.newton_tolerance && !jumped(p, q, cur, &r.x, opts) {
-                return (Some(r), retried);
+            let chord = p.point(r.x[0], r.x[1]) - cur.frame.xyz;
+            if chord.norm() <= 3.0 * len + opts.newton_tolerance {
+                if let Ok(node) = settle(p, q, cur, &r.x, r.iterations, chord, opts) {
+                    return (Some((r.x, node)), retried);
+                }
             }
         }
     }
     (None, retried)
 }
 
-/// Whether the step from `cur` to the curve point `x` landed on another curve: the direction
-/// of travel against `N^P × N^Q` turned over (on a regular arc it never does) and no singular
-/// point lies between. On nearly tangent surfaces a curve that turns round (normals 1e-7
-/// apart at the turn) runs back beside itself, its two arms about the sine over the normals'
-/// relative curvature apart; a step out of the turn can land on the other arm, which runs
-/// the other way along the curve, and the march would trace that arm again.
-fn jumped<S1, S2>(p: &S1, q: &S2, cur: &Node, x: &[f64; 4], opts: &MarchOptions) -> bool
+/// The node of the curve point `x` reached from `cur` by the step `chord`, oriented along it.
+/// Where the direction of travel against `N^P × N^Q` turned over (on a regular arc it never
+/// does) above `singular_sine`, the step crossed a singular point: `Ok` with that point
+/// instead, or, with none between, `Err` with the node: the step landed on another curve. On
+/// nearly tangent surfaces a curve that turns round (normals 1e-7 apart at the turn) runs back
+/// beside itself, its two arms about the sine over the normals' relative curvature apart; a
+/// step out of the turn can land on the other arm, which runs the other way along the curve,
+/// and the march would trace that arm again.
+fn settle<S1, S2>(
+    p: &S1,
+    q: &S2,
+    cur: &Node,
+    x: &[f64; 4],
+    iterations: usize,
+    chord: Vec3,
+    opts: &MarchOptions,
+) -> std::result::Result<Node, Node>
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
-    let chord = p.point(x[0], x[1]) - cur.frame.xyz;
-    let node = node_at(p, q, *x, 0, Some(chord));
-    node.flipped != cur.flipped
-        && node.frame.sine >= opts.singular_sine
-        && singular_between(p, q, cur, &node, opts).is_none()
+    let node = node_at(p, q, *x, iterations, Some(chord));
+    if node.flipped == cur.flipped || node.frame.sine < opts.singular_sine {
+        return Ok(node);
+    }
+    singular_between(p, q, cur, &node, opts).ok_or(node)
 }
 
 /// Marches from `start` (tangent oriented along the direction of travel) until a stop rule fires.
@@ -367,13 +379,15 @@ where
         half.retried += retried;
         // Newton failing right next to a singular point stops on that point instead.
         let ahead = || {
-            singular_ahead(p, q, &cur, opts).map(|x| Refined {
-                x,
-                iterations: 0,
-                residual: (p.point(x[0], x[1]) - q.point(x[2], x[3])).norm(),
+            singular_ahead(p, q, &cur, opts).map(|x| {
+                let chord = p.point(x[0], x[1]) - cur.frame.xyz;
+                (
+                    x,
+                    settle(p, q, &cur, &x, 0, chord, opts).unwrap_or_else(|n| n),
+                )
             })
         };
-        let Some(r) = refined.or_else(ahead) else {
+        let Some((x, node)) = refined.or_else(ahead) else {
             half.end = match on_pole(&poles, &cur, POLE_NEWTON * size) {
                 Some(surface) => EndReason::Boundary { surface },
                 None => EndReason::NewtonFailed,
@@ -381,7 +395,7 @@ where
             return half;
         };
 
-        if let Some(landing) = leaves_domains(p, q, &cur, &r.x, pred.arc, opts) {
+        if let Some(landing) = leaves_domains(p, q, &cur, &x, pred.arc, opts) {
             match landing {
                 Some((node, surface)) => {
                     add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
@@ -394,14 +408,6 @@ where
             return half;
         }
 
-        let chord = p.point(r.x[0], r.x[1]) - cur.frame.xyz;
-        let mut node = node_at(p, q, r.x, r.iterations, Some(chord));
-        if node.flipped != cur.flipped && node.frame.sine >= opts.singular_sine {
-            // Stepped across a singular point: stop on it instead.
-            if let Some(at) = singular_between(p, q, &cur, &node, opts) {
-                node = at;
-            }
-        }
         add_turn(&mut half.turning, turn(&cur.frame, &node.frame));
         half.nodes.push(node);
         if node.frame.sine < opts.singular_sine {
