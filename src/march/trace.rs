@@ -270,7 +270,8 @@ where
             // curve.
             let chord = p.point(r.x[0], r.x[1]) - cur.frame.xyz;
             if chord.norm() <= 3.0 * len + opts.newton_tolerance {
-                if let Ok(node) = settle(p, q, cur, &r.x, r.iterations, chord, opts) {
+                let (node, jumped) = settle(p, q, cur, &r.x, r.iterations, chord, opts);
+                if !jumped {
                     return (Some((r.x, node)), retried);
                 }
             }
@@ -281,8 +282,8 @@ where
 
 /// The node of the curve point `x` reached from `cur` by the step `chord`, oriented along it.
 /// Where the direction of travel against `N^P × N^Q` turned over (on a regular arc it never
-/// does) above `singular_sine`, the step crossed a singular point: `Ok` with that point
-/// instead, or, with none between, `Err` with the node: the step landed on another curve. On
+/// does) above `singular_sine`, the step crossed a singular point: that point instead, or,
+/// with none between, the node and `true`: the step landed on another curve. On
 /// nearly tangent surfaces a curve that turns round (normals 1e-7 apart at the turn) runs back
 /// beside itself, its two arms about the sine over the normals' relative curvature apart; a
 /// step out of the turn can land on the other arm, which runs the other way along the curve,
@@ -295,16 +296,19 @@ fn settle<S1, S2>(
     iterations: usize,
     chord: Vec3,
     opts: &MarchOptions,
-) -> std::result::Result<Node, Node>
+) -> (Node, bool)
 where
     S1: ParametricSurface + ?Sized,
     S2: ParametricSurface + ?Sized,
 {
     let node = node_at(p, q, *x, iterations, Some(chord));
     if node.flipped == cur.flipped || node.frame.sine < opts.singular_sine {
-        return Ok(node);
+        return (node, false);
     }
-    singular_between(p, q, cur, &node, opts).ok_or(node)
+    match singular_between(p, q, cur, &node, opts) {
+        Some(at) => (at, false),
+        None => (node, true),
+    }
 }
 
 /// Marches from `start` (tangent oriented along the direction of travel) until a stop rule fires.
@@ -381,10 +385,7 @@ where
         let ahead = || {
             singular_ahead(p, q, &cur, opts).map(|x| {
                 let chord = p.point(x[0], x[1]) - cur.frame.xyz;
-                (
-                    x,
-                    settle(p, q, &cur, &x, 0, chord, opts).unwrap_or_else(|n| n),
-                )
+                (x, settle(p, q, &cur, &x, 0, chord, opts).0)
             })
         };
         let Some((x, node)) = refined.or_else(ahead) else {
@@ -747,14 +748,7 @@ fn assemble(
     turning: [f64; 2],
     retried: usize,
 ) -> TracedBranch {
-    let regular = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
-    let status = if ends[1] == EndReason::ClosedLoop {
-        BranchStatus::Closed
-    } else if regular(&ends[0]) && regular(&ends[1]) {
-        BranchStatus::Open
-    } else {
-        BranchStatus::Incomplete
-    };
+    let status = BranchStatus::of_ends(&ends);
     let mut histogram = Vec::new();
     for n in &nodes {
         if histogram.len() <= n.iterations {
