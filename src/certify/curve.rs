@@ -143,9 +143,11 @@ impl TubePiece {
         let delta = fastest
             .filter(|&m| dy[m] != 0.0)
             .map_or(0.0, |m| ((x[m] - y[m]) / dy[m]).clamp(-reach, reach));
-        (0..4)
-            .filter(|&k| k != j)
-            .all(|k| (x[k] - y[k] - dy[k] * delta).abs() <= self.radius_param + slack * scales[k])
+        // The along coordinate within `reach` of the moved point's, the others within the tube.
+        (x[j] - y[j] - dy[j] * delta).abs() <= reach
+            && (0..4).filter(|&k| k != j).all(|k| {
+                (x[k] - y[k] - dy[k] * delta).abs() <= self.radius_param + slack * scales[k]
+            })
     }
 
     /// The derivative of the reported parameters in `τ` at `tau`.
