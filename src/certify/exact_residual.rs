@@ -9,6 +9,7 @@
 //! over a positive one, computed here exactly ([`crate::numeric::dyadic`]); only its final
 //! quotient rounds, to about 1e-16 of the residual itself.
 
+use crate::certify::jet::others;
 use crate::geometry::RationalBezierPatch;
 use crate::numeric::scalar::point;
 use inari::Interval;
@@ -58,7 +59,7 @@ pub(crate) fn onto_curve(
     let [_, ps, pt] = p.first_derivs(x[0], x[1]);
     let [_, qu, qv] = q.first_derivs(x[2], x[3]);
     let cols = [ps, pt, qu.map(|v| -v), qv.map(|v| -v)];
-    let free: Vec<usize> = (0..4).filter(|&i| i != j).collect();
+    let free = others(j);
     let jac = Matrix3::from_fn(|r, c| cols[free[c]][r]);
     let step = jac.try_inverse()? * f;
     let mut out = *x;

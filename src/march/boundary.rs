@@ -2,7 +2,7 @@
 //! domain, and how a start on a boundary relates to it (which way enters, whether the curve only
 //! touches the face, which surface's boundary it is).
 
-use crate::geometry::surface::pair_bounds as bounds;
+use crate::geometry::surface::{pair_bounds as bounds, pair_widths};
 use crate::geometry::{Domain, ParametricSurface};
 use crate::march::node::{inside, node_at, Node};
 use crate::march::options::MarchOptions;
@@ -444,10 +444,8 @@ where
     let (tp, tq) = (cur.frame.tangent_p, cur.frame.tangent_q);
     let step = [tp[0], tp[1], tq[0], tq[1]].map(|d| arc * d);
     let guess: [f64; 4] = std::array::from_fn(|i| cur.x[i] + step[i]);
-    let short = (0..4).all(|i| {
-        let [lo, hi] = [dp.u, dp.v, dq.u, dq.v][i];
-        step[i].abs() <= 0.1 * (hi - lo)
-    });
+    let widths = pair_widths(&dp, &dq);
+    let short = (0..4).all(|i| step[i].abs() <= 0.1 * widths[i]);
     let jumped = short && !inside(&guess, &dp, &dq, opts.domain_tolerance);
     jumped
         .then(|| land_on_boundary(p, q, cur, guess, opts))

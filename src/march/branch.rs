@@ -35,6 +35,13 @@ pub enum EndReason {
     OwnPath,
 }
 
+impl EndReason {
+    /// Whether the end is a regular one, as the curve's own: a boundary or a singular point.
+    pub fn is_regular(&self) -> bool {
+        matches!(self, EndReason::Boundary { .. } | EndReason::Singular)
+    }
+}
+
 impl std::fmt::Display for EndReason {
     /// `boundary of P`, `boundary of Q`, `closed loop`, `singular point`, `Newton failed`,
     /// `point limit`, `own path`.
@@ -61,6 +68,20 @@ pub enum BranchStatus {
     Open,
     /// Tracing stopped for a reason that leaves the branch possibly incomplete.
     Incomplete,
+}
+
+impl BranchStatus {
+    /// The status of a branch with these ends: closed when the last one closes a loop, open
+    /// when both are regular ([`EndReason::is_regular`]), incomplete otherwise.
+    pub fn of_ends(ends: &[EndReason; 2]) -> BranchStatus {
+        if ends[1] == EndReason::ClosedLoop {
+            BranchStatus::Closed
+        } else if ends.iter().all(EndReason::is_regular) {
+            BranchStatus::Open
+        } else {
+            BranchStatus::Incomplete
+        }
+    }
 }
 
 /// A traced branch: points ordered along the curve.

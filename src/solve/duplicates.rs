@@ -86,9 +86,8 @@ fn inner_points(b: &Branch) -> &[CurvePoint] {
     if n <= 2 {
         return &b.points;
     }
-    let skipped = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
-    let lo = usize::from(skipped(&b.ends[0]));
-    let hi = n - usize::from(skipped(&b.ends[1]));
+    let lo = usize::from(b.ends[0].is_regular());
+    let hi = n - usize::from(b.ends[1].is_regular());
     if hi < lo + 2 {
         // Too few would be left: keep the singular end's point.
         let boundary = |e: &EndReason| matches!(e, EndReason::Boundary { .. });

@@ -95,14 +95,9 @@ pub(super) fn joined(
         end = second.ends[0];
     }
     points.extend(rest.into_iter().skip(1));
-    let regular = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
     Branch {
         id: first.id,
-        status: if regular(&start) && regular(&end) {
-            BranchStatus::Open
-        } else {
-            BranchStatus::Incomplete
-        },
+        status: BranchStatus::of_ends(&[start, end]),
         ends: [start, end],
         points,
     }
@@ -154,7 +149,7 @@ pub(super) fn join_turns<C>(
     q: &RationalBezierPatch,
     (branches, checked): (&mut Vec<Branch>, &mut Vec<C>),
     (nodes, events): (&mut Vec<SingularNode>, &mut Vec<Event>),
-    certify: &(dyn Fn(&Branch) -> BranchCertificate + Sync),
+    certify: &dyn Fn(&Branch) -> BranchCertificate,
     check: &dyn Fn(&Branch) -> C,
 ) -> Vec<Option<BranchCertificate>> {
     let mut certs: Vec<Option<BranchCertificate>> = branches.iter().map(|_| None).collect();

@@ -184,8 +184,9 @@ impl Graph<'_> {
                 branch.ends[end] = EndReason::Singular;
             }
         }
-        let regular = |e: &EndReason| matches!(e, EndReason::Boundary { .. } | EndReason::Singular);
-        if branch.status == BranchStatus::Incomplete && branch.ends.iter().all(regular) {
+        if branch.status == BranchStatus::Incomplete
+            && branch.ends.iter().all(EndReason::is_regular)
+        {
             branch.status = BranchStatus::Open;
         }
         if branch.ends[0] == EndReason::Singular && from_node.is_none() {
