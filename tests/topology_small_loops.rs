@@ -15,7 +15,7 @@ use ssitrace::geometry::piece::Piece;
 use ssitrace::geometry::RationalBezierPatch;
 use ssitrace::march::branch::{Branch, BranchStatus};
 use ssitrace::march::MarchOptions;
-use ssitrace::search::loop_exclusion::prove_loop_free;
+use ssitrace::search::loop_exclusion::{prove_loop_free, LoopFree};
 use ssitrace::search::start_points::{find_start_points, SearchOptions, SearchReport};
 use ssitrace::topology::intersect::intersect;
 
@@ -288,7 +288,9 @@ fn exclusion_test_clears_a_monotone_pair() {
     let proof = prove_loop_free(&flat, &Piece::whole(&flat), &tilted, &Piece::whole(&tilted))
         .expect("monotone pair cleared");
     // The intersection line has direction (0.2, 0.3, 0)/|·|: d must not be orthogonal to it.
-    let d = proof.direction;
+    let LoopFree::Along(d) = proof else {
+        panic!("a model direction: {proof:?}")
+    };
     assert!((0.2 * d[0] + 0.3 * d[1]).abs() > 0.05, "{d:?}");
     let report = find_start_points(&flat, &tilted, &SearchOptions::default());
     assert!(report.complete && report.loop_free_pairs >= 1);

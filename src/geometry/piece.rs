@@ -415,6 +415,67 @@ impl Piece {
     }
 }
 
+impl Piece {
+    /// An enclosure of a positive multiple of `n · ∂X/∂s` (`dir` 0) or `n · ∂X/∂r` (`dir` 1) on
+    /// the piece, valid for every vector `n` of the interval box `n`: its sign, where it has one,
+    /// is the sign of that directional component everywhere on the piece. `None` when the
+    /// weights are not proven positive or the piece is constant in `dir`.
+    ///
+    /// Tighter than the dot product of `n` with [`Piece::partials`]: `n` is applied to the
+    /// control points before any hull is taken, so a partial that keeps one direction while its
+    /// length varies with the weights (the rulings of a rational cylinder) has a component that
+    /// is enclosed to rounding. With the homogeneous net `(Y, w)` translated to the piece's
+    /// centre `c` (`Y − c·w`, which leaves `Y_d·w − Y·w_d` unchanged), `X_d = (Y_d·w − Y·w_d)/w²`
+    /// and `n·(Y_d·w − Y·w_d) ∈ hull(Δ(n·Y))·hull(w) − hull(n·Y)·hull(Δw)`, where `Δ` takes the
+    /// differences of the net along `dir` (the derivative's net over the normalised box, up to
+    /// the positive factor degree/width).
+    pub(crate) fn partial_along(&self, dir: usize, n: &[Interval; 3]) -> Option<Interval> {
+        let [m, k] = self.degree;
+        if [m, k][dir] == 0 {
+            return None;
+        }
+        let c = self.bounds.map(|x| point(x.mid()));
+        let scalar: Vec<(Interval, Interval)> = self
+            .net
+            .iter()
+            .map(|h| {
+                let w = if self.polynomial { point(1.0) } else { h[3] };
+                let y: [Interval; 3] = std::array::from_fn(|i| h[i] - c[i] * w);
+                (n[0] * y[0] + n[1] * y[1] + n[2] * y[2], w)
+            })
+            .collect();
+        let step = if dir == 0 { k + 1 } else { 1 };
+        let (mut ha, mut hw, mut hda, mut hdw) = (
+            Hull1::default(),
+            Hull1::default(),
+            Hull1::default(),
+            Hull1::default(),
+        );
+        for i in 0..=m {
+            for j in 0..=k {
+                let at = i * (k + 1) + j;
+                let (a, w) = scalar[at];
+                ha.add(a);
+                hw.add(w);
+                if (dir == 0 && i < m) || (dir == 1 && j < k) {
+                    let (a1, w1) = scalar[at + step];
+                    hda.add(a1 - a);
+                    hdw.add(w1 - w);
+                }
+            }
+        }
+        let (ha, hw, hda, hdw) = (ha.0?, hw.0?, hda.0?, hdw.0?);
+        if self.polynomial {
+            return Some(hda);
+        }
+        if hw.inf() <= 0.0 || hw.inf().is_nan() {
+            return None;
+        }
+        let out = hda * hw - ha * hdw;
+        (!out.is_empty()).then_some(out)
+    }
+}
+
 /// `x` widened about its midpoint: `mid ± rad·f` (outward); `x` itself when `f` is exactly 1.
 fn widen(x: Interval, f: Interval) -> Interval {
     if f.inf() == 1.0 && f.sup() == 1.0 {

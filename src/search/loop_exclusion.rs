@@ -18,6 +18,20 @@
 //! from the points where it crosses a face of `B_P` or of `B_Q` (Sederberg–Meyers / Hohmeyer loop
 //! detection, here in the "some plane is crossed monotonically" form).
 //!
+//! **Second criterion: a monotone parameter.** If instead `P_t · N_Q ≠ 0` on the pair (or
+//! `P_σ · N_Q`, `Q_u · N_P`, `Q_v · N_P`), then at every point of `C` the vectors `P_t`, `Q_u`,
+//! `Q_v` are independent, so `C` is again a smooth 1-manifold without singular points, and along
+//! a tangent `(σ', t', u', v')` (`P_σ σ' + P_t t' = Q_u u' + Q_v v'`, dotted with `N_Q`:
+//! `(P_σ·N_Q) σ' + (P_t·N_Q) t' = 0`) `σ' = 0` would force `t' = 0` and then `u' = v' = 0`. So `σ`
+//! is strictly monotone along every component and none is closed. Along `N_P × N_Q` the velocity
+//! is `σ' = −P_t·N_Q`, `t' = P_σ·N_Q` (the analogue on Q: `u' = Q_v·N_P`, `v' = −Q_u·N_P`). This
+//! settles pairs the first criterion cannot: a plane within 1e-8 of tangent to a cylinder along
+//! a ruling and tilted by 1e-6 along it cuts a curve that turns round, with a tangent sweeping
+//! 180°, so no direction `d` serves, while `P_t·N_Q` (the ruling against the plane's normal) is
+//! the tilt everywhere. It is bounded by [`Piece::partial_along`], which applies the normal to
+//! the homogeneous control points before taking any hull (a rational ruling's length varies with
+//! the weights, its direction does not).
+//!
 //! **Poles.** On a piece touching a side its patch collapses to one point `X` (a sphere's
 //! pole), `N_P` vanishes on that side, so no enclosure of it excludes zero. There `N_P` is used
 //! through a positive multiple `Ñ_P` with a limit on the side (`geometry::pole`): the
@@ -56,10 +70,20 @@ use inari::Interval;
 
 /// A proof that a pair of sub-patches holds no closed loop of the intersection.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LoopFree {
-    /// The fixed direction `d` along which every intersection component in the pair is strictly
-    /// monotone (`d · (N_P × N_Q)` is provably non-zero, of one sign, everywhere on the pair).
-    pub direction: [f64; 3],
+pub enum LoopFree {
+    /// Every intersection component in the pair is strictly monotone along this model
+    /// direction `d` (`d · (N_P × N_Q)` is provably non-zero, of one sign, everywhere on the
+    /// pair).
+    Along([f64; 3]),
+    /// Every intersection component in the pair is strictly monotone in one parameter: the
+    /// `parameter`-th (0 or 1) of surface `surface` (0 for P, 1 for Q); that partial's
+    /// component along the other surface's normal is provably non-zero on the pair.
+    Parameter {
+        /// 0 for P, 1 for Q.
+        surface: usize,
+        /// 0 for the first parameter (`σ` or `u`), 1 for the second (`t` or `v`).
+        parameter: usize,
+    },
 }
 
 /// Outcome of [`loop_test`].
@@ -160,10 +184,16 @@ pub fn loop_test(
             let t = dot(&enp, &w);
             if !t.is_empty() && (t.inf() > 0.0 || t.sup() < 0.0) {
                 return LoopTest {
-                    proof: Some(LoopFree { direction: cand }),
+                    proof: Some(LoopFree::Along(cand)),
                     spread: [relative_spread(Some(&enp)), relative_spread(Some(&enq))],
                 };
             }
+        }
+        if let Some(proof) = parameter_monotone(pp, &enq, pq, &enp) {
+            return LoopTest {
+                proof: Some(proof),
+                spread: [relative_spread(Some(&enp)), relative_spread(Some(&enq))],
+            };
         }
     }
     // The rotated frame only helps where the model-axes cross products wrap; for two graph-like
@@ -196,9 +226,7 @@ pub fn loop_test(
         let t = enp[i] * enq[j] - enp[j] * enq[i];
         if !t.is_empty() && (t.inf() > 0.0 || t.sup() < 0.0) {
             return LoopTest {
-                proof: Some(LoopFree {
-                    direction: frame[k],
-                }),
+                proof: Some(LoopFree::Along(frame[k])),
                 spread,
             };
         }
@@ -207,6 +235,31 @@ pub fn loop_test(
         proof: None,
         spread,
     }
+}
+
+/// The second criterion (module documentation): a partial of one piece whose component along
+/// the other surface's normal enclosure is proven non-zero ([`Piece::partial_along`]); P's
+/// partials first.
+fn parameter_monotone(
+    pp: &Piece,
+    enq: &[Interval; 3],
+    pq: &Piece,
+    enp: &[Interval; 3],
+) -> Option<LoopFree> {
+    let signed = |x: Interval| !x.is_empty() && (x.inf() > 0.0 || x.sup() < 0.0);
+    [(0, pp, enq), (1, pq, enp)]
+        .into_iter()
+        .flat_map(|(surface, piece, normal)| {
+            (0..2).map(move |parameter| (surface, piece, normal, parameter))
+        })
+        .find(|(_, piece, normal, parameter)| {
+            piece.partial_along(*parameter, normal).is_some_and(signed)
+        })
+        // The other parameter moves along every component: `parameter` is the partial's index.
+        .map(|(surface, _, _, partial)| LoopFree::Parameter {
+            surface,
+            parameter: 1 - partial,
+        })
 }
 
 /// For a piece touching exactly one side its patch collapses to a point: the enclosure of a
@@ -292,7 +345,10 @@ mod tests {
         )
         .expect("monotone pair proven loop-free");
         // The line 0.5x + 0.2y + 0.1 = 0 has direction ±(0.2, −0.5, 0): d is not orthogonal.
-        let along = 0.2 * proof.direction[0] - 0.5 * proof.direction[1];
+        let LoopFree::Along(d) = proof else {
+            panic!("a model direction: {proof:?}")
+        };
+        let along = 0.2 * d[0] - 0.5 * d[1];
         assert!(along.abs() > 0.1, "{proof:?}");
     }
 
@@ -335,9 +391,21 @@ mod tests {
                 for (i, j, k, l) in (0..625).map(|n| (n % 5, n / 5 % 5, n / 25 % 5, n / 125)) {
                     let da = wavy.derivs(at(au, i), at(av, j));
                     let db = saddle.derivs(at(bu, k), at(bv, l));
-                    let t = da.su.cross(&da.sv).cross(&db.su.cross(&db.sv));
-                    let d = proof.direction;
-                    let s = d[0] * t[0] + d[1] * t[1] + d[2] * t[2];
+                    let (np, nq) = (da.su.cross(&da.sv), db.su.cross(&db.sv));
+                    let s = match proof {
+                        LoopFree::Along(d) => {
+                            let t = np.cross(&nq);
+                            d[0] * t[0] + d[1] * t[1] + d[2] * t[2]
+                        }
+                        // The parameter's rate along N_P × N_Q: σ' = −P_t·N_Q, t' = P_σ·N_Q,
+                        // u' = Q_v·N_P, v' = −Q_u·N_P.
+                        LoopFree::Parameter { surface, parameter } => match (surface, parameter) {
+                            (0, 0) => -da.sv.dot(&nq),
+                            (0, _) => da.su.dot(&nq),
+                            (_, 0) => db.sv.dot(&np),
+                            _ => -db.su.dot(&np),
+                        },
+                    };
                     assert!(s != 0.0, "{proof:?}");
                     signs[usize::from(s > 0.0)] = true;
                 }
@@ -345,6 +413,78 @@ mod tests {
             }
         }
         assert!(proofs > 10, "{proofs}");
+    }
+
+    #[test]
+    fn a_plane_nearly_tangent_along_a_ruling_is_loop_free_by_the_angle() {
+        // A 120° arc of the cylinder x² + y² = 1 (angle σ, weights 1, 1/2, 1; height t = z)
+        // against the plane x = 1 − δ + ε(z − 1/2), δ = 1e-8, ε = 1e-6, both turned by a
+        // generic rotation: nearly tangent along the ruling at angle 0, the curve turns round at
+        // z ≈ 0.51 with the normals 1e-6 apart there. No model direction is proven monotone on
+        // the whole pair (the tangent turns through 180°), but the angle is:
+        // σ' = −P_z·N_Q = ±ε·|N_Q| everywhere.
+        use crate::geometry::{Domain, ParametricSurface};
+        let turn = |x: [f64; 3]| {
+            // The rotation by 1 radian about (1, 2, 3)/√14 (Rodrigues).
+            let k = [1.0, 2.0, 3.0].map(|c: f64| c / 14f64.sqrt());
+            let (c, s) = (1f64.cos(), 1f64.sin());
+            let kx = [
+                k[1] * x[2] - k[2] * x[1],
+                k[2] * x[0] - k[0] * x[2],
+                k[0] * x[1] - k[1] * x[0],
+            ];
+            let kdx = k[0] * x[0] + k[1] * x[1] + k[2] * x[2];
+            std::array::from_fn(|i| x[i] * c + kx[i] * s + k[i] * kdx * (1.0 - c))
+        };
+        let r3 = 3f64.sqrt() / 2.0;
+        let arc = [[0.5, -r3], [2.0, 0.0], [0.5, r3]];
+        let net: Vec<[f64; 3]> = arc
+            .iter()
+            .flat_map(|&[x, y]| [turn([x, y, 0.0]), turn([x, y, 1.0])])
+            .collect();
+        let cyl = RationalBezierPatch::from_f64_points(
+            [2, 1],
+            &net,
+            Some(&[1.0, 1.0, 0.5, 0.5, 1.0, 1.0]),
+            Domain::UNIT,
+        )
+        .unwrap();
+        let (delta, eps) = (1e-8, 1e-6);
+        let corner = |y: f64, z: f64| turn([1.0 - delta + eps * (z - 0.5), y, z]);
+        let net = [
+            corner(-1.0, -0.1),
+            corner(-1.0, 1.1),
+            corner(1.0, -0.1),
+            corner(1.0, 1.1),
+        ];
+        let plane = RationalBezierPatch::from_f64_points([1, 1], &net, None, Domain::UNIT).unwrap();
+        let proof = prove_loop_free(&cyl, &Piece::whole(&cyl), &plane, &Piece::whole(&plane));
+        assert_eq!(
+            proof,
+            Some(LoopFree::Parameter {
+                surface: 0,
+                parameter: 0
+            })
+        );
+        // σ' = −P_t·N_Q has one sign on a grid of the cylinder (N_Q is constant).
+        let dq = plane.derivs(0.5, 0.5);
+        let nq = dq.su.cross(&dq.sv);
+        let mut signs = [false; 2];
+        for (i, j) in (0..441).map(|k| (k % 21, k / 21)) {
+            let da = cyl.derivs(i as f64 / 20.0, j as f64 / 20.0);
+            let rate = -da.sv.dot(&nq);
+            assert!(rate != 0.0);
+            signs[usize::from(rate > 0.0)] = true;
+        }
+        assert!(!(signs[0] && signs[1]));
+        // And the whole pair is searched at once, completely.
+        let report = crate::search::start_points::find_start_points(
+            &cyl,
+            &plane,
+            &crate::search::start_points::SearchOptions::default(),
+        );
+        assert!(report.complete, "{report:?}");
+        assert_eq!(report.pairs, 1);
     }
 
     #[test]

@@ -7,7 +7,7 @@
 //!   branch. A leaf box of this search is settled by one parametric Krawczyk step
 //!   ([`settle_box`], Jacobian enclosed from the pieces' Bernstein nets over the leaf widened by
 //!   1/32): either its image is disjoint from the box (no curve point) or it proves a unique
-//!   curve point, which Newton then polishes; a leaf still open at 1/1024 of the leaf size is
+//!   curve point, which Newton then polishes; a leaf still open at 1/65536 of the leaf size is
 //!   an undecided region (a Newton point from it is still offered);
 //! - **interior pairs**: pairs of sub-patches, subdivided level by level until each pair is
 //!   (a) *disjoint* (interval bounding boxes do not meet), or (b) *loop-free*
@@ -46,7 +46,7 @@ use node_region::NodeRegions;
 use pair_verdict::{classify_pair, separated_across, PairVerdict};
 use rayon::prelude::*;
 use std::collections::HashMap;
-use tangent_leaf::{along_edge_point, arc_through, leaf_point};
+use tangent_leaf::{along_edge_point, arc_through, edge_newton, leaf_point};
 
 mod critical_cover;
 mod faces;
@@ -129,7 +129,7 @@ pub struct SearchReport {
     /// Leaf boxes of the curve/surface searches examined.
     pub leaves: usize,
     /// Curve/surface leaf boxes of the boundary search that were neither excluded nor proven to
-    /// hold one point, down to 1/1024 of the leaf size (each also makes an undecided region).
+    /// hold one point, down to 1/65536 of the leaf size (each also makes an undecided region).
     pub undecided: usize,
     /// The leaf budget ran out: some regions were not examined (they are undecided regions).
     pub truncated: bool,
@@ -275,7 +275,7 @@ impl Ctx {
 /// A leaf where the Krawczyk test decides nothing is subdivided further, down to this fraction
 /// of the leaf size, before it is reported as undecided (only undecided leaves are refined, so
 /// a deep limit costs nothing where everything is settled).
-const REFINE_FAILED_LEAF: f64 = 1.0 / 1024.0;
+const REFINE_FAILED_LEAF: f64 = 1.0 / 65536.0;
 
 fn diameter(b: &[Interval; 3]) -> f64 {
     b.iter().map(|x| x.wid()).fold(0.0, f64::max)
@@ -539,7 +539,18 @@ fn edge_search(
                     if let Some(x) = along_edge_point(a, b, &pa, &pb, ctx.tol)
                         .filter(|x| arc_through(a, b, &pa, &pb, x))
                     {
-                        offer(x, out);
+                        // Over a small enough leaf a curve that only touches the edge looks
+                        // as if it ran along it (its distance from the edge, curvature times
+                        // the leaf squared, is below `along_edge_point`'s allowance): where
+                        // Newton on the edge itself lands on the proven arc, that point, on
+                        // the edge, is offered instead (the touching point, which the march
+                        // then recognises as one).
+                        let on_edge = edge_newton(a, b, &pa, &pb, ctx.tol).filter(|y| {
+                            da.contains(y[0], y[1], 1e-12)
+                                && db.contains(y[2], y[3], 1e-12)
+                                && arc_through(a, b, &pa, &pb, y)
+                        });
+                        offer(on_edge.unwrap_or(x), out);
                         continue;
                     }
                     leaf *= 0.5

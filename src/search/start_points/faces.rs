@@ -239,10 +239,30 @@ mod tests {
     }
 
     #[test]
-    fn a_face_search_that_needs_any_verdict_finds_the_same_points() {
+    fn crossings_two_millionths_apart_at_a_grazing_angle_are_each_proven() {
         // z = (u − 0.1)² − 1e-12 against z = 0: the lines u = 0.1 ± 1e-6 cross the face v = 0
-        // where the surfaces meet at an angle of 2e-6; leaves there stay undecided.
+        // where the surfaces meet at an angle of 2e-6. Leaves refined to 1/65536 of the leaf
+        // size (5e-7 here) separate the two crossings and prove each; at 1/1024 they stayed
+        // undecided.
         let p = graph(vec![(2, 0, 1.0), (1, 0, -0.2), (0, 0, 0.01 - 1e-12)]);
+        let q = graph(vec![(0, 0, 0.0), (1, 0, 0.0)]);
+        let (found, undecided) = search(&p, &q, Needs::Each);
+        assert_eq!(undecided, 0, "every leaf settled");
+        let mut us: Vec<f64> = found.iter().map(|x| x[0]).collect();
+        us.sort_by(f64::total_cmp);
+        us.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+        assert_eq!(us.len(), 2, "two crossings: {us:?}");
+        for (u, want) in us.iter().zip([0.1 - 1e-6, 0.1 + 1e-6]) {
+            assert!((u - want).abs() < 1e-9, "{u} against {want}");
+        }
+    }
+
+    #[test]
+    fn a_face_search_that_needs_any_verdict_finds_the_same_points() {
+        // z = (u − 0.1)² − 1e-16 against z = 0: the lines u = 0.1 ± 1e-8 cross the face v = 0
+        // where the surfaces meet at an angle of 2e-8; the deepest leaves (about 5e-7) hold
+        // both lines and stay undecided.
+        let p = graph(vec![(2, 0, 1.0), (1, 0, -0.2), (0, 0, 0.01 - 1e-16)]);
         let q = graph(vec![(0, 0, 0.0), (1, 0, 0.0)]);
         let (each, n_each) = search(&p, &q, Needs::Each);
         assert!(
@@ -254,7 +274,7 @@ mod tests {
         assert_eq!(each, any, "the same start points");
         assert!(!each.is_empty());
         for x in &each {
-            assert!((x[0] - 0.1).abs() < 2e-6 && x[1] == 0.0, "{x:?}");
+            assert!((x[0] - 0.1).abs() < 2e-7 && x[1] == 0.0, "{x:?}");
         }
         let (none, n_none) = search(&p, &q, Needs::None);
         assert_eq!(n_none, 1, "stops at the first undecided leaf");

@@ -205,9 +205,20 @@ pub(super) fn leaf_point(
     })
 }
 
-/// Newton on `A(edge) − B(u, v) = 0` from the centre of a leaf, the edge parameter held fixed;
-/// where that fails, [`along_edge_point`].
+/// [`edge_newton`]; where that fails, [`along_edge_point`].
 fn leaf_newton(
+    a: &RationalBezierPatch,
+    b: &RationalBezierPatch,
+    edge: &Piece,
+    other: &Piece,
+    tol: f64,
+) -> Option<[f64; 4]> {
+    edge_newton(a, b, edge, other, tol).or_else(|| along_edge_point(a, b, edge, other, tol))
+}
+
+/// Newton on `A(edge) − B(u, v) = 0` from the centre of a leaf, the edge parameter held fixed:
+/// a curve point exactly on the edge.
+pub(super) fn edge_newton(
     a: &RationalBezierPatch,
     b: &RationalBezierPatch,
     edge: &Piece,
@@ -220,10 +231,7 @@ fn leaf_newton(
         index,
         value: x[index],
     };
-    refine(a, b, x, constraint, tol, 40)
-        .ok()
-        .map(|r| r.x)
-        .or_else(|| along_edge_point(a, b, edge, other, tol))
+    refine(a, b, x, constraint, tol, 40).ok().map(|r| r.x)
 }
 
 /// A curve point on the edge of a leaf where the curve runs *along* the edge (a section along
