@@ -2,9 +2,11 @@
 //! `segment.rs`), chosen by speed and monotonicity between the link's ends, and the others
 //! to try where it turns.
 
-use super::walker::{Node, Walker};
+use super::walker::{Link, Node, Walker};
+use crate::certify::lean_patch::LeanPatch;
+use inari::Interval;
 
-impl Walker<'_> {
+impl<'a> Walker<'a> {
     /// How well `x_i` serves as the along coordinate from `a` to `b`: its smaller scaled speed at
     /// the two ends, if it moves between them the way both velocities point.
     fn along_score(&self, a: &Node, b: &Node, i: usize) -> Option<f64> {
@@ -75,5 +77,74 @@ impl Walker<'_> {
             }
         }
         Some(best.0)
+    }
+
+    /// The narrowest of `link` and the same link graphed over each other coordinate that
+    /// [`Self::along`] would take, for a link about to be kept although wider than the
+    /// tolerance: a halving can switch the along coordinate (two nearly equal speeds), and a
+    /// short link over the other one was then kept at twice the width of its parent (seed
+    /// 8 700 191 of the quadric oracle: 2.0e-9 where the parent had 9.4e-10). Slow coordinates
+    /// are tried too: the link is kept anyway, and over a slow one it can be the narrowest
+    /// (seed 8 700 246: 6.0e-10 over `σ` at a quarter of the top speed, 1.3e-9 over `t`).
+    pub(super) fn narrowest_over_others(
+        &self,
+        a: &Node,
+        b: &Node,
+        must_end: Option<&[Interval; 4]>,
+        link: Link,
+    ) -> Link {
+        let lean = [&self.lean[0], &self.lean[1]];
+        let exact = self.precise_at(&a.x);
+        let mut best = link;
+        for (k, fast) in self.other_alongs(a, b, link.proof.pred.along) {
+            if let Some(mut other) = self.link_along(lean, k, a, b, must_end, exact) {
+                if other.radius_xyz < best.radius_xyz {
+                    other.slow = !fast;
+                    best = other;
+                }
+            }
+        }
+        best
+    }
+
+    /// [`Self::try_link`] on the forms `lean`.
+    ///
+    /// On nearly tangent surfaces a link wider than the aim (or failing) is tried again on the
+    /// exact residual, then graphed over each other acceptable coordinate (on the exact
+    /// residual), and the narrowest proof kept. Near a singular point (the cylinders' nodes)
+    /// the width is the conditioning's whatever the form: proving every link there twice, the
+    /// second form centred at the link's start, cost a sixth more links and 1.6 times the
+    /// chain's time, so the retries are only for links that need them. The other coordinates
+    /// serve where the fastest one is about to turn (the vertex of a curve that turns within
+    /// 1e-7 on nearly tangent surfaces): graphed over it the curve has a branch point just
+    /// past the link, and the tube there stayed at 1.5e-9 however short the link; graphed
+    /// over the coordinate that keeps moving, 1e-14.
+    pub(super) fn link_on(
+        &self,
+        lean: [&LeanPatch<'a>; 2],
+        a: &Node,
+        b: &Node,
+        must_end: Option<&[Interval; 4]>,
+    ) -> Option<Link> {
+        let j = self.along(a, b)?;
+        let aim = 0.5 * self.opts.required_tolerance;
+        let mut best = self.link_along(lean, j, a, b, must_end, false);
+        let wide = |l: &Option<Link>| l.as_ref().is_none_or(|l| l.radius_xyz > aim);
+        if !wide(&best) || !self.precise_at(&a.x) {
+            return best;
+        }
+        let retries = std::iter::once((j, true)).chain(self.other_alongs(a, b, j));
+        for (k, fast) in retries {
+            if let Some(mut e) = self.link_along(lean, k, a, b, must_end, true) {
+                if best.as_ref().is_none_or(|b| e.radius_xyz < b.radius_xyz) {
+                    e.slow = !fast;
+                    best = Some(e);
+                }
+            }
+            if !wide(&best) {
+                break;
+            }
+        }
+        best
     }
 }

@@ -226,50 +226,9 @@ impl<'a> Walker<'a> {
         attempt
     }
 
-    /// [`Self::try_link`] on the forms `lean`.
-    ///
-    /// On nearly tangent surfaces a link wider than the aim (or failing) is tried again on the
-    /// exact residual, then graphed over each other acceptable coordinate (on the exact
-    /// residual), and the narrowest proof kept. Near a singular point (the cylinders' nodes)
-    /// the width is the conditioning's whatever the form: proving every link there twice, the
-    /// second form centred at the link's start, cost a sixth more links and 1.6 times the
-    /// chain's time, so the retries are only for links that need them. The other coordinates
-    /// serve where the fastest one is about to turn (the vertex of a curve that turns within
-    /// 1e-7 on nearly tangent surfaces): graphed over it the curve has a branch point just
-    /// past the link, and the tube there stayed at 1.5e-9 however short the link; graphed
-    /// over the coordinate that keeps moving, 1e-14.
-    pub(super) fn link_on(
-        &self,
-        lean: [&LeanPatch<'a>; 2],
-        a: &Node,
-        b: &Node,
-        must_end: Option<&[Interval; 4]>,
-    ) -> Option<Link> {
-        let j = self.along(a, b)?;
-        let aim = 0.5 * self.opts.required_tolerance;
-        let mut best = self.link_along(lean, j, a, b, must_end, false);
-        let wide = |l: &Option<Link>| l.as_ref().is_none_or(|l| l.radius_xyz > aim);
-        if !wide(&best) || !self.precise_at(&a.x) {
-            return best;
-        }
-        let retries = std::iter::once((j, true)).chain(self.other_alongs(a, b, j));
-        for (k, fast) in retries {
-            if let Some(mut e) = self.link_along(lean, k, a, b, must_end, true) {
-                if best.as_ref().is_none_or(|b| e.radius_xyz < b.radius_xyz) {
-                    e.slow = !fast;
-                    best = Some(e);
-                }
-            }
-            if !wide(&best) {
-                break;
-            }
-        }
-        best
-    }
-
     /// One attempt at the link from `a` to `b` graphed over `x_j`, on the exact residual at
     /// the link's start if `exact` (see [`prove_segment`]).
-    fn link_along(
+    pub(super) fn link_along(
         &self,
         lean: [&LeanPatch<'a>; 2],
         j: usize,
@@ -481,6 +440,8 @@ impl<'a> Walker<'a> {
         let mut splits = 0;
         // Consecutive splits that did not narrow the tube (see `STALLED_SPLITS`).
         let mut stalled = 0;
+        // The narrowest too wide link tried from `cur`, with the stack index of its target.
+        let mut narrowest: Option<(usize, Link)> = None;
         while let Some(&(tgt, wider)) = stack.last() {
             if let Some(reason) = self.out_of_budget() {
                 return Stop::Failed(CertifiedEnd::Unproven {
@@ -518,12 +479,29 @@ impl<'a> Walker<'a> {
                             || (scaled_dist(&cur.x, &tgt.x, &self.scales) < FLOOR_LINK
                                 && self.conditioning_only(&cur.x, &tgt.x))) =>
                 {
-                    let rounding = link.radius_xyz <= self.rounding_floor(&cur);
-                    link.limit = Some(self.limit_at(&cur.x, rounding));
+                    link = self.narrowest_over_others(&cur, &tgt, closing, link);
+                    // A longer link from here that was split for its width but is narrower
+                    // than this one (the along coordinate switched on the way) is kept instead.
+                    if let Some((at, wide)) = narrowest.take() {
+                        if wide.radius_xyz < link.radius_xyz {
+                            stack.truncate(at + 1);
+                            link = wide;
+                        }
+                    }
+                    if link.radius_xyz > self.opts.required_tolerance {
+                        let rounding = link.radius_xyz <= self.rounding_floor(&cur);
+                        link.limit = Some(self.limit_at(&cur.x, rounding));
+                    }
                     Some(link)
                 }
                 Attempt::TooWide(link) => {
                     let narrowed = wider.is_none_or(|w| link.radius_xyz <= STALL_RATIO * w);
+                    if narrowest
+                        .as_ref()
+                        .is_none_or(|(_, n)| link.radius_xyz < n.radius_xyz)
+                    {
+                        narrowest = Some((stack.len() - 1, link));
+                    }
                     stalled = if narrowed { 0 } else { stalled + 1 };
                     if let Some(top) = stack.last_mut() {
                         top.1 = Some(link.radius_xyz);
@@ -534,6 +512,10 @@ impl<'a> Walker<'a> {
             };
             if let Some(link) = too_wide {
                 stalled = 0;
+                narrowest = None;
+                // (The target is the kept link's: an earlier one when a longer link was kept.)
+                let tgt = stack.last().map_or(tgt, |t| t.0);
+                let len = scaled_dist(&cur.x, &tgt.x, &self.scales);
                 let limited = self.conditioning_limited(len, link.radius_xyz);
                 if self.push(link, len) {
                     return Stop::Done;
