@@ -416,10 +416,10 @@ impl Piece {
 }
 
 impl Piece {
-    /// An enclosure of a positive multiple of `n · ∂X/∂s` (`dir` 0) or `n · ∂X/∂r` (`dir` 1) on
-    /// the piece, valid for every vector `n` of the interval box `n`: its sign, where it has one,
-    /// is the sign of that directional component everywhere on the piece. `None` when the
-    /// weights are not proven positive or the piece is constant in `dir`.
+    /// Enclosures of positive multiples of `n · ∂X/∂s` and `n · ∂X/∂r` on the piece, valid for
+    /// every vector `n` of the interval box `n`: the sign of each, where it has one, is the
+    /// sign of that component everywhere on the piece. `None` for a direction the piece is
+    /// constant in, and for both when the weights are not proven positive.
     ///
     /// Tighter than the dot product of `n` with [`Piece::partials`]: `n` is applied to the
     /// control points before any hull is taken, so a partial that keeps one direction while its
@@ -427,52 +427,55 @@ impl Piece {
     /// is enclosed to rounding. With the homogeneous net `(Y, w)` translated to the piece's
     /// centre `c` (`Y − c·w`, which leaves `Y_d·w − Y·w_d` unchanged), `X_d = (Y_d·w − Y·w_d)/w²`
     /// and `n·(Y_d·w − Y·w_d) ∈ hull(Δ(n·Y))·hull(w) − hull(n·Y)·hull(Δw)`, where `Δ` takes the
-    /// differences of the net along `dir` (the derivative's net over the normalised box, up to
+    /// differences of the net along `d` (the derivative's net over the normalised box, up to
     /// the positive factor degree/width).
-    pub(crate) fn partial_along(&self, dir: usize, n: &[Interval; 3]) -> Option<Interval> {
+    pub(crate) fn partials_along(&self, n: &[Interval; 3]) -> [Option<Interval>; 2] {
         let [m, k] = self.degree;
-        if [m, k][dir] == 0 {
-            return None;
-        }
         let c = self.bounds.map(|x| point(x.mid()));
-        let scalar: Vec<(Interval, Interval)> = self
-            .net
-            .iter()
-            .map(|h| {
-                let w = if self.polynomial { point(1.0) } else { h[3] };
-                let y: [Interval; 3] = std::array::from_fn(|i| h[i] - c[i] * w);
-                (n[0] * y[0] + n[1] * y[1] + n[2] * y[2], w)
-            })
-            .collect();
-        let step = if dir == 0 { k + 1 } else { 1 };
-        let (mut ha, mut hw, mut hda, mut hdw) = (
-            Hull1::default(),
-            Hull1::default(),
-            Hull1::default(),
-            Hull1::default(),
-        );
+        let scalar = |h: &[Interval; 4]| {
+            let w = if self.polynomial { point(1.0) } else { h[3] };
+            let y: [Interval; 3] = std::array::from_fn(|i| h[i] - c[i] * w);
+            (n[0] * y[0] + n[1] * y[1] + n[2] * y[2], w)
+        };
+        let (mut ha, mut hw) = (Hull1::default(), Hull1::default());
+        let mut hda = [Hull1::default(), Hull1::default()];
+        let mut hdw = [Hull1::default(), Hull1::default()];
+        // One row at a time: the differences along `r` within it, along `s` to the next row.
+        let mut row: Vec<(Interval, Interval)> = self.net[..=k].iter().map(scalar).collect();
         for i in 0..=m {
             for j in 0..=k {
-                let at = i * (k + 1) + j;
-                let (a, w) = scalar[at];
+                let (a, w) = row[j];
                 ha.add(a);
                 hw.add(w);
-                if (dir == 0 && i < m) || (dir == 1 && j < k) {
-                    let (a1, w1) = scalar[at + step];
-                    hda.add(a1 - a);
-                    hdw.add(w1 - w);
+                if j < k {
+                    hda[1].add(row[j + 1].0 - a);
+                    hdw[1].add(row[j + 1].1 - w);
+                }
+            }
+            if i < m {
+                for (j, x) in row.iter_mut().enumerate() {
+                    let next = scalar(&self.net[(i + 1) * (k + 1) + j]);
+                    hda[0].add(next.0 - x.0);
+                    hdw[0].add(next.1 - x.1);
+                    *x = next;
                 }
             }
         }
-        let (ha, hw, hda, hdw) = (ha.0?, hw.0?, hda.0?, hdw.0?);
-        if self.polynomial {
-            return Some(hda);
+        let (Some(ha), Some(hw)) = (ha.0, hw.0) else {
+            return [None, None];
+        };
+        if !self.polynomial && (hw.inf() <= 0.0 || hw.inf().is_nan()) {
+            return [None, None];
         }
-        if hw.inf() <= 0.0 || hw.inf().is_nan() {
-            return None;
-        }
-        let out = hda * hw - ha * hdw;
-        (!out.is_empty()).then_some(out)
+        std::array::from_fn(|d| {
+            let (da, dw) = (hda[d].0?, hdw[d].0?);
+            let out = if self.polynomial {
+                da
+            } else {
+                da * hw - ha * dw
+            };
+            (!out.is_empty()).then_some(out)
+        })
     }
 }
 

@@ -28,7 +28,7 @@
 //! settles pairs the first criterion cannot: a plane within 1e-8 of tangent to a cylinder along
 //! a ruling and tilted by 1e-6 along it cuts a curve that turns round, with a tangent sweeping
 //! 180°, so no direction `d` serves, while `P_t·N_Q` (the ruling against the plane's normal) is
-//! the tilt everywhere. It is bounded by [`Piece::partial_along`], which applies the normal to
+//! the tilt everywhere. It is bounded by [`Piece::partials_along`], which applies the normal to
 //! the homogeneous control points before taking any hull (a rational ruling's length varies with
 //! the weights, its direction does not).
 //!
@@ -189,7 +189,25 @@ pub fn loop_test(
                 };
             }
         }
-        if let Some(proof) = parameter_monotone(pp, &enq, pq, &enp) {
+        let sides = [
+            Side {
+                patch: p,
+                piece: pp,
+                params: [pu, pv],
+                centre: [dp_c.su, dp_c.sv],
+                normal: np,
+                enclosure: enp,
+            },
+            Side {
+                patch: q,
+                piece: pq,
+                params: [qu, qv],
+                centre: [dq_c.su, dq_c.sv],
+                normal: nq,
+                enclosure: enq,
+            },
+        ];
+        if let Some(proof) = parameter_monotone(&sides) {
             return LoopTest {
                 proof: Some(proof),
                 spread: [relative_spread(Some(&enp)), relative_spread(Some(&enq))],
@@ -237,29 +255,71 @@ pub fn loop_test(
     }
 }
 
+/// One piece of a pair as [`parameter_monotone`] reads it.
+struct Side<'a> {
+    patch: &'a RationalBezierPatch,
+    piece: &'a Piece,
+    /// The piece's declared parameter box.
+    params: [Interval; 2],
+    /// The partials at the box's centre.
+    centre: [[f64; 3]; 2],
+    /// The normal at the centre.
+    normal: [f64; 3],
+    /// The normal's enclosure over the piece.
+    enclosure: [Interval; 3],
+}
+
 /// The second criterion (module documentation): a partial of one piece whose component along
-/// the other surface's normal enclosure is proven non-zero ([`Piece::partial_along`]); P's
+/// the other surface's normal enclosure is proven non-zero ([`Piece::partials_along`]); P's
 /// partials first.
-fn parameter_monotone(
-    pp: &Piece,
-    enq: &[Interval; 3],
-    pq: &Piece,
-    enp: &[Interval; 3],
-) -> Option<LoopFree> {
-    let signed = |x: Interval| !x.is_empty() && (x.inf() > 0.0 || x.sup() < 0.0);
-    [(0, pp, enq), (1, pq, enp)]
-        .into_iter()
-        .flat_map(|(surface, piece, normal)| {
-            (0..2).map(move |parameter| (surface, piece, normal, parameter))
-        })
-        .find(|(_, piece, normal, parameter)| {
-            piece.partial_along(*parameter, normal).is_some_and(signed)
-        })
-        // The other parameter moves along every component: `parameter` is the partial's index.
-        .map(|(surface, _, _, partial)| LoopFree::Parameter {
-            surface,
-            parameter: 1 - partial,
-        })
+///
+/// A piece is only bounded where one of its partials keeps the sign of its component along the
+/// other's normal at the centres of both pieces, at the corners of its own box and at the
+/// other's, and that component exceeds its spread over the normal enclosure: else no enclosure
+/// can exclude 0 (on the repository's scenes the bounds cost 5–10 % more search time where
+/// they all failed; the samples settle those pairs for less than a tenth of that).
+fn parameter_monotone(sides: &[Side<'_>; 2]) -> Option<LoopFree> {
+    let signed = |x: &Option<Interval>| x.is_some_and(|x| x.inf() > 0.0 || x.sup() < 0.0);
+    let corners = |side: &Side<'_>| {
+        let [u, v] = side.params;
+        [
+            (u.inf(), v.inf()),
+            (u.inf(), v.sup()),
+            (u.sup(), v.inf()),
+            (u.sup(), v.sup()),
+        ]
+    };
+    (0..2).find_map(|surface| {
+        let (own, other) = (&sides[surface], &sides[1 - surface]);
+        let n = &other.enclosure;
+        // Each sample evaluated only while the ones before agreed (most pairs fail at once).
+        let hopeful = (0..2).any(|partial| {
+            let d = own.centre[partial];
+            let value = dot(&d, &other.normal);
+            let spread: f64 = (0..3).map(|k| d[k].abs() * n[k].wid()).sum();
+            let same = |x: f64| x * value > 0.0;
+            value.abs() > 0.5 * spread
+                && corners(own).iter().all(|&(a, b)| {
+                    let c = own.patch.derivs_f64(a, b);
+                    same(dot(&[c.su, c.sv][partial], &other.normal))
+                })
+                && corners(other).iter().all(|&(a, b)| {
+                    let c = other.patch.derivs_f64(a, b);
+                    same(dot(&d, &cross(&c.su, &c.sv)))
+                })
+        });
+        if !hopeful {
+            return None;
+        }
+        let along = own.piece.partials_along(n);
+        // The other parameter moves along every component: `partial` is the partial's index.
+        (0..2)
+            .find(|&partial| signed(&along[partial]))
+            .map(|partial| LoopFree::Parameter {
+                surface,
+                parameter: 1 - partial,
+            })
+    })
 }
 
 /// For a piece touching exactly one side its patch collapses to a point: the enclosure of a
