@@ -28,9 +28,9 @@
 //! settles pairs the first criterion cannot: a plane within 1e-8 of tangent to a cylinder along
 //! a ruling and tilted by 1e-6 along it cuts a curve that turns round, with a tangent sweeping
 //! 180°, so no direction `d` serves, while `P_t·N_Q` (the ruling against the plane's normal) is
-//! the tilt everywhere. It is bounded by [`Piece::partials_along`], which applies the normal to
-//! the homogeneous control points before taking any hull (a rational ruling's length varies with
-//! the weights, its direction does not).
+//! the tilt everywhere. It is bounded by `Piece::partials_along` (`geometry::piece`), which
+//! applies the normal to the homogeneous control points before taking any hull (a rational
+//! ruling's length varies with the weights, its direction does not).
 //!
 //! **Poles.** On a piece touching a side its patch collapses to one point `X` (a sphere's
 //! pole), `N_P` vanishes on that side, so no enclosure of it excludes zero. There `N_P` is used
