@@ -64,7 +64,7 @@
 
 use crate::geometry::piece::Piece;
 use crate::geometry::pole::collapsed_normal;
-use crate::geometry::RationalBezierPatch;
+use crate::geometry::{PatchDerivs, RationalBezierPatch};
 use crate::numeric::vec3::{cross, dot, norm3};
 use inari::Interval;
 
@@ -190,22 +190,8 @@ pub fn loop_test(
             }
         }
         let sides = [
-            Side {
-                patch: p,
-                piece: pp,
-                params: [pu, pv],
-                centre: [dp_c.su, dp_c.sv],
-                normal: np,
-                enclosure: enp,
-            },
-            Side {
-                patch: q,
-                piece: pq,
-                params: [qu, qv],
-                centre: [dq_c.su, dq_c.sv],
-                normal: nq,
-                enclosure: enq,
-            },
+            Side::at(p, pp, [pu, pv], &dp_c, enp),
+            Side::at(q, pq, [qu, qv], &dq_c, enq),
         ];
         if let Some(proof) = parameter_monotone(&sides) {
             return LoopTest {
@@ -267,6 +253,27 @@ struct Side<'a> {
     normal: [f64; 3],
     /// The normal's enclosure over the piece.
     enclosure: [Interval; 3],
+}
+
+impl<'a> Side<'a> {
+    /// The side of `piece` of `patch` over the declared box `params`, with the derivatives
+    /// `d` at its centre and its normal enclosure.
+    fn at(
+        patch: &'a RationalBezierPatch,
+        piece: &'a Piece,
+        params: [Interval; 2],
+        d: &PatchDerivs<f64>,
+        enclosure: [Interval; 3],
+    ) -> Self {
+        Side {
+            patch,
+            piece,
+            params,
+            centre: [d.su, d.sv],
+            normal: cross(&d.su, &d.sv),
+            enclosure,
+        }
+    }
 }
 
 /// The second criterion (module documentation): a partial of one piece whose component along
