@@ -561,6 +561,56 @@ mod tests {
     }
 
     #[test]
+    fn partials_along_have_the_sign_of_the_sampled_components() {
+        // Pieces of a rational patch with weights from 0.2 to 3 (and of the polynomial one with
+        // the same points), and directions n of all sorts: wherever an enclosure excludes 0,
+        // n · ∂X/∂s (or ∂X/∂r) has its sign at every sample of the piece.
+        let pts: Vec<[f64; 3]> = (0..12)
+            .map(|k| {
+                let (i, j) = ((k / 3) as f64, (k % 3) as f64);
+                [
+                    i + 0.2 * j,
+                    j - 0.1 * i * i,
+                    0.3 * ((k * 5) % 7) as f64 - 0.9,
+                ]
+            })
+            .collect();
+        let w: Vec<f64> = (0..12).map(|k| [0.2, 3.0, 1.0, 0.5][k % 4]).collect();
+        let d = Domain::new(-1.0, 2.0, 0.5, 1.5);
+        let rational = RationalBezierPatch::from_f64_points([3, 2], &pts, Some(&w), d).unwrap();
+        let polynomial = RationalBezierPatch::from_f64_points([3, 2], &pts, None, d).unwrap();
+        let mut decided = 0;
+        for patch in [&rational, &polynomial] {
+            let mut pieces = vec![Piece::whole(patch)];
+            for level in 0..4 {
+                let next: Vec<Piece> = pieces.iter().flat_map(|s| s.split(level % 2)).collect();
+                pieces.extend(next);
+            }
+            for (k, piece) in pieces.iter().enumerate() {
+                let [u, v] = piece.declared(&d, 0.0);
+                let a = k as f64;
+                let n = [a.sin(), (1.7 * a).cos(), 0.3 * (0.4 * a).sin()];
+                let along = piece.partials_along(&n.map(point));
+                for (dir, e) in along.iter().enumerate() {
+                    let Some(e) = e.filter(|e| e.inf() > 0.0 || e.sup() < 0.0) else {
+                        continue;
+                    };
+                    decided += 1;
+                    for i in 0..49 {
+                        let x = u.inf() + u.wid() * (i % 7) as f64 / 6.0;
+                        let y = v.inf() + v.wid() * (i / 7) as f64 / 6.0;
+                        let ds = patch.derivs(x, y);
+                        let part = [ds.su, ds.sv][dir];
+                        let c = n[0] * part.x + n[1] * part.y + n[2] * part.z;
+                        assert!(c * e.inf().signum() > 0.0, "{c} against {e:?}");
+                    }
+                }
+            }
+        }
+        assert!(decided > 40, "{decided}");
+    }
+
+    #[test]
     fn split_pieces_bound_their_part_of_the_patch() {
         let patch = wavy();
         let d = patch.domain();

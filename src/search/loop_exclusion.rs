@@ -419,12 +419,61 @@ mod tests {
         assert!(along.abs() > 0.1, "{proof:?}");
     }
 
+    /// Dyadic pieces of `patch` down to 1/8 in both directions.
+    fn dyadic_pieces(patch: &RationalBezierPatch) -> Vec<Piece> {
+        let mut pieces = vec![Piece::whole(patch)];
+        for level in 0..6 {
+            let last = pieces[pieces.len() - (1 << level)..].to_vec();
+            for p in last {
+                pieces.extend(p.split(level % 2));
+            }
+        }
+        pieces
+    }
+
+    /// Checks a proof for the pair `(a, b)` by point evaluation on a `k × k` grid of each box:
+    /// `d · (N_P × N_Q)`, or the proven parameter's rate along `N_P × N_Q`, has one strict sign.
+    fn assert_monotone_at_samples(
+        (p, a): (&RationalBezierPatch, &Piece),
+        (q, b): (&RationalBezierPatch, &Piece),
+        proof: LoopFree,
+        k: usize,
+    ) {
+        use crate::geometry::ParametricSurface;
+        let [au, av] = a.declared(&p.domain(), 0.0);
+        let [bu, bv] = b.declared(&q.domain(), 0.0);
+        let at = |x: Interval, i: usize| x.inf() + x.wid() * i as f64 / (k - 1) as f64;
+        let mut signs = [false; 2];
+        for n in 0..k.pow(4) {
+            let (i, j, l, m) = (n % k, n / k % k, n / k / k % k, n / k / k / k);
+            let da = p.derivs(at(au, i), at(av, j));
+            let db = q.derivs(at(bu, l), at(bv, m));
+            let (np, nq) = (da.su.cross(&da.sv), db.su.cross(&db.sv));
+            let s = match proof {
+                LoopFree::Along(d) => {
+                    let t = np.cross(&nq);
+                    d[0] * t[0] + d[1] * t[1] + d[2] * t[2]
+                }
+                // The parameter's rate along N_P × N_Q: σ' = −P_t·N_Q, t' = P_σ·N_Q,
+                // u' = Q_v·N_P, v' = −Q_u·N_P.
+                LoopFree::Parameter { surface, parameter } => match (surface, parameter) {
+                    (0, 0) => -da.sv.dot(&nq),
+                    (0, _) => da.su.dot(&nq),
+                    (_, 0) => db.sv.dot(&np),
+                    _ => -db.su.dot(&np),
+                },
+            };
+            assert!(s != 0.0, "{proof:?}");
+            signs[usize::from(s > 0.0)] = true;
+        }
+        assert!(!(signs[0] && signs[1]), "{proof:?} {:?} {:?}", a.s, a.r);
+    }
+
     #[test]
     fn proven_directions_are_monotone_at_samples() {
         // Every proof's direction d must make d · (N_P × N_Q) one strict sign over the pair:
         // checked by point evaluation of the patch derivatives on a grid of both boxes, for all
         // dyadic piece pairs down to 1/8 of a wavy graph against a tilted saddle.
-        use crate::geometry::ParametricSurface;
         let wavy = graph(vec![
             (3, 0, 0.8),
             (1, 2, -0.6),
@@ -433,53 +482,106 @@ mod tests {
             (0, 0, 0.05),
         ]);
         let saddle = graph(vec![(1, 1, 0.5), (1, 0, 0.2), (0, 1, -0.1)]);
-        let mut pieces = vec![Piece::whole(&wavy)];
-        for level in 0..6 {
-            let last = pieces[pieces.len() - (1 << level)..].to_vec();
-            for p in last {
-                pieces.extend(p.split(level % 2));
-            }
-        }
-        let (dp, dq) = (wavy.domain(), saddle.domain());
         let mut proofs = 0;
-        for a in &pieces {
+        for a in &dyadic_pieces(&wavy) {
             for b in [
                 Piece::whole(&saddle),
                 Piece::whole(&saddle).split(0)[1].clone(),
             ] {
-                let Some(proof) = prove_loop_free(&wavy, a, &saddle, &b) else {
-                    continue;
-                };
-                proofs += 1;
-                let [au, av] = a.declared(&dp, 0.0);
-                let [bu, bv] = b.declared(&dq, 0.0);
-                let at = |x: Interval, k: usize| x.inf() + (x.sup() - x.inf()) * k as f64 / 4.0;
-                let mut signs = [false; 2];
-                for (i, j, k, l) in (0..625).map(|n| (n % 5, n / 5 % 5, n / 25 % 5, n / 125)) {
-                    let da = wavy.derivs(at(au, i), at(av, j));
-                    let db = saddle.derivs(at(bu, k), at(bv, l));
-                    let (np, nq) = (da.su.cross(&da.sv), db.su.cross(&db.sv));
-                    let s = match proof {
-                        LoopFree::Along(d) => {
-                            let t = np.cross(&nq);
-                            d[0] * t[0] + d[1] * t[1] + d[2] * t[2]
-                        }
-                        // The parameter's rate along N_P × N_Q: σ' = −P_t·N_Q, t' = P_σ·N_Q,
-                        // u' = Q_v·N_P, v' = −Q_u·N_P.
-                        LoopFree::Parameter { surface, parameter } => match (surface, parameter) {
-                            (0, 0) => -da.sv.dot(&nq),
-                            (0, _) => da.su.dot(&nq),
-                            (_, 0) => db.sv.dot(&np),
-                            _ => -db.su.dot(&np),
-                        },
-                    };
-                    assert!(s != 0.0, "{proof:?}");
-                    signs[usize::from(s > 0.0)] = true;
+                if let Some(proof) = prove_loop_free(&wavy, a, &saddle, &b) {
+                    proofs += 1;
+                    assert_monotone_at_samples((&wavy, a), (&saddle, &b), proof, 5);
                 }
-                assert!(!(signs[0] && signs[1]), "{proof:?} {:?} {:?}", a.s, a.r);
             }
         }
         assert!(proofs > 10, "{proofs}");
+    }
+
+    /// The rotation by `angle` about the unit vector along `axis` (Rodrigues).
+    fn turn(axis: [f64; 3], angle: f64, x: [f64; 3]) -> [f64; 3] {
+        let len = norm3(&axis);
+        let k = axis.map(|c| c / len);
+        let (c, s) = (angle.cos(), angle.sin());
+        let kx = cross(&k, &x);
+        let kdx = dot(&k, &x);
+        std::array::from_fn(|i| x[i] * c + kx[i] * s + k[i] * kdx * (1.0 - c))
+    }
+
+    /// A 120° arc of the cylinder x² + y² = 1 (angle σ, weights 1, 1/2, 1; height t = z ∈ [0,
+    /// 1]) and a plane `x = 1 − δ + ε(z − 1/2)` over `y ∈ [−1, 1]`, `z ∈ [−0.1, 1.1]` (nearly
+    /// tangent along the ruling at angle 0 when δ and ε are small), both turned by `rotate`.
+    fn ruled_pair(
+        rotate: impl Fn([f64; 3]) -> [f64; 3],
+        delta: f64,
+        eps: f64,
+    ) -> (RationalBezierPatch, RationalBezierPatch) {
+        use crate::geometry::Domain;
+        let r3 = 3f64.sqrt() / 2.0;
+        let arc = [[0.5, -r3], [2.0, 0.0], [0.5, r3]];
+        let net: Vec<[f64; 3]> = arc
+            .iter()
+            .flat_map(|&[x, y]| [rotate([x, y, 0.0]), rotate([x, y, 1.0])])
+            .collect();
+        let w = [1.0, 1.0, 0.5, 0.5, 1.0, 1.0];
+        let cyl = RationalBezierPatch::from_f64_points([2, 1], &net, Some(&w), Domain::UNIT);
+        let corner = |y: f64, z: f64| rotate([1.0 - delta + eps * (z - 0.5), y, z]);
+        let net = [
+            corner(-1.0, -0.1),
+            corner(-1.0, 1.1),
+            corner(1.0, -0.1),
+            corner(1.0, 1.1),
+        ];
+        let plane = RationalBezierPatch::from_f64_points([1, 1], &net, None, Domain::UNIT);
+        (cyl.unwrap(), plane.unwrap())
+    }
+
+    #[test]
+    fn parameter_proofs_hold_at_samples_on_turned_ruled_pairs() {
+        // Rational cylinder arcs against planes crossing, nearly tangent to or clear of them
+        // (δ from −1e-2 to 1e-2, tilts from 1e-7 to 0.3 of either sign), turned about pseudo-
+        // random axes, either surface first: every proof of every dyadic piece pair, the
+        // parameter proofs among them, is checked at samples.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut parameter_proofs = 0;
+        for case in 0..12 {
+            let axis = [next() - 0.5, next() - 0.5, next() - 0.5];
+            let angle = 6.0 * next();
+            let delta = [-1e-2, -1e-8, 0.0, 1e-8, 1e-4, 1e-2][case % 6] * (0.5 + next());
+            let eps = (if next() < 0.5 { -1.0 } else { 1.0 }) * 10f64.powf(-7.0 + 6.5 * next());
+            let (cyl, plane) = ruled_pair(|x| turn(axis, angle, x), delta, eps);
+            let pieces = dyadic_pieces(&cyl);
+            let halves = [
+                Piece::whole(&plane),
+                Piece::whole(&plane).split(1)[0].clone(),
+            ];
+            for a in pieces.iter().step_by(3) {
+                for b in &halves {
+                    let proof = if case % 2 == 0 {
+                        prove_loop_free(&cyl, a, &plane, b)
+                    } else {
+                        prove_loop_free(&plane, b, &cyl, a).map(|f| match f {
+                            // Back in the order (cylinder, plane) for the check.
+                            LoopFree::Parameter { surface, parameter } => LoopFree::Parameter {
+                                surface: 1 - surface,
+                                parameter,
+                            },
+                            along => along,
+                        })
+                    };
+                    // (Swapped, d · (N_P × N_Q) and the rates only change sign.)
+                    let Some(proof) = proof else { continue };
+                    parameter_proofs += usize::from(matches!(proof, LoopFree::Parameter { .. }));
+                    assert_monotone_at_samples((&cyl, a), (&plane, b), proof, 4);
+                }
+            }
+        }
+        assert!(parameter_proofs > 20, "{parameter_proofs}");
     }
 
     #[test]
@@ -490,41 +592,8 @@ mod tests {
         // z ≈ 0.51 with the normals 1e-6 apart there. No model direction is proven monotone on
         // the whole pair (the tangent turns through 180°), but the angle is:
         // σ' = −P_z·N_Q = ±ε·|N_Q| everywhere.
-        use crate::geometry::{Domain, ParametricSurface};
-        let turn = |x: [f64; 3]| {
-            // The rotation by 1 radian about (1, 2, 3)/√14 (Rodrigues).
-            let k = [1.0, 2.0, 3.0].map(|c: f64| c / 14f64.sqrt());
-            let (c, s) = (1f64.cos(), 1f64.sin());
-            let kx = [
-                k[1] * x[2] - k[2] * x[1],
-                k[2] * x[0] - k[0] * x[2],
-                k[0] * x[1] - k[1] * x[0],
-            ];
-            let kdx = k[0] * x[0] + k[1] * x[1] + k[2] * x[2];
-            std::array::from_fn(|i| x[i] * c + kx[i] * s + k[i] * kdx * (1.0 - c))
-        };
-        let r3 = 3f64.sqrt() / 2.0;
-        let arc = [[0.5, -r3], [2.0, 0.0], [0.5, r3]];
-        let net: Vec<[f64; 3]> = arc
-            .iter()
-            .flat_map(|&[x, y]| [turn([x, y, 0.0]), turn([x, y, 1.0])])
-            .collect();
-        let cyl = RationalBezierPatch::from_f64_points(
-            [2, 1],
-            &net,
-            Some(&[1.0, 1.0, 0.5, 0.5, 1.0, 1.0]),
-            Domain::UNIT,
-        )
-        .unwrap();
-        let (delta, eps) = (1e-8, 1e-6);
-        let corner = |y: f64, z: f64| turn([1.0 - delta + eps * (z - 0.5), y, z]);
-        let net = [
-            corner(-1.0, -0.1),
-            corner(-1.0, 1.1),
-            corner(1.0, -0.1),
-            corner(1.0, 1.1),
-        ];
-        let plane = RationalBezierPatch::from_f64_points([1, 1], &net, None, Domain::UNIT).unwrap();
+        use crate::geometry::ParametricSurface;
+        let (cyl, plane) = ruled_pair(|x| turn([1.0, 2.0, 3.0], 1.0, x), 1e-8, 1e-6);
         let proof = prove_loop_free(&cyl, &Piece::whole(&cyl), &plane, &Piece::whole(&plane));
         assert_eq!(
             proof,
