@@ -43,7 +43,8 @@ pub(super) struct Link {
     /// Why the link was kept although wider than the tolerance (`None`: it is not).
     pub(super) limit: Option<LinkLimit>,
     /// Whether it is graphed over a coordinate slower than [`Walker::along`] would take (see
-    /// [`Walker::link_on`]): such a link is never kept wider than the tolerance.
+    /// [`Walker::link_on`]): such a link is not kept wider than the tolerance for its own
+    /// sake, only in place of a wider link that is (`Walker::narrowest_over_others`, `span`).
     pub(super) slow: bool,
 }
 
