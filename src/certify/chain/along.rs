@@ -95,13 +95,33 @@ impl<'a> Walker<'a> {
     ) -> Link {
         let lean = [&self.lean[0], &self.lean[1]];
         let exact = self.precise_at(&a.x);
-        let mut best = link;
-        for (k, fast) in self.other_alongs(a, b, link.proof.pred.along) {
-            if let Some(mut other) = self.link_along(lean, k, a, b, must_end, exact) {
-                if other.radius_xyz < best.radius_xyz {
-                    other.slow = !fast;
-                    best = other;
+        let others = self.other_alongs(a, b, link.proof.pred.along);
+        let ends = (a, b, must_end);
+        self.narrowest_over(lean, ends, exact, others, Some(link), |_| false)
+            .unwrap_or(link)
+    }
+
+    /// The narrowest of `best` and the link from `a` to `b` graphed over each coordinate of
+    /// `candidates` (with whether it is fast), on the exact residual if `exact`, in order
+    /// until `done` holds of the narrowest so far.
+    fn narrowest_over(
+        &self,
+        lean: [&LeanPatch<'a>; 2],
+        (a, b, must_end): (&Node, &Node, Option<&[Interval; 4]>),
+        exact: bool,
+        candidates: impl IntoIterator<Item = (usize, bool)>,
+        mut best: Option<Link>,
+        done: impl Fn(&Option<Link>) -> bool,
+    ) -> Option<Link> {
+        for (k, fast) in candidates {
+            if let Some(mut e) = self.link_along(lean, k, a, b, must_end, exact) {
+                if best.as_ref().is_none_or(|b| e.radius_xyz < b.radius_xyz) {
+                    e.slow = !fast;
+                    best = Some(e);
                 }
+            }
+            if done(&best) {
+                break;
             }
         }
         best
@@ -128,23 +148,12 @@ impl<'a> Walker<'a> {
     ) -> Option<Link> {
         let j = self.along(a, b)?;
         let aim = 0.5 * self.opts.required_tolerance;
-        let mut best = self.link_along(lean, j, a, b, must_end, false);
+        let best = self.link_along(lean, j, a, b, must_end, false);
         let wide = |l: &Option<Link>| l.as_ref().is_none_or(|l| l.radius_xyz > aim);
         if !wide(&best) || !self.precise_at(&a.x) {
             return best;
         }
         let retries = std::iter::once((j, true)).chain(self.other_alongs(a, b, j));
-        for (k, fast) in retries {
-            if let Some(mut e) = self.link_along(lean, k, a, b, must_end, true) {
-                if best.as_ref().is_none_or(|b| e.radius_xyz < b.radius_xyz) {
-                    e.slow = !fast;
-                    best = Some(e);
-                }
-            }
-            if !wide(&best) {
-                break;
-            }
-        }
-        best
+        self.narrowest_over(lean, (a, b, must_end), true, retries, best, |l| !wide(l))
     }
 }
