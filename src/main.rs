@@ -451,7 +451,7 @@ fn shell_summary(
             if absorbed.contains(&g) {
                 let _ = writeln!(
                     out,
-                    "      a sliver of a curve at a corner of pieces or at a pole, covered by a proven join"
+                    "      a sliver of a curve at a corner of pieces, a vertex of faces or a pole, covered by a proven join"
                 );
             } else if let Some(c) = &traced.certificate {
                 let _ = writeln!(out, "  {}", certificate_line(c, opts.required_tolerance));

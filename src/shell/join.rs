@@ -43,6 +43,7 @@ use super::own_corner;
 use super::pole_cap::{self, PoleProof};
 use super::sites::{certified_exit, end_site, marched_gap, patches, EndSite};
 pub use super::sites::{BranchEnd, MARCH_JOIN_TOLERANCE, SIDE_TOLERANCE};
+use super::slivers;
 use super::{Face, PieceIntersection};
 use crate::geometry::surface::Domain;
 use crate::march::branch::BranchStatus;
@@ -141,34 +142,7 @@ pub(super) fn join_and_settle(
 ) -> (Vec<JoinedCurve>, Vec<(usize, usize)>) {
     let index = branch_index(pairs);
     let links = [shared_edges(a), shared_edges(b)];
-    let mut sites = Vec::new();
-    for (g, &(k, i)) in index.iter().enumerate() {
-        let pi = &pairs[k];
-        let traced = &pi.result.branches[i];
-        for end in 0..2 {
-            if let Some(site) = end_site(a, b, pi, k, traced, BranchEnd { branch: g, end }) {
-                // An end on a side of both pieces (at or near a corner) is a site on each: the
-                // marcher names one surface, and its neighbour across the corner may name the
-                // other.
-                let other = site.corner.map(|c| {
-                    let pieces = patches(a, b, pi);
-                    let surface = 1 - site.surface;
-                    let exit = traced.certified().and_then(|cert| {
-                        certified_exit(pieces, surface, c.side, &site.point, cert)
-                    });
-                    EndSite {
-                        surface,
-                        side: c,
-                        corner: Some(site.side),
-                        exit,
-                        ..site.clone()
-                    }
-                });
-                sites.push(site);
-                sites.extend(other);
-            }
-        }
-    }
+    let sites = end_sites(a, b, pairs, &index);
     let by_pair: HashMap<([usize; 2], [usize; 2]), usize> = pairs
         .iter()
         .enumerate()
@@ -218,10 +192,13 @@ pub(super) fn join_and_settle(
         };
         candidates.push((c.gap, x, y, status, c.edges[0], Region::Corner(n)));
     }
-    // Proven joins first, then the nearest.
+    // Proven joins first, then those without a sliver at a vertex (`slivers.rs`), then the
+    // nearest.
+    let small = slivers::small(pairs, &index);
+    let sliver = |c: &Candidate| small[sites[c.1].at.branch] || small[sites[c.2].at.branch];
     candidates.sort_by(|p, q| {
-        (!p.3.is_proven())
-            .cmp(&!q.3.is_proven())
+        (!p.3.is_proven(), sliver(p))
+            .cmp(&(!q.3.is_proven(), sliver(q)))
             .then(p.0.total_cmp(&q.0))
     });
     let first_branch: Vec<usize> = pairs
@@ -237,6 +214,8 @@ pub(super) fn join_and_settle(
     let mut absorbed = vec![false; index.len()];
     let mut joins: HashMap<BranchEnd, JoinValue> = HashMap::new();
     let mut settled = Vec::new();
+    // Proven joins on a shared edge, with the hull of their two proven end boxes.
+    let mut on_edges = Vec::new();
     for (gap, x, y, status, kind, region) in candidates {
         let (e1, e2) = (sites[x].at, sites[y].at);
         if used.contains(&e1) || used.contains(&e2) || absorbed[e1.branch] || absorbed[e2.branch] {
@@ -245,7 +224,15 @@ pub(super) fn join_and_settle(
         used.insert(e1);
         used.insert(e2);
         let corner = match region {
-            Region::None => None,
+            Region::None => {
+                if let (true, Some(x1), Some(x2)) =
+                    (status.is_proven(), &sites[x].exit, &sites[y].exit)
+                {
+                    let xyz = std::array::from_fn(|c| x1.xyz[c].convex_hull(x2.xyz[c]));
+                    on_edges.push(([e1, e2], xyz));
+                }
+                None
+            }
             Region::Corner(n) => Some(corner_join(&corners[n], pairs, &by_pair, &first_branch)),
             Region::Pole(n) => {
                 let pr = &poles[n];
@@ -264,6 +251,7 @@ pub(super) fn join_and_settle(
         joins.insert(e1, (e2, kind, status.clone(), gap, corner.clone()));
         joins.insert(e2, (e1, kind, status, gap, corner));
     }
+    absorb_slivers(a, b, pairs, &index, &on_edges, &mut joins, &mut absorbed);
     let tolerance = |g: usize| {
         let (k, i) = index[g];
         pairs[k].result.branches[i].certified_tolerance()
@@ -274,6 +262,100 @@ pub(super) fn join_and_settle(
     };
     let curves = chain(index.len(), &joins, &tolerance, &closed_branch, &absorbed);
     (curves, settled)
+}
+
+/// Slivers at a vertex of faces (`slivers.rs`): each branch in no join that a proven join on a
+/// shared edge (`on_edges`: its two ends and the hull of their proven end boxes) absorbs is
+/// marked in `absorbed`, and that join gains the box holding them.
+fn absorb_slivers(
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+    index: &[(usize, usize)],
+    on_edges: &[([BranchEnd; 2], [Interval; 3])],
+    joins: &mut HashMap<BranchEnd, JoinValue>,
+    absorbed: &mut [bool],
+) {
+    let free: Vec<bool> = (0..index.len())
+        .map(|g| {
+            !absorbed[g] && (0..2).all(|end| !joins.contains_key(&BranchEnd { branch: g, end }))
+        })
+        .collect();
+    let boxes: Vec<_> = on_edges.iter().map(|e| e.1).collect();
+    let slivers = slivers::absorb(a, b, pairs, index, &boxes, &free);
+    for ((ends, _), taken) in on_edges.iter().zip(slivers) {
+        let Some((xyz, slivers)) = taken else {
+            continue;
+        };
+        for &g in &slivers {
+            absorbed[g] = true;
+        }
+        for e in ends {
+            if let Some(v) = joins.get_mut(e) {
+                v.4 = Some(CornerJoin {
+                    second_edge: v.1,
+                    xyz,
+                    absorbed: slivers.clone(),
+                });
+            }
+        }
+    }
+}
+
+/// The sites of every branch end of `pairs` (`index`: shell-wide branch → pair and place)
+/// that the marcher ended on a piece side: one per end, another on the other surface's side at
+/// a corner of the pair, and another on the perpendicular side at a corner of its own piece.
+fn end_sites<'a>(
+    a: &[Face],
+    b: &[Face],
+    pairs: &'a [PieceIntersection],
+    index: &[(usize, usize)],
+) -> Vec<EndSite<'a>> {
+    let mut sites = Vec::new();
+    for (g, &(k, i)) in index.iter().enumerate() {
+        let pi = &pairs[k];
+        let traced = &pi.result.branches[i];
+        for end in 0..2 {
+            if let Some(site) = end_site(a, b, pi, k, traced, BranchEnd { branch: g, end }) {
+                // An end on a side of both pieces (at or near a corner) is a site on each: the
+                // marcher names one surface, and its neighbour across the corner may name the
+                // other.
+                let other = site.corner.map(|c| {
+                    let pieces = patches(a, b, pi);
+                    let surface = 1 - site.surface;
+                    let exit = traced.certified().and_then(|cert| {
+                        certified_exit(pieces, surface, c.side, &site.point, cert)
+                    });
+                    EndSite {
+                        surface,
+                        side: c,
+                        corner: Some(site.side),
+                        exit,
+                        ..site.clone()
+                    }
+                });
+                // An end at a corner of its own piece is a site on the perpendicular side too:
+                // where three faces meet at a vertex (a box's corner), the face the curve
+                // leaves into shares that side, not the one the marcher named.
+                let own = site.own_corner.map(|c| {
+                    let pieces = patches(a, b, pi);
+                    let exit = traced.certified().and_then(|cert| {
+                        certified_exit(pieces, site.surface, c.side, &site.point, cert)
+                    });
+                    EndSite {
+                        side: c,
+                        own_corner: None,
+                        exit,
+                        ..site.clone()
+                    }
+                });
+                sites.push(site);
+                sites.extend(other);
+                sites.extend(own);
+            }
+        }
+    }
+    sites
 }
 
 /// What a corner candidate's join adds: the other edge, the corner box and the slivers it

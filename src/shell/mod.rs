@@ -24,6 +24,7 @@ pub mod join;
 mod own_corner;
 mod pole_cap;
 mod sites;
+mod slivers;
 
 use rayon::prelude::*;
 
