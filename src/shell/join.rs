@@ -112,8 +112,9 @@ pub struct JoinedCurve {
     /// The joins: `joins[k]` between `parts[k]` and `parts[k + 1]`, and for a closed curve of
     /// joined parts, last the one from the last part back to the first.
     pub joins: Vec<Join>,
-    /// The largest certified tolerance of the parts, when every part is certified and every join
-    /// proven; `None` otherwise.
+    /// The largest certified tolerance of the parts, plus the largest diameter of a join's box
+    /// (across a corner, through a pole, or at a vertex with slivers), when every part is
+    /// certified and every join proven; `None` otherwise.
     pub certified_tolerance: Option<f64>,
 }
 
@@ -640,8 +641,9 @@ fn chain(
             closed = true;
         }
         let certified_tolerance = if links.iter().all(|j| j.status.is_proven()) {
-            // A corner's arc between two parts lies in its box: no farther from them than the
-            // box's diameter.
+            // A corner's arc between two parts (or a vertex's slivers) lies in its box, which
+            // holds the parts' true end points: no farther from a true point of the curve than
+            // the box's diameter, so from the reported curve than that plus the parts' tolerance.
             let corners = links
                 .iter()
                 .filter_map(|j| j.corner.as_ref())
@@ -650,7 +652,8 @@ fn chain(
             parts
                 .iter()
                 .map(|p| tolerance(p.branch))
-                .try_fold(corners, |m, t| t.map(|t| m.max(t)))
+                .try_fold(0.0f64, |m, t| t.map(|t| m.max(t)))
+                .map(|t| (point(t) + point(corners)).sup())
         } else {
             None
         };
