@@ -252,7 +252,16 @@ pub(super) fn join_and_settle(
         joins.insert(e1, (e2, kind, status.clone(), gap, corner.clone()));
         joins.insert(e2, (e1, kind, status, gap, corner));
     }
-    absorb_slivers(a, b, pairs, &index, &on_edges, &mut joins, &mut absorbed);
+    let shells = [a, b];
+    absorb_slivers(
+        shells,
+        pairs,
+        &index,
+        &small,
+        &on_edges,
+        &mut joins,
+        &mut absorbed,
+    );
     let tolerance = |g: usize| {
         let (k, i) = index[g];
         pairs[k].result.branches[i].certified_tolerance()
@@ -265,21 +274,24 @@ pub(super) fn join_and_settle(
     (curves, settled)
 }
 
-/// Slivers at a vertex of faces (`slivers.rs`): each branch in no join that a proven join on a
-/// shared edge (`on_edges`: its two ends and the hull of their proven end boxes) absorbs is
+/// Slivers at a vertex of faces (`slivers.rs`): each small branch (`small`) in no join that a
+/// proven join on a shared edge (`on_edges`: its two ends and the hull of their proven end boxes) absorbs is
 /// marked in `absorbed`, and that join gains the box holding them.
 fn absorb_slivers(
-    a: &[Face],
-    b: &[Face],
+    [a, b]: [&[Face]; 2],
     pairs: &[PieceIntersection],
     index: &[(usize, usize)],
+    small: &[bool],
     on_edges: &[([BranchEnd; 2], [Interval; 3])],
     joins: &mut HashMap<BranchEnd, JoinValue>,
     absorbed: &mut [bool],
 ) {
+    // Small branches in no join.
     let free: Vec<bool> = (0..index.len())
         .map(|g| {
-            !absorbed[g] && (0..2).all(|end| !joins.contains_key(&BranchEnd { branch: g, end }))
+            small[g]
+                && !absorbed[g]
+                && (0..2).all(|end| !joins.contains_key(&BranchEnd { branch: g, end }))
         })
         .collect();
     let boxes: Vec<_> = on_edges.iter().map(|e| e.1).collect();

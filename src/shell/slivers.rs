@@ -137,8 +137,8 @@ fn enclosed(
         .reduce(|h, x| hull(&h, &x))
 }
 
-/// The slivers (see the module documentation) among the branches `free` marks (in no join,
-/// not absorbed), and the proven joins on shared edges that absorb them: per join of
+/// The slivers (see the module documentation) among the branches `free` marks (small, in no
+/// join, not absorbed), and the proven joins on shared edges that absorb them: per join of
 /// `on_edges` (the hull of its two proven end boxes), `None`, or its new box and the branches
 /// it absorbs.
 pub(super) fn absorb(
@@ -149,10 +149,9 @@ pub(super) fn absorb(
     on_edges: &[[Interval; 3]],
     free: &[bool],
 ) -> Vec<Option<([Interval; 3], Vec<usize>)>> {
-    let small = small(pairs, index);
     let mut taken: Vec<Option<([Interval; 3], Vec<usize>)>> = vec![None; on_edges.len()];
     for (g, &(k, i)) in index.iter().enumerate() {
-        if !free[g] || !small[g] {
+        if !free[g] {
             continue;
         }
         let pieces = patches(a, b, &pairs[k]);
