@@ -184,3 +184,35 @@ fn moved_copies_of_node_scenes_are_searched_completely_and_traced_on_the_curve()
         }
     }
 }
+
+/// The equal cylinders with P cut at `s = 0`, through the node: the node sits on P's side, where
+/// the node's neighbourhood is not settled and every leaf round it fails the Krawczyk test. The
+/// search reports it incomplete, but it must not spend its whole leaf budget refining those
+/// leaves (it did, taking 12 s: each failed leaf was halved down to 1/65536 of the leaf size;
+/// now only a few hundred go below 1/1024), and both arcs on the kept side are still traced.
+#[test]
+fn a_node_on_a_domain_side_does_not_exhaust_the_search() {
+    let path = common::scenes::scene_path("cylinders.json");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    v["surfaces"][0]["domain"] = serde_json::json!([[0.0, 0.6], [-1.2, 1.2]]);
+    let scene = ssitrace::io::scene::Scene::from_json_value(&v).unwrap();
+    let [p, q] = &scene.surfaces;
+    let march = MarchOptions {
+        step: 0.05,
+        ..MarchOptions::default()
+    };
+    let out = intersect(p, q, &march, &SearchOptions::default());
+    let s = &out.stats;
+    assert!(!s.search_truncated, "the leaf budget ran out");
+    assert_eq!(out.intersection.branches.len(), 2);
+    for b in &out.intersection.branches {
+        for pt in &b.points {
+            assert!(
+                pt.xyz[0] >= -1e-12,
+                "a point off the kept side: {:?}",
+                pt.xyz
+            );
+        }
+    }
+}

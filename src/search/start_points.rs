@@ -274,8 +274,10 @@ impl Ctx {
 
 /// A leaf where the Krawczyk test decides nothing is subdivided further, down to this fraction
 /// of the leaf size, before it is reported as undecided (only undecided leaves are refined, so
-/// a deep limit costs nothing where everything is settled).
+/// a deep limit costs nothing where everything is settled; `DEEP_REFINES` below `SHALLOW_REFINE`).
 const REFINE_FAILED_LEAF: f64 = 1.0 / 65536.0;
+const SHALLOW_REFINE: f64 = 1.0 / 1024.0;
+const DEEP_REFINES: usize = 256;
 
 fn diameter(b: &[Interval; 3]) -> f64 {
     b.iter().map(|x| x.wid()).fold(0.0, f64::max)
@@ -510,6 +512,7 @@ fn edge_search(
         }
     };
     let mut stack = vec![(a0, b0, leaf0)];
+    let mut deep = DEEP_REFINES;
     while let Some((pa, pb, mut leaf)) = stack.pop() {
         let (ea, eb) = (pa.bounds(), pb.bounds());
         // Also apart along a flat piece's normal: a boundary curve running beside a plane at
@@ -532,7 +535,8 @@ fn edge_search(
                     continue;
                 }
                 Leaf::Empty => continue,
-                Leaf::Unknown if leaf > min_leaf => {
+                Leaf::Unknown if leaf > min_leaf && (leaf > leaf0 * SHALLOW_REFINE || deep > 0) => {
+                    deep -= usize::from(leaf <= leaf0 * SHALLOW_REFINE);
                     // A curve running along the edge (a section along a knot line) is settled
                     // at once by the arc proof rather than at the deepest leaves: every leaf
                     // along it is undecided by the leaf's own test.
