@@ -229,8 +229,7 @@ pub(super) fn join_and_settle(
                 if let (true, Some(x1), Some(x2)) =
                     (status.is_proven(), &sites[x].exit, &sites[y].exit)
                 {
-                    let xyz = std::array::from_fn(|c| x1.xyz[c].convex_hull(x2.xyz[c]));
-                    on_edges.push(([e1, e2], xyz));
+                    on_edges.push(([e1, e2], slivers::hull(&x1.xyz, &x2.xyz)));
                 }
                 None
             }

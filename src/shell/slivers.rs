@@ -58,7 +58,7 @@ pub(super) fn small(pairs: &[PieceIntersection], index: &[(usize, usize)]) -> Ve
 }
 
 /// The hull of two model boxes.
-fn hull(x: &[Interval; 3], y: &[Interval; 3]) -> [Interval; 3] {
+pub(super) fn hull(x: &[Interval; 3], y: &[Interval; 3]) -> [Interval; 3] {
     std::array::from_fn(|c| x[c].convex_hull(y[c]))
 }
 

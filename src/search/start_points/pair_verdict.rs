@@ -108,10 +108,7 @@ fn cover_settles(
     // 22–24 s to 6.5 s in all (worst 1.5–3.4 s to 0.05 s), and no search was left incomplete.
     let at_pole = |s: &RationalBezierPatch, x: &Piece| {
         let c = s.collapsed_sides();
-        (x.s[0] <= 0.0 && c[0].is_some())
-            || (x.s[1] >= 1.0 && c[1].is_some())
-            || (x.r[0] <= 0.0 && c[2].is_some())
-            || (x.r[1] >= 1.0 && c[3].is_some())
+        x.touches().iter().zip(&c).any(|(t, c)| *t && c.is_some())
     };
     if !parallel || (wa <= wb && at_pole(p, a)) || (wa > wb && at_pole(q, b)) {
         false
