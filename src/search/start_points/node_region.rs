@@ -54,16 +54,22 @@
 //! `c` to the upper `σ`-face of `N_P` is searched with the faces. So a bump above or below a
 //! plane settles at once, and a tiny loop round the contact point is found.
 //!
+//! **A node on a domain side.** The boxes are proven before they are clipped to the domains
+//! (the patches' formulas hold past them): then a node on a side, or just past it, lies inside
+//! the box that steps 1–3 prove, and a component inside the clipped `N` is a piece of one of the
+//! unclipped box's, so it reaches a face of `N_P` or leaves a domain across a side (the
+//! boundary search's). Only the boundary search's own leaves at such a node stay undecided (the
+//! side's curve touches the other surface there); no interval test can settle them, since
+//! moving the input by an ulp can make a small curve piece there that touches only the side.
+//!
 //! Tangential contact curves (critical points not isolated) and touching points (`f(x*)` not
 //! proven non-zero) are not settled here: the pair search goes on as before and reports them
-//! undecided. Nor is a node on a domain boundary (the matching `(u, v)` cannot be kept strictly
-//! inside a clipped `N_Q`, and the boundary search's own leaves at the node stay undecided): the
-//! search finds its arcs and reports a dozen small undecided regions there (tested).
+//! undecided.
 
 use super::{
     diameter, edge_search, Ctx, EdgeProblem, Needs, SearchReport, StartKind, REFINE_FAILED_LEAF,
 };
-use crate::geometry::piece::Piece;
+use crate::geometry::piece::{declared_range, Piece};
 use crate::geometry::{ParametricSurface, RationalBezierPatch};
 use crate::numeric::rounding::dot_point;
 use crate::numeric::scalar::point;
@@ -228,13 +234,20 @@ fn same(a: &[f64; 4], b: &[f64; 4]) -> bool {
 }
 
 /// The exact normalised range `[lo, hi]` round the declared `centre ± half` of a domain
-/// `[d0, d1]`, widened outward to the grid and clipped to `[0, 1]`.
+/// `[d0, d1]`, widened outward to the grid; not clipped to `[0, 1]` (see [`clipped`]) but kept
+/// within `[−1/4, 5/4]`.
 fn normalised(d: [f64; 2], centre: f64, half: f64) -> Option<[f64; 2]> {
     let w = d[1] - d[0];
     let lo = ((centre - half - d[0]) / w / GRID).floor() * GRID;
     let hi = ((centre + half - d[0]) / w / GRID).ceil() * GRID;
-    let (lo, hi) = (lo.max(0.0), hi.min(1.0));
+    let (lo, hi) = (lo.max(-0.25), hi.min(1.25));
     (lo.is_finite() && hi.is_finite() && lo < hi).then_some([lo, hi])
+}
+
+/// The part of a normalised range inside the domain, `[0, 1]`.
+fn clipped(x: [f64; 2]) -> Option<[f64; 2]> {
+    let (lo, hi) = (x[0].max(0.0), x[1].min(1.0));
+    (lo < hi).then_some([lo, hi])
 }
 
 /// The basis `(e₁, e₂, n)` at P's point of `x`: `n` P's unit normal, `e₁`, `e₂` across it.
@@ -329,11 +342,14 @@ fn prove_region(
     let qs = normalised(dq.u, x[2], 1.5 * hu)?;
     let qr = normalised(dq.v, x[3], 1.5 * hv)?;
     let region = NodeRegion {
-        p: Piece::over(p, ps, pr)?,
-        q: Piece::over(q, qs, qr)?,
+        p: Piece::over(p, clipped(ps)?, clipped(pr)?)?,
+        q: Piece::over(q, clipped(qs)?, clipped(qr)?)?,
     };
-    let xp = region.p.declared(&dp, 0.0);
-    let xq = region.q.declared(&dq, 0.0);
+    // The proofs run over the boxes before clipping to the domains (the patches' formulas hold
+    // past their domains): a node on a domain side is then inside them (see the module
+    // documentation).
+    let xp = [declared_range(dp.u, ps, 0.0), declared_range(dp.v, pr, 0.0)];
+    let xq = [declared_range(dq.u, qs, 0.0), declared_range(dq.v, qr, 0.0)];
     if !graph_over_p(p, q, &frame, &xp, &xq) {
         return None;
     }
