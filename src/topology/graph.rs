@@ -247,11 +247,12 @@ impl Graph<'_> {
         })
     }
 
-    fn near_node(&self, xyz: &[f64; 3]) -> bool {
+    /// The nodes within reach of their exits of `xyz`.
+    fn nodes_near<'a>(&'a self, xyz: &'a [f64; 3]) -> impl Iterator<Item = &'a SingularNode> {
         self.out
             .nodes
             .iter()
-            .any(|n| dist3(&n.xyz, xyz) <= 1.5 * n.radius.max(self.opts.step / 3.0))
+            .filter(|n| dist3(&n.xyz, xyz) <= 1.5 * n.radius.max(self.opts.step / 3.0))
     }
 }
 
@@ -280,6 +281,10 @@ where
     // Points are accurate to the Newton tolerance (a hundredfold margin for the start's own
     // refinement and the chords' end points).
     let floor = 100.0 * opts.newton_tolerance;
+    // Starts near a located crossing wait until its exits are traced: they are usually on
+    // those arcs, but an arc shorter than the exits' distance from the node (a node just inside
+    // a domain side) has no exit and is reached from its start only.
+    let mut near_nodes = Vec::new();
     for start in starts {
         // Tested on the curve: the start refined by Newton (the raw guess if that fails).
         let on_curve = refine_start(p, q, *start, &opts).map_or(*start, |n| n.x);
@@ -292,38 +297,75 @@ where
             continue;
         }
         let here = p.point(start[0], start[1]);
-        if g.near_node(&[here.x, here.y, here.z]) {
+        let here = [here.x, here.y, here.z];
+        if g.nodes_near(&here).next().is_some() {
+            // Only located crossings have arms to miss; a start near a point where the
+            // marcher merely stopped (a pole, a contact) is skipped.
+            if g.nodes_near(&here).all(|n| n.located && has_arcs(n)) {
+                near_nodes.push(on_curve);
+            } else {
+                g.out.stats.skipped_covered += 1;
+            }
+            continue;
+        }
+        trace_start(&mut g, p, q, start);
+    }
+    trace_node_exits(&mut g, p, q, floor, &scales);
+    for start in &near_nodes {
+        if g.out
+            .branches
+            .iter()
+            .any(|b| covers(b, start, p, floor, &scales))
+        {
             g.out.stats.skipped_covered += 1;
             continue;
         }
-        match trace_branch(p, q, *start, &opts) {
-            Ok(traced) => {
-                let single = traced.branch.points.len() == 1
-                    && traced.branch.ends == [EndReason::Singular, EndReason::Singular];
-                if traced.branch.points.len() == 1 {
-                    // A curve touching a face from outside: its event only, no branch.
-                    if matches!(traced.branch.ends[0], EndReason::Boundary { .. }) {
-                        g.add_events(traced.events);
-                        continue;
-                    }
-                }
-                if !single && is_contact_excursion(&mut g, p, q, &traced.branch) {
-                    // A start beside a curve of tangency marches off it and straight back: the
-                    // contact (its node, no arcs) is all there is.
-                    continue;
-                }
-                if single {
-                    // The start is itself a singular point: make it a node, its arcs come later.
-                    let cp = traced.branch.points[0];
-                    g.node_for(p, q, [cp.p[0], cp.p[1], cp.q[0], cp.q[1]]);
-                    continue;
-                }
-                g.add(p, q, traced, None);
-            }
-            Err(_) => g.out.stats.failed_starts += 1,
+        trace_start(&mut g, p, q, start);
+    }
+    // The arcs traced from those starts may end at nodes with exits of their own.
+    trace_node_exits(&mut g, p, q, floor, &scales);
+    g.out
+}
+
+/// Traces the branch through `start` and adds it to the graph (or its node, or its event).
+fn trace_start<S1, S2>(g: &mut Graph, p: &S1, q: &S2, start: &[f64; 4])
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
+    let Ok(traced) = trace_branch(p, q, *start, g.opts) else {
+        g.out.stats.failed_starts += 1;
+        return;
+    };
+    let single = traced.branch.points.len() == 1
+        && traced.branch.ends == [EndReason::Singular, EndReason::Singular];
+    if traced.branch.points.len() == 1 {
+        // A curve touching a face from outside: its event only, no branch.
+        if matches!(traced.branch.ends[0], EndReason::Boundary { .. }) {
+            g.add_events(traced.events);
+            return;
         }
     }
-    // Arcs from node exits not yet reached.
+    if !single && is_contact_excursion(g, p, q, &traced.branch) {
+        // A start beside a curve of tangency marches off it and straight back: the contact
+        // (its node, no arcs) is all there is.
+        return;
+    }
+    if single {
+        // The start is itself a singular point: make it a node, its arcs come later.
+        let cp = traced.branch.points[0];
+        g.node_for(p, q, [cp.p[0], cp.p[1], cp.q[0], cp.q[1]]);
+        return;
+    }
+    g.add(p, q, traced, None);
+}
+
+/// Traces the arcs from node exits not yet reached (at most [`MAX_NODE_ARCS`] in all).
+fn trace_node_exits<S1, S2>(g: &mut Graph, p: &S1, q: &S2, floor: f64, scales: &[f64; 4])
+where
+    S1: ParametricSurface + ?Sized,
+    S2: ParametricSurface + ?Sized,
+{
     while let Some((i, k)) = g
         .out
         .exits_used
@@ -342,12 +384,12 @@ where
         if g.out
             .branches
             .iter()
-            .any(|b| b.status == BranchStatus::Incomplete && covers(b, &exit, p, floor, &scales))
+            .any(|b| b.status == BranchStatus::Incomplete && covers(b, &exit, p, floor, scales))
         {
             g.out.stats.skipped_covered += 1;
             continue;
         }
-        match trace_from_node(p, q, x, exit, &opts) {
+        match trace_from_node(p, q, x, exit, g.opts) {
             Ok(traced) => {
                 g.out.stats.node_arcs += 1;
                 g.add(p, q, traced, Some(i));
@@ -355,7 +397,6 @@ where
             Err(_) => g.out.stats.failed_starts += 1,
         }
     }
-    g.out
 }
 
 /// Whether `branch` runs from a singular point to a singular point over less than a step and
