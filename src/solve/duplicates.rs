@@ -37,6 +37,7 @@ pub(crate) fn duplicate_branches(
     // against what is left), so a whole certified copy is kept in preference to a partial one.
     let complete =
         |i: usize| certified[i].is_some_and(|c| c.ends.iter().all(CertifiedEnd::reaches_true_end));
+    let every_tube: Vec<&TubePiece> = certified.iter().flatten().flat_map(|c| &c.tubes).collect();
     let mut order: Vec<usize> = (0..marched.len()).collect();
     order.sort_by_key(|&i| complete(i));
     for i in order {
@@ -45,14 +46,66 @@ pub(crate) fn duplicate_branches(
             .filter_map(|j| certified[j])
             .flat_map(|c| &c.tubes)
             .collect();
+        let held = |pt: &CurvePoint, tubes: &[&TubePiece]| {
+            let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+            let slack = newton_tolerance.max(rounding_offset(p, q, pt));
+            tubes.iter().any(|t| t.holds(&x, &scales, slack))
+        };
+        let inner = inner_points(&marched[i]);
+        let by_others: Vec<bool> = inner.iter().map(|pt| held(pt, &others)).collect();
+        // The last points before a boundary end can lie beyond every certificate (a node just
+        // outside the domain: each chain stops in a box round it); they are no reason to keep
+        // a copy when another kept branch ends at the same point (its own marched points
+        // there stand for that stretch), as long as the copy's other points are held.
+        let tail = |end: usize| {
+            let n = inner.len();
+            let run = (0..n)
+                .map(|k| if end == 0 { k } else { n - 1 - k })
+                .take_while(|&k| !by_others[k])
+                .count();
+            let unheld = (0..run)
+                .map(|k| if end == 0 { k } else { n - 1 - k })
+                .all(|k| !held(&inner[k], &every_tube));
+            let shared = shares_end(marched, &dropped, i, end, certified, newton_tolerance);
+            (unheld && shared).then_some(run)
+        };
+        let (head, rest) = (tail(0).unwrap_or(0), tail(1).unwrap_or(0));
         dropped[i] = !others.is_empty()
-            && inner_points(&marched[i]).iter().all(|pt| {
-                let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
-                let slack = newton_tolerance.max(rounding_offset(p, q, pt));
-                others.iter().any(|t| t.holds(&x, &scales, slack))
-            });
+            && head + rest < inner.len()
+            && by_others[head..inner.len() - rest].iter().all(|b| *b);
     }
     dropped
+}
+
+/// Whether end `end` of branch `i` is a boundary end at the end point of another kept branch
+/// with a certificate (within `tolerance` in every parameter, relative to the domains).
+fn shares_end(
+    marched: &[Branch],
+    dropped: &[bool],
+    i: usize,
+    end: usize,
+    certified: &[Option<&CertifiedBranch>],
+    tolerance: f64,
+) -> bool {
+    let b = &marched[i];
+    if !matches!(b.ends[end], EndReason::Boundary { .. }) {
+        return false;
+    }
+    let at = |c: &CurvePoint| [c.p[0], c.p[1], c.q[0], c.q[1]];
+    let x = at(if end == 0 {
+        &b.points[0]
+    } else {
+        &b.points[b.points.len() - 1]
+    });
+    let near = |y: [f64; 4]| (0..4).all(|k| (x[k] - y[k]).abs() <= tolerance * (1.0 + x[k].abs()));
+    (0..marched.len())
+        .filter(|&j| j != i && !dropped[j] && certified[j].is_some())
+        .any(|j| {
+            let o = &marched[j];
+            [&o.points[0], &o.points[o.points.len() - 1]]
+                .iter()
+                .any(|c| near(at(c)))
+        })
 }
 
 /// Ulps of the model's coordinates that an `f64` evaluation of `P − Q` rounds by (a few per

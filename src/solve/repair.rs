@@ -161,3 +161,23 @@ fn jump_box(e: &CertifiedEnd) -> Option<&[Interval; 4]> {
         _ => None,
     }
 }
+
+/// Whether a branch traced again certifies something new: one of its marched points is held by
+/// a tube of its own certificate and by none of `before` (the certified branches so far). A
+/// branch whose certification failed is kept if one of its points is held by none of `before`
+/// (it may be an arm no other branch reached).
+pub(crate) fn adds_cover(
+    p: &RationalBezierPatch,
+    q: &RationalBezierPatch,
+    b: &Branch,
+    own: Option<&CertifiedBranch>,
+    before: &[&TubePiece],
+    slack: f64,
+) -> bool {
+    let scales = pair_widths(&p.domain(), &q.domain());
+    b.points.iter().any(|pt| {
+        let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
+        own.is_none_or(|own| own.tubes.iter().any(|t| t.holds(&x, &scales, slack)))
+            && !before.iter().any(|t| t.holds(&x, &scales, slack))
+    })
+}

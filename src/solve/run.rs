@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::duplicates::duplicate_branches;
 use super::options::{Engine, Options};
-use super::repair::uncovered_starts;
+use super::repair::{adds_cover, uncovered_starts};
 use super::result::{
     end_box, BranchCertificate, CertifyStats, Stats, SurfaceIntersection, TracedBranch,
 };
@@ -16,6 +16,7 @@ use super::turns::join_turns;
 use crate::certify::contact::certify_contact_events;
 use crate::certify::{
     certify_branch, certify_chain, CertifiedBranch, CertifyOptions, ChainOptions, StepBudget,
+    TubePiece,
 };
 use crate::check::straying::{check_branches, StrayReport};
 use crate::error::{Error, Result};
@@ -234,19 +235,29 @@ fn retrace_uncovered(
             step: march.step / 8f64.powi(round),
             ..*march
         };
-        let first = marched.len();
-        for mut b in trace_graph(p, q, &starts, &fine).branches {
+        let traced = trace_graph(p, q, &starts, &fine).branches;
+        let new: Vec<BranchCertificate> = traced
+            .par_iter()
+            .map(|b| certify_within(p, q, b, opts, deadline))
+            .collect();
+        for (mut b, c) in traced.into_iter().zip(new) {
+            // A trace that certifies nothing new (its chain stops at the same box: a node just
+            // outside the domain, not a jump) would only report the branch twice.
+            let before: Vec<&TubePiece> = certs
+                .iter()
+                .filter_map(BranchCertificate::certified)
+                .flat_map(|c| &c.tubes)
+                .collect();
+            if !adds_cover(p, q, &b, c.certified(), &before, DUPLICATE_SLACK) {
+                continue;
+            }
             b.id = next_id;
             next_id += 1;
             boundary_ends.push(check_branch_ends(p, q, &b, &opts.boundary));
             marched.push(b);
+            certs.push(c);
+            added += 1;
         }
-        added += marched.len() - first;
-        let new: Vec<BranchCertificate> = marched[first..]
-            .par_iter()
-            .map(|b| certify_within(p, q, b, opts, deadline))
-            .collect();
-        certs.extend(new);
     }
     added
 }
