@@ -53,6 +53,8 @@ mod faces;
 mod node_region;
 mod pair_verdict;
 mod tangent_leaf;
+mod undecided;
+pub use undecided::UndecidedRegion;
 
 /// Tuning of the start-point search.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -106,16 +108,6 @@ pub struct StartPoint {
     pub params: [f64; 4],
     /// Where it came from.
     pub kind: StartKind,
-}
-
-/// A pair of parameter boxes where the search could not decide whether (further) intersection
-/// components exist. The boxes are rounded outward: they contain the region examined.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct UndecidedRegion {
-    /// `[[σ0, σ1], [t0, t1]]` on P.
-    pub p: [[f64; 2]; 2],
-    /// `[[u0, u1], [v0, v1]]` on Q.
-    pub q: [[f64; 2]; 2],
 }
 
 /// Result of the start-point search.
@@ -251,6 +243,8 @@ fn boundary_search(
         report.undecided += undecided.len();
         report.undecided_regions.extend(undecided);
     }
+    // The leaves round one point, of one side or of sides meeting there, as one region.
+    report.undecided_regions = undecided::merged(std::mem::take(&mut report.undecided_regions));
 }
 
 struct Ctx {
