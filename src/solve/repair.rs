@@ -162,10 +162,12 @@ fn jump_box(e: &CertifiedEnd) -> Option<&[Interval; 4]> {
     }
 }
 
-/// Whether a branch traced again certifies something new: one of its marched points is held by
-/// a tube of its own certificate and by none of `before` (the certified branches so far). A
-/// branch whose certification failed is kept if one of its points is held by none of `before`
-/// (it may be an arm no other branch reached).
+/// Whether a branch traced again certifies something new: its certificate reaches a true end
+/// at both ends (a closed loop, or boundaries: the duplicate rule then prefers it to a copy
+/// that stops short), or one of its marched points is held by a tube of its own certificate
+/// and by none of `before` (the certified branches so far). A branch whose certification
+/// failed is kept if one of its points is held by none of `before` (it may be an arm no other
+/// branch reached).
 pub(crate) fn adds_cover(
     p: &RationalBezierPatch,
     q: &RationalBezierPatch,
@@ -174,6 +176,9 @@ pub(crate) fn adds_cover(
     before: &[&TubePiece],
     slack: f64,
 ) -> bool {
+    if own.is_some_and(|c| c.ends.iter().all(CertifiedEnd::reaches_true_end)) {
+        return true;
+    }
     let scales = pair_widths(&p.domain(), &q.domain());
     b.points.iter().any(|pt| {
         let x = [pt.p[0], pt.p[1], pt.q[0], pt.q[1]];
