@@ -461,19 +461,28 @@ fn shell_summary(
     }
     for (k, c) in r.curves.iter().enumerate() {
         let proven = c.joins.iter().filter(|j| j.status.is_proven()).count();
-        let through_poles =
-            |j: &&ssitrace::shell::Join| j.edge == ssitrace::shell::edges::EdgeKind::Pole;
+        use ssitrace::shell::edges::EdgeKind;
+        let count = |kind: EdgeKind| c.joins.iter().filter(|j| j.edge == kind).count();
         let corners = c
             .joins
             .iter()
-            .filter(|j| j.corner.is_some() && !through_poles(j))
+            .filter(|j| {
+                j.corner.is_some() && !matches!(j.edge, EdgeKind::Pole | EdgeKind::NearEdge)
+            })
             .count();
-        let poles = c.joins.iter().filter(through_poles).count();
-        let poles = if poles > 0 {
-            format!(", {poles} through a pole")
-        } else {
-            String::new()
-        };
+        let mut poles = String::new();
+        for (kind, what) in [
+            (EdgeKind::Pole, "through a pole"),
+            (
+                EdgeKind::NearEdge,
+                "across edges shared to within the tolerance",
+            ),
+        ] {
+            let n = count(kind);
+            if n > 0 {
+                poles += &format!(", {n} {what}");
+            }
+        }
         let tolerance = c
             .certified_tolerance
             .map_or("not certified as a whole".to_string(), |t| {

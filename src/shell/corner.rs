@@ -43,17 +43,20 @@ use crate::march::branch::CurvePoint;
 use crate::numeric::scalar::point;
 use crate::pair::krawczyk::{krawczyk, BoxSurface, KrawczykResult, ParamBox};
 
-/// What a join across a corner of the piece pair, a proven join through a pole, or a proven
-/// join on a shared edge that absorbed slivers at a vertex of faces adds to [`super::Join`].
+/// What a join across a corner of the piece pair, a proven join through a pole, a proven join
+/// across a near edge, or a proven join on a shared edge that absorbed slivers at a vertex of
+/// faces adds to [`super::Join`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct CornerJoin {
     /// The edge crossed on the second surface (the join's `edge` is the first surface's;
-    /// [`EdgeKind::Pole`] through a pole; the join's own `edge` at a vertex).
+    /// [`EdgeKind::Pole`] through a pole; [`EdgeKind::NearEdge`] across a near edge; the
+    /// join's own `edge` at a vertex).
     pub second_edge: EdgeKind,
     /// Every point of the true curve between the two parts' ends lies in this model-space box
     /// (the corner box's image, or the pole proof's box, see `shell/pole_cap.rs`; at a vertex,
     /// the hull of the join's proven end boxes and of the slivers' covers, see
-    /// `shell/slivers.rs`; empty when the join is not proven).
+    /// `shell/slivers.rs`; across a near edge, the hull of the two proven end boxes, see
+    /// `shell/near.rs`; empty when the join is not proven).
     pub xyz: [Interval; 3],
     /// Branches of the other piece pairs at the corner or pole whose marched points all lie in
     /// the corner box or the pole's cap (slivers of the same arc), or at a vertex whose piece

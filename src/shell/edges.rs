@@ -37,6 +37,11 @@ pub enum EdgeKind {
     Seam,
     /// Equal boundary control rows in two faces.
     FaceEdge,
+    /// Sides of two pieces whose control rows agree only to within a small distance (faces whose
+    /// corners were computed apart and rounded differently): not the same curve, so a curve
+    /// crossing there passes from one piece to the other with a gap, which its join proves
+    /// small and counts in the joined curve's tolerance ([`near_edges`]).
+    NearEdge,
     /// Two sides collapsed to the same pole (of one face, or of faces of one shell sharing it):
     /// not an edge, but where a curve through the pole passes from one piece to another (such
     /// a join is proven on a cap round the pole, `shell/pole_cap.rs`).
@@ -44,12 +49,13 @@ pub enum EdgeKind {
 }
 
 impl EdgeKind {
-    /// `"knot_line"`, `"seam"`, `"face_edge"` or `"pole"`.
+    /// `"knot_line"`, `"seam"`, `"face_edge"`, `"near_edge"` or `"pole"`.
     pub fn name(self) -> &'static str {
         match self {
             EdgeKind::KnotLine => "knot_line",
             EdgeKind::Seam => "seam",
             EdgeKind::FaceEdge => "face_edge",
+            EdgeKind::NearEdge => "near_edge",
             EdgeKind::Pole => "pole",
         }
     }
@@ -297,3 +303,148 @@ pub fn shared_edges(faces: &[Face]) -> Vec<EdgeLink> {
     links.sort_by_key(|l| (l.from, l.to));
     links
 }
+
+/// A side matched to another only to within a distance ([`near_edges`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NearLink {
+    /// The link, of kind [`EdgeKind::NearEdge`].
+    pub link: EdgeLink,
+    /// A proven bound on the model distance between the two sides' points at corresponding
+    /// edge parameters.
+    pub mismatch: f64,
+}
+
+/// Most boundary rows compared for near matches (more: none are looked for).
+const MAX_NEAR_ROWS: usize = 1 << 16;
+
+/// Sides of pieces of `faces` that no exact link joins ([`shared_edges`]: `exact`) whose boundary
+/// rows have the same length and the same weights, and whose Cartesian control points lie
+/// pairwise within `within` (in the same or the reverse order), from both sides, sorted by
+/// `from`. With equal weights every point of the one side is the same convex combination of
+/// its control points as the matching point of the other, so the two sides are within the
+/// largest control-point distance (`mismatch`, rounded up) at corresponding edge parameters.
+/// Poles (and rows whose points lie within `within` of each other) are never matched;
+/// `within` ≤ 0 matches nothing.
+pub fn near_edges(faces: &[Face], exact: &[EdgeLink], within: f64) -> Vec<NearLink> {
+    let mut out = Vec::new();
+    if within.is_nan() || within <= 0.0 {
+        return out;
+    }
+    let linked: HashSet<PieceSide> = exact.iter().map(|l| l.from).collect();
+    let mut rows: Vec<(PieceSide, Vec<[Interval; 4]>)> = Vec::new();
+    for (f, face) in faces.iter().enumerate() {
+        for (k, p) in face.pieces().iter().enumerate() {
+            for (side, pole) in p.collapsed_sides().iter().enumerate() {
+                let at = PieceSide {
+                    face: f,
+                    piece: k,
+                    side,
+                };
+                let row = side_row(p, side);
+                // A row whose points all lie within the distance of its first is a pole, or
+                // nearly one: not an edge.
+                let degenerate = row_distance(
+                    row.iter(),
+                    std::iter::repeat_n(&row[0], row.len()),
+                )
+                .is_some_and(|d| d <= within);
+                if pole.is_none() && !degenerate && !linked.contains(&at) {
+                    rows.push((at, row));
+                }
+            }
+        }
+    }
+    if rows.len() > MAX_NEAR_ROWS {
+        return out;
+    }
+    // Rows by the grid cells (of twice `within`) of both end points: a near match's first end
+    // point lies in a cell next to one of the other row's.
+    let cell_size = 2.0 * within;
+    let cell = |h: &[Interval; 4]| -> Option<[i64; 3]> {
+        let c: [f64; 3] = std::array::from_fn(|k| (h[k] / h[3]).mid() / cell_size);
+        c.iter()
+            .all(|x| x.is_finite() && x.abs() < 1e15)
+            .then(|| c.map(|x| x.floor() as i64))
+    };
+    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for (i, (_, row)) in rows.iter().enumerate() {
+        for end in [&row[0], &row[row.len() - 1]] {
+            if let Some(c) = cell(end) {
+                grid.entry(c).or_default().push(i);
+            }
+        }
+    }
+    for (i, (a, ra)) in rows.iter().enumerate() {
+        let Some(c) = cell(&ra[0]) else {
+            continue;
+        };
+        let mut near: Vec<usize> = (0..27)
+            .filter_map(|n| {
+                let d = [n % 3, (n / 3) % 3, n / 9].map(|x| x as i64 - 1);
+                grid.get(&std::array::from_fn(|k| c[k] + d[k]))
+            })
+            .flatten()
+            .copied()
+            .filter(|&j| j > i)
+            .collect();
+        near.sort_unstable();
+        near.dedup();
+        for j in near {
+            let (b, rb) = &rows[j];
+            if ra.len() != rb.len() || (a.face == b.face && a.piece == b.piece) {
+                continue;
+            }
+            let direct = row_distance(ra.iter(), rb.iter());
+            let reversed = row_distance(ra.iter(), rb.iter().rev());
+            let (mismatch, rev) = match (direct, reversed) {
+                (Some(d), Some(r)) if r < d => (r, true),
+                (Some(d), _) => (d, false),
+                (None, Some(r)) => (r, true),
+                (None, None) => continue,
+            };
+            if mismatch > within {
+                continue;
+            }
+            for (from, to) in [(*a, *b), (*b, *a)] {
+                out.push(NearLink {
+                    link: EdgeLink {
+                        from,
+                        to,
+                        reversed: rev,
+                        kind: EdgeKind::NearEdge,
+                    },
+                    mismatch,
+                });
+            }
+        }
+    }
+    out.sort_by_key(|l| (l.link.from, l.link.to));
+    out
+}
+
+/// The largest Euclidean distance between corresponding Cartesian control points of two rows
+/// (rounded up), or `None` when a weight differs or a point is not finite.
+fn row_distance<'a>(
+    a: impl Iterator<Item = &'a [Interval; 4]>,
+    b: impl Iterator<Item = &'a [Interval; 4]>,
+) -> Option<f64> {
+    let mut worst = 0.0f64;
+    for (x, y) in a.zip(b) {
+        if x[3].inf() != y[3].inf() || x[3].sup() != y[3].sup() {
+            return None;
+        }
+        let d: [Interval; 3] = std::array::from_fn(|k| x[k] / x[3] - y[k] / y[3]);
+        let sq = d.iter().fold(point(0.0), |acc, v| acc + v.sqr());
+        let dist = sq.sup().sqrt();
+        if !dist.is_finite() {
+            return None;
+        }
+        // The square root rounded up by an ulp.
+        worst = worst.max(dist.next_up());
+    }
+    Some(worst)
+}
+
+#[cfg(test)]
+#[path = "edges_tests.rs"]
+mod tests;

@@ -28,7 +28,10 @@
 //!    they are the same point. Otherwise the join is [`JoinStatus::Unproven`] with the reason;
 //!    with the marching method it is [`JoinStatus::Marched`].
 //!    A join through a pole (two ends on sides of one shell collapsed to the same point) is
-//!    proven on a cap round the pole (`pole_cap.rs`), its arc held in a model box.
+//!    proven on a cap round the pole (`pole_cap.rs`), its arc held in a model box. Sides that
+//!    agree only to within the requested tolerance (faces whose corners were computed apart)
+//!    are joined with a gap, proven when both exits are, the hull of the exit boxes counted in
+//!    the curve's tolerance (`near.rs`).
 //! 4. The joins chain the branches into [`JoinedCurve`]s: ordered parts with orientations,
 //!    closed when the chain comes back to its first part. Every branch is in exactly one curve
 //!    (a branch that nothing joins is a curve of one part).
@@ -39,6 +42,7 @@ use inari::Interval;
 
 use super::corner::{self, CornerJoin};
 use super::edges::{along_range, shared_edges, side_coordinate, EdgeKind, EdgeLink, PieceSide};
+use super::near;
 use super::own_corner;
 use super::pole_cap::{self, PoleProof};
 use super::sites::{certified_exit, end_site, marched_gap, patches, EndSite};
@@ -89,7 +93,9 @@ pub struct Join {
     /// surface's edge) or of one surface's own pieces (four pieces of it meet there: `edge` and
     /// the corner's `second_edge` are both that surface's), what it crosses and covers
     /// ([`super::corner`]); for a proven join through a pole, the box holding the arc through
-    /// it (`second_edge` [`EdgeKind::Pole`], see `shell/pole_cap.rs`); `None` otherwise.
+    /// it (`second_edge` [`EdgeKind::Pole`], see `shell/pole_cap.rs`); for a proven join
+    /// across a near edge, the box holding both ends (`second_edge` [`EdgeKind::NearEdge`], see
+    /// `shell/near.rs`); `None` otherwise.
     pub corner: Option<CornerJoin>,
 }
 
@@ -113,7 +119,8 @@ pub struct JoinedCurve {
     /// joined parts, last the one from the last part back to the first.
     pub joins: Vec<Join>,
     /// The largest certified tolerance of the parts, plus the largest diameter of a join's box
-    /// (across a corner, through a pole, or at a vertex with slivers), when every part is
+    /// (across a corner, through a pole, across a near edge, or at a vertex with slivers), when
+    /// every part is
     /// certified and every join proven; `None` otherwise.
     pub certified_tolerance: Option<f64>,
 }
@@ -178,6 +185,18 @@ pub(super) fn join_and_settle(
             }
         }
     }
+    // Across sides that agree only to within the required tolerance (`near.rs`).
+    let near_links = near::links(a, b, pairs);
+    let mut near_boxes = Vec::new();
+    for (gap, x, y, status, hull) in
+        near::candidates(pairs, &sites, &near_links, &at_side, &by_pair)
+    {
+        let region = hull.map_or(Region::None, |h| {
+            near_boxes.push(h);
+            Region::Near(near_boxes.len() - 1)
+        });
+        candidates.push((gap, x, y, status, EdgeKind::NearEdge, region));
+    }
     let mut poles = Vec::new();
     candidates.extend(pole_candidates(a, b, pairs, &sites, &links, &mut poles));
     let mut corners = corner::candidates(a, b, pairs, &sites, &links, &by_pair);
@@ -234,6 +253,11 @@ pub(super) fn join_and_settle(
                 None
             }
             Region::Corner(n) => Some(corner_join(&corners[n], pairs, &by_pair, &first_branch)),
+            Region::Near(n) => Some(CornerJoin {
+                second_edge: EdgeKind::NearEdge,
+                xyz: near_boxes[n],
+                absorbed: Vec::new(),
+            }),
             Region::Pole(n) => {
                 let pr = &poles[n];
                 settled.extend(pole_cap::settled(pr, a, b, pairs, &by_pair));
@@ -399,6 +423,8 @@ enum Region {
     Corner(usize),
     /// In the box of this pole proof.
     Pole(usize),
+    /// In this box holding both ends of a join across a near edge (`near.rs`).
+    Near(usize),
 }
 
 /// How far from opposite (`1 + cos` of the angle between them) two branches may leave a pole
@@ -490,7 +516,7 @@ fn map_box(y: &ParamBox, surface: usize, link: &EdgeLink, doms: [&Domain; 2]) ->
 }
 
 /// Euclidean distance between two boxes (0 when they overlap).
-fn box_gap(x: &[Interval], y: &[Interval]) -> f64 {
+pub(super) fn box_gap(x: &[Interval], y: &[Interval]) -> f64 {
     x.iter()
         .zip(y)
         .map(|(a, b)| (a.inf() - b.sup()).max(b.inf() - a.sup()).max(0.0).powi(2))

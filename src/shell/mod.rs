@@ -21,6 +21,7 @@ pub mod corner;
 mod edge_copies;
 pub mod edges;
 pub mod join;
+mod near;
 mod own_corner;
 mod pole_cap;
 mod sites;

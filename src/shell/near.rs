@@ -1,0 +1,101 @@
+//! Joins across sides that agree only to within a distance
+//! ([`EdgeKind::NearEdge`](super::edges::EdgeKind::NearEdge)).
+//!
+//! Faces whose corners were computed apart (each face's from its own origin and edge vectors,
+//! or written by a kernel to its modelling tolerance) share no boundary row exactly, and a curve
+//! crossing from one to the other came back as separate open pieces. Where two sides are
+//! matched by [`near_edges`] (the same weights, control points within the required tolerance,
+//! so the sides are within a proven `mismatch` of each other at corresponding parameters), the
+//! two surfaces' curves do not meet: each ends on its own side, near the other's end. A join
+//! there is proven when both ends are certified exits on their sides (each the only crossing of
+//! its side in its uniqueness region) within the two tolerances and the mismatch of each other;
+//! the hull of the two exit boxes holds both true end points, and the joined curve's tolerance
+//! counts its diameter, as for a join across a corner. Candidates come from the same sites as
+//! the exact joins; without certificates the marched ends must agree as for an exact edge.
+
+use std::collections::HashMap;
+
+use inari::Interval;
+
+use super::edges::{near_edges, shared_edges, NearLink, PieceSide};
+use super::join::{box_gap, JoinStatus};
+use super::sites::{marched_gap, EndSite};
+use super::{Face, PieceIntersection};
+
+/// A near join candidate: the gap, the two sites, the status and, when proven, the box holding
+/// both end points.
+pub(super) type NearCandidate = (f64, usize, usize, JoinStatus, Option<[Interval; 3]>);
+
+/// The near links of both shells (sides matched within the required tolerance of the pairs).
+pub(super) fn links(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> [Vec<NearLink>; 2] {
+    let within = pairs
+        .first()
+        .map_or(0.0, |p| p.result.options.required_tolerance);
+    [a, b].map(|faces| near_edges(faces, &shared_edges(faces), within))
+}
+
+/// The join candidates across near links (see the module documentation).
+pub(super) fn candidates(
+    pairs: &[PieceIntersection],
+    sites: &[EndSite<'_>],
+    links: &[Vec<NearLink>; 2],
+    at_side: &HashMap<(usize, usize, PieceSide), Vec<usize>>,
+    by_pair: &HashMap<([usize; 2], [usize; 2]), usize>,
+) -> Vec<NearCandidate> {
+    let mut out = Vec::new();
+    for (x, s1) in sites.iter().enumerate() {
+        let from = &links[s1.surface];
+        let first = from.partition_point(|l| l.link.from < s1.side);
+        for near in from[first..].iter().take_while(|l| l.link.from == s1.side) {
+            let p1 = &pairs[s1.pair];
+            let (mut faces, mut pieces) = (p1.faces, p1.pieces);
+            faces[s1.surface] = near.link.to.face;
+            pieces[s1.surface] = near.link.to.piece;
+            let Some(&k2) = by_pair.get(&(faces, pieces)) else {
+                continue;
+            };
+            let Some(others) = at_side.get(&(k2, s1.surface, near.link.to)) else {
+                continue;
+            };
+            for &y in others.iter().filter(|&&y| y > x) {
+                if let Some(c) = candidate(pairs, s1, &sites[y], near.mismatch) {
+                    out.push((c.0, x, y, c.1, c.2));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Whether `s1` and `s2`, on sides within `mismatch` of each other, may be joined: the gap, the
+/// status and the box of a proven join. The ends are candidates when their certified exit
+/// boxes are within the two tolerances and the mismatch of each other, or their marched points
+/// within [`MARCH_JOIN_TOLERANCE`](super::sites::MARCH_JOIN_TOLERANCE) (a curve crossing the
+/// edge at a small angle ends farther along it on one side than on the other); the join is
+/// proven when both exits are.
+fn candidate(
+    pairs: &[PieceIntersection],
+    s1: &EndSite,
+    s2: &EndSite,
+    mismatch: f64,
+) -> Option<(f64, JoinStatus, Option<[Interval; 3]>)> {
+    let marched = marched_gap(&s1.point, &s2.point);
+    if let (Some(x1), Some(x2), Some(t1), Some(t2)) =
+        (&s1.exit, &s2.exit, s1.tolerance, s2.tolerance)
+    {
+        let gap = box_gap(&x1.xyz, &x2.xyz);
+        if gap <= t1 + t2 + mismatch || marched.is_some() {
+            let hull = std::array::from_fn(|k| x1.xyz[k].convex_hull(x2.xyz[k]));
+            return Some((gap, JoinStatus::Proven, Some(hull)));
+        }
+    }
+    let gap = marched?;
+    let status = if !pairs[s1.pair].result.options.method.certifies() {
+        JoinStatus::Marched
+    } else {
+        JoinStatus::Unproven {
+            reason: "an end is not certified on the nearly shared edge",
+        }
+    };
+    Some((gap, status, None))
+}
