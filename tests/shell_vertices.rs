@@ -14,7 +14,8 @@
 
 mod common;
 
-use common::shell_checks::{check_edge, closed_and_proven, edges, run, SLACK};
+use common::rng::Rng;
+use common::shell_checks::{check_edge, check_edge_within, closed_and_proven, edges, run, SLACK};
 use serde_json::{json, Value};
 use ssitrace::pipeline::ShellRunReport;
 
@@ -84,6 +85,36 @@ impl Placed {
 
     fn turn(&self, x: V3) -> V3 {
         self.m.map(|row| dot(row, x))
+    }
+
+    /// The six faces computed apart: each from its own origin and turned edge vectors, every
+    /// coordinate then moved by up to `jitter` (from `rng`). Faces share no edge exactly; their
+    /// corners agree to rounding (and the jitter). Returns the faces and their corner points
+    /// (`[at(0, 0), at(0, 1), at(1, 0), at(1, 1)]` per face).
+    fn faces_apart(&self, jitter: f64, rng: &mut Rng) -> (Vec<Value>, Vec<[V3; 4]>) {
+        let (mut faces, mut nets) = (Vec::new(), Vec::new());
+        for axis in 0..3 {
+            for side in 0..2 {
+                let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+                let mut c0 = [0.0; 3];
+                c0[axis] = side as f64;
+                let unit_along = |k: usize| {
+                    let mut e = [0.0; 3];
+                    e[k] = 1.0;
+                    self.turn(e)
+                };
+                let (o, ei, ej) = (self.at(c0), unit_along(i), unit_along(j));
+                let mut at = |a: f64, b: f64| -> V3 {
+                    std::array::from_fn(|k| {
+                        o[k] + a * ei[k] + b * ej[k] + jitter * rng.uniform(-1.0, 1.0)
+                    })
+                };
+                let net = [at(0.0, 0.0), at(0.0, 1.0), at(1.0, 0.0), at(1.0, 1.0)];
+                faces.push(json!({"kind": "bezier", "degree": [1, 1], "points": net}));
+                nets.push(net);
+            }
+        }
+        (faces, nets)
     }
 
     /// The six faces, each a bilinear patch on four of the eight corners (computed once each).
@@ -329,4 +360,111 @@ fn a_paraboloid_through_a_box_corner_is_one_closed_curve() {
             }
         }
     }
+}
+
+/// Dense points of the plane through `v` with normal `n` cut with the bilinear patch on `net`
+/// (`[at(0, 0), at(0, 1), at(1, 0), at(1, 1)]`): the plane's value on the patch is bilinear,
+/// `c₀ + c₁a + c₂b + c₃ab`, so each `a` gives its `b` in closed form (and each `b` its `a`).
+fn plane_on_bilinear(net: &[V3; 4], v: V3, n: V3) -> Vec<V3> {
+    let f: [f64; 4] = net.map(|x| dot(sub(x, v), n));
+    let (c0, c1, c2, c3) = (f[0], f[2] - f[0], f[1] - f[0], f[3] - f[2] - f[1] + f[0]);
+    let point = |a: f64, b: f64| -> V3 {
+        std::array::from_fn(|k| {
+            (1.0 - a) * (1.0 - b) * net[0][k]
+                + (1.0 - a) * b * net[1][k]
+                + a * (1.0 - b) * net[2][k]
+                + a * b * net[3][k]
+        })
+    };
+    let mut out = Vec::new();
+    for m in 0..=600 {
+        let x = m as f64 / 600.0;
+        // b from a, then a from b.
+        for (a, b) in [
+            (x, -(c0 + c1 * x) / (c2 + c3 * x)),
+            (-(c0 + c2 * x) / (c1 + c3 * x), x),
+        ] {
+            if (0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b) {
+                out.push(point(a, b));
+            }
+        }
+    }
+    out
+}
+
+/// The box's faces computed apart (each from its own origin and edge vectors, so that no two
+/// share an edge exactly), with rounding only or also moved by up to 1e-12 and 2e-10 a
+/// coordinate, cut by planes through the box: one closed curve, every join proven, across
+/// the edges that agree to within the requested tolerance 1e-9 (`shell/near.rs`). Before, the
+/// faces whose corners differed in the last bit gave open pieces, one per face or run of faces
+/// that happened to agree. The edge is checked both ways against the section computed face by
+/// face in closed form (the plane's value is bilinear on a face), to its tolerance, which
+/// counts the gaps between the faces. Faces 1e-7 apart (above the tolerance) are not joined.
+#[test]
+fn faces_computed_apart_are_joined_across_edges_shared_to_within_the_tolerance() {
+    let mut rng = Rng::new(0x0ea2_ed9e);
+    let mut near_joins = 0;
+    for (n, (cube, _, _)) in cases().into_iter().enumerate() {
+        for jitter in [0.0, 1e-12, 2e-10, 1e-7] {
+            let what = format!("placement {n}, jitter {jitter:e}");
+            let (faces, nets) = cube.faces_apart(jitter, &mut rng);
+            // A plane through a point inside the box.
+            let centre = cube.at([0.5, 0.5, 0.5].map(|x| x + rng.uniform(-0.2, 0.2)));
+            let nrm = unit(std::array::from_fn(|_| rng.uniform(-1.0, 1.0)));
+            let scene = json!({"surfaces": [faces, paraboloid(centre, nrm, 0.0)]});
+            let (scene, report) = run(scene);
+            let r = &report.result;
+            if jitter > 1e-9 {
+                // Not matched: the curve stays in open pieces (one per face it crosses).
+                assert!(r.curves.len() > 1, "{what}: joined across faces 1e-7 apart");
+                continue;
+            }
+            // One closed curve proven as a whole; its tolerance counts the gaps between the
+            // faces, which a curve crossing an edge at a small angle widens.
+            assert!(r.is_complete(), "{what}: search incomplete");
+            assert_eq!(r.curves.len(), 1, "{what}");
+            let c = &r.curves[0];
+            let joined = c.certified_tolerance;
+            assert!(
+                c.closed && joined.is_some_and(|t| t <= 1e-8),
+                "{what}: {c:?}"
+            );
+            let near = c
+                .joins
+                .iter()
+                .filter(|j| j.edge == ssitrace::shell::edges::EdgeKind::NearEdge)
+                .count();
+            near_joins += near;
+            let truth: Vec<V3> = nets
+                .iter()
+                .flat_map(|net| plane_on_bilinear(net, centre, nrm))
+                .collect();
+            // Distance to the section: to the polyline through a face's dense points (a face's
+            // section is a hyperbola arc bent by at most the jitter over the face).
+            let per_face: Vec<Vec<V3>> = nets
+                .iter()
+                .map(|net| plane_on_bilinear(net, centre, nrm))
+                .filter(|p| p.len() > 1)
+                .map(|mut p| {
+                    p.sort_by(|x, y| x.iter().partial_cmp(y.iter()).unwrap());
+                    p
+                })
+                .collect();
+            let off = |x: &V3| {
+                per_face
+                    .iter()
+                    .flat_map(|p| p.windows(2).map(|w| to_segment(*x, w[0], w[1])))
+                    .fold(f64::INFINITY, f64::min)
+            };
+            let edges = edges(&what, &scene, &report);
+            assert_eq!(edges.len(), 1, "{what}");
+            assert!(edges[0].closed, "{what}");
+            check_edge_within(&what, &edges[0], &scene.shells, &off, &truth, 5, 1e-8);
+            println!(
+                "{what}: {near} of {} joins across near edges",
+                c.joins.len()
+            );
+        }
+    }
+    assert!(near_joins >= 10, "{near_joins} joins across near edges");
 }
