@@ -343,11 +343,8 @@ pub fn near_edges(faces: &[Face], exact: &[EdgeLink], within: f64) -> Vec<NearLi
                 let row = side_row(p, side);
                 // A row whose points all lie within the distance of its first is a pole, or
                 // nearly one: not an edge.
-                let degenerate = row_distance(
-                    row.iter(),
-                    std::iter::repeat_n(&row[0], row.len()),
-                )
-                .is_some_and(|d| d <= within);
+                let degenerate = row_distance(row.iter(), std::iter::repeat_n(&row[0], row.len()))
+                    .is_some_and(|d| d <= within);
                 if pole.is_none() && !degenerate && !linked.contains(&at) {
                     rows.push((at, row));
                 }

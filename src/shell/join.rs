@@ -45,7 +45,7 @@ use super::edges::{along_range, shared_edges, side_coordinate, EdgeKind, EdgeLin
 use super::near;
 use super::own_corner;
 use super::pole_cap::{self, PoleProof};
-use super::sites::{certified_exit, end_site, marched_gap, patches, EndSite};
+use super::sites::{box_gap, certified_exit, end_site, marched_gap, patches, EndSite};
 pub use super::sites::{BranchEnd, MARCH_JOIN_TOLERANCE, SIDE_TOLERANCE};
 use super::slivers;
 use super::{Face, PieceIntersection};
@@ -187,16 +187,8 @@ pub(super) fn join_and_settle(
     }
     // Across sides that agree only to within the required tolerance (`near.rs`).
     let near_links = near::links(a, b, pairs);
-    let mut near_boxes = Vec::new();
-    for (gap, x, y, status, hull) in
-        near::candidates(pairs, &sites, &near_links, &at_side, &by_pair)
-    {
-        let region = hull.map_or(Region::None, |h| {
-            near_boxes.push(h);
-            Region::Near(near_boxes.len() - 1)
-        });
-        candidates.push((gap, x, y, status, EdgeKind::NearEdge, region));
-    }
+    let near = near::candidates(pairs, &sites, &near_links, &at_side, &by_pair);
+    let near_boxes = near_candidates(near, &mut candidates);
     let mut poles = Vec::new();
     candidates.extend(pole_candidates(a, b, pairs, &sites, &links, &mut poles));
     let mut corners = corner::candidates(a, b, pairs, &sites, &links, &by_pair);
@@ -411,6 +403,27 @@ fn corner_join(
     }
 }
 
+/// Adds the near join candidates to `candidates`; returns the boxes of the proven ones (their
+/// regions index it).
+fn near_candidates(
+    near: Vec<near::NearCandidate>,
+    candidates: &mut Vec<Candidate>,
+) -> Vec<[Interval; 3]> {
+    let mut boxes = Vec::new();
+    for (gap, x, y, verdict) in near {
+        let (status, region) = match verdict {
+            None => (JoinStatus::Marched, Region::None),
+            Some(Ok(hull)) => {
+                boxes.push(hull);
+                (JoinStatus::Proven, Region::Near(boxes.len() - 1))
+            }
+            Some(Err(reason)) => (JoinStatus::Unproven { reason }, Region::None),
+        };
+        candidates.push((gap, x, y, status, EdgeKind::NearEdge, region));
+    }
+    boxes
+}
+
 /// A join candidate: the gap, the two sites, the status, the edge and its proof's region.
 type Candidate = (f64, usize, usize, JoinStatus, EdgeKind, Region);
 
@@ -513,15 +526,6 @@ fn map_box(y: &ParamBox, surface: usize, link: &EdgeLink, doms: [&Domain; 2]) ->
     out[2 * surface + k_to] = point(value);
     out[2 * surface + 1 - k_to] = link.map_along(along, doms[0], doms[1]);
     out
-}
-
-/// Euclidean distance between two boxes (0 when they overlap).
-pub(super) fn box_gap(x: &[Interval], y: &[Interval]) -> f64 {
-    x.iter()
-        .zip(y)
-        .map(|(a, b)| (a.inf() - b.sup()).max(b.inf() - a.sup()).max(0.0).powi(2))
-        .sum::<f64>()
-        .sqrt()
 }
 
 /// Whether every interval of `x` lies in the matching one of `y`.

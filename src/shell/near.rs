@@ -18,13 +18,15 @@ use std::collections::HashMap;
 use inari::Interval;
 
 use super::edges::{near_edges, shared_edges, NearLink, PieceSide};
-use super::join::{box_gap, JoinStatus};
-use super::sites::{marched_gap, EndSite};
+use super::sites::{box_gap, marched_gap, EndSite};
 use super::{Face, PieceIntersection};
 
-/// A near join candidate: the gap, the two sites, the status and, when proven, the box holding
-/// both end points.
-pub(super) type NearCandidate = (f64, usize, usize, JoinStatus, Option<[Interval; 3]>);
+/// What a near join candidate's evidence is: `None` marched (the method does not certify),
+/// `Ok` proven with the box holding both end points, `Err` unproven with the reason.
+pub(super) type Verdict = Option<Result<[Interval; 3], &'static str>>;
+
+/// A near join candidate: the gap, the two sites and the verdict.
+pub(super) type NearCandidate = (f64, usize, usize, Verdict);
 
 /// The near links of both shells (sides matched within the required tolerance of the pairs).
 pub(super) fn links(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> [Vec<NearLink>; 2] {
@@ -58,8 +60,8 @@ pub(super) fn candidates(
                 continue;
             };
             for &y in others.iter().filter(|&&y| y > x) {
-                if let Some(c) = candidate(pairs, s1, &sites[y], near.mismatch) {
-                    out.push((c.0, x, y, c.1, c.2));
+                if let Some((gap, verdict)) = candidate(pairs, s1, &sites[y], near.mismatch) {
+                    out.push((gap, x, y, verdict));
                 }
             }
         }
@@ -68,7 +70,7 @@ pub(super) fn candidates(
 }
 
 /// Whether `s1` and `s2`, on sides within `mismatch` of each other, may be joined: the gap, the
-/// status and the box of a proven join. The ends are candidates when their certified exit
+/// verdict. The ends are candidates when their certified exit
 /// boxes are within the two tolerances and the mismatch of each other, or their marched points
 /// within [`MARCH_JOIN_TOLERANCE`](super::sites::MARCH_JOIN_TOLERANCE) (a curve crossing the
 /// edge at a small angle ends farther along it on one side than on the other); the join is
@@ -78,7 +80,7 @@ fn candidate(
     s1: &EndSite,
     s2: &EndSite,
     mismatch: f64,
-) -> Option<(f64, JoinStatus, Option<[Interval; 3]>)> {
+) -> Option<(f64, Verdict)> {
     let marched = marched_gap(&s1.point, &s2.point);
     if let (Some(x1), Some(x2), Some(t1), Some(t2)) =
         (&s1.exit, &s2.exit, s1.tolerance, s2.tolerance)
@@ -86,16 +88,11 @@ fn candidate(
         let gap = box_gap(&x1.xyz, &x2.xyz);
         if gap <= t1 + t2 + mismatch || marched.is_some() {
             let hull = std::array::from_fn(|k| x1.xyz[k].convex_hull(x2.xyz[k]));
-            return Some((gap, JoinStatus::Proven, Some(hull)));
+            return Some((gap, Some(Ok(hull))));
         }
     }
     let gap = marched?;
-    let status = if !pairs[s1.pair].result.options.method.certifies() {
-        JoinStatus::Marched
-    } else {
-        JoinStatus::Unproven {
-            reason: "an end is not certified on the nearly shared edge",
-        }
-    };
-    Some((gap, status, None))
+    let certifies = pairs[s1.pair].result.options.method.certifies();
+    let verdict = certifies.then_some(Err("an end is not certified on the nearly shared edge"));
+    Some((gap, verdict))
 }

@@ -426,3 +426,12 @@ fn widest(pieces: [&RationalBezierPatch; 2], y: &ParamBox, fixed: usize) -> usiz
         .max_by(|&a, &b| (y[a].wid() * speed(a)).total_cmp(&(y[b].wid() * speed(b))))
         .unwrap_or((fixed + 1) % 4)
 }
+
+/// Euclidean distance between two boxes (0 when they overlap).
+pub(super) fn box_gap(x: &[Interval], y: &[Interval]) -> f64 {
+    x.iter()
+        .zip(y)
+        .map(|(a, b)| (a.inf() - b.sup()).max(b.inf() - a.sup()).max(0.0).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
