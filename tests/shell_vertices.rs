@@ -73,6 +73,7 @@ fn rotation(q: [f64; 4]) -> [V3; 3] {
 }
 
 /// The unit cube turned by `m` and moved by `t`: its map from cube coordinates to the model.
+#[derive(Clone)]
 struct Placed {
     m: [V3; 3],
     t: V3,
@@ -394,8 +395,9 @@ fn plane_on_bilinear(net: &[V3; 4], v: V3, n: V3) -> Vec<V3> {
 
 /// The box's faces computed apart (each from its own origin and edge vectors, so that no two
 /// share an edge exactly), with rounding only or also moved by up to 1e-12 and 2e-10 a
-/// coordinate, cut by planes through the box: one closed curve, every join proven, across
-/// the edges that agree to within the requested tolerance 1e-9 (`shell/near.rs`). Before, the
+/// coordinate, cut by planes through the box and through its corners: one closed curve, every
+/// join proven, across the edges that agree to within the requested tolerance 1e-9
+/// (`shell/near.rs`), the sliver at a corner absorbed by a near join as by an exact one. Before, the
 /// faces whose corners differed in the last bit gave open pieces, one per face or run of faces
 /// that happened to agree. The edge is checked both ways against the section computed face by
 /// face in closed form (the plane's value is bilinear on a face), to its tolerance, which
@@ -404,13 +406,30 @@ fn plane_on_bilinear(net: &[V3; 4], v: V3, n: V3) -> Vec<V3> {
 fn faces_computed_apart_are_joined_across_edges_shared_to_within_the_tolerance() {
     let mut rng = Rng::new(0x0ea2_ed9e);
     let mut near_joins = 0;
-    for (n, (cube, _, _)) in cases().into_iter().enumerate() {
-        for jitter in [0.0, 1e-12, 2e-10, 1e-7] {
-            let what = format!("placement {n}, jitter {jitter:e}");
+    let plans = cases()
+        .into_iter()
+        .flat_map(|c| {
+            [0.0, 1e-12, 2e-10, 1e-7]
+                .map(|j| (c.0.clone(), None, j))
+                .into_iter()
+                .chain(
+                    // Through the case's corner too (a vertex of three faces computed apart).
+                    [0.0, 1e-12].map(|j| (c.0.clone(), Some((c.1, c.2)), j)),
+                )
+        })
+        .collect::<Vec<_>>();
+    for (n, (cube, corner, jitter)) in plans.into_iter().enumerate() {
+        {
+            let what = format!("case {n}, jitter {jitter:e}, corner {corner:?}");
             let (faces, nets) = cube.faces_apart(jitter, &mut rng);
-            // A plane through a point inside the box.
-            let centre = cube.at([0.5, 0.5, 0.5].map(|x| x + rng.uniform(-0.2, 0.2)));
-            let nrm = unit(std::array::from_fn(|_| rng.uniform(-1.0, 1.0)));
+            // A plane through a point inside the box, or through the corner.
+            let (centre, nrm) = match corner {
+                None => (
+                    cube.at([0.5, 0.5, 0.5].map(|x| x + rng.uniform(-0.2, 0.2))),
+                    unit(std::array::from_fn(|_| rng.uniform(-1.0, 1.0))),
+                ),
+                Some((c, normal)) => (cube.at(c.map(|x| x as f64)), unit(cube.turn(normal))),
+            };
             let scene = json!({"surfaces": [faces, paraboloid(centre, nrm, 0.0)]});
             let (scene, report) = run(scene);
             let r = &report.result;
@@ -423,6 +442,7 @@ fn faces_computed_apart_are_joined_across_edges_shared_to_within_the_tolerance()
             // faces, which a curve crossing an edge at a small angle widens.
             assert!(r.is_complete(), "{what}: search incomplete");
             assert_eq!(r.curves.len(), 1, "{what}");
+            parts_or_absorbed(&what, &report);
             let c = &r.curves[0];
             let joined = c.certified_tolerance;
             assert!(

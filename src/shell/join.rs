@@ -245,11 +245,16 @@ pub(super) fn join_and_settle(
                 None
             }
             Region::Corner(n) => Some(corner_join(&corners[n], pairs, &by_pair, &first_branch)),
-            Region::Near(n) => Some(CornerJoin {
-                second_edge: EdgeKind::NearEdge,
-                xyz: near_boxes[n],
-                absorbed: Vec::new(),
-            }),
+            Region::Near(n) => {
+                // Its box holds both proven end boxes: a sliver at a vertex is absorbed by it
+                // as by an exact edge's join.
+                on_edges.push(([e1, e2], near_boxes[n]));
+                Some(CornerJoin {
+                    second_edge: EdgeKind::NearEdge,
+                    xyz: near_boxes[n],
+                    absorbed: Vec::new(),
+                })
+            }
             Region::Pole(n) => {
                 let pr = &poles[n];
                 settled.extend(pole_cap::settled(pr, a, b, pairs, &by_pair));
