@@ -2,7 +2,7 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use inari::Interval;
-use ssitrace::certify::contact::{CertifiedContact, ContactEnd};
+use ssitrace::certify::contact::{CertifiedContact, ContactEnd, StepCase};
 use ssitrace::certify::CertifiedEnd;
 use ssitrace::check::straying::StrayReport;
 use ssitrace::io::intersection_json::mark_pair;
@@ -651,19 +651,33 @@ fn contact_end_name(e: &ContactEnd) -> String {
 }
 
 fn contact_line(k: usize, c: &CertifiedContact, folded: usize) -> String {
-    format!(
-        "  contact {k}: tangential contact curve, certified in {} steps, tube radius {:.3e}, \
-         ends {} / {}, cover {} box(es){}; {folded} singular event(s) on it",
-        c.steps.len(),
-        c.tube_radius,
-        contact_end_name(&c.ends[0]),
-        contact_end_name(&c.ends[1]),
+    let cover = format!(
+        "cover {} box(es){}",
         c.cover.boxes.len(),
         if c.cover.resolved {
             ""
         } else {
             " (not resolved)"
-        },
+        }
+    );
+    // Nothing traced from a start proven a crossing or an isolated contact: a point, not a
+    // curve (the crossing of two branches at a node is the march's and the search's).
+    let point = match c.start_case {
+        _ if !c.steps.is_empty() => None,
+        StepCase::BranchPoint => Some("crossing of two branches (a node: Δ > 0 proven on its box)"),
+        StepCase::IsolatedPoint => Some("isolated contact point (Δ < 0 proven on its box)"),
+        _ => None,
+    };
+    if let Some(what) = point {
+        return format!("  contact {k}: {what}, {cover}; {folded} singular event(s) there");
+    }
+    format!(
+        "  contact {k}: tangential contact curve, certified in {} steps, tube radius {:.3e}, \
+         ends {} / {}, {cover}; {folded} singular event(s) on it",
+        c.steps.len(),
+        c.tube_radius,
+        contact_end_name(&c.ends[0]),
+        contact_end_name(&c.ends[1]),
     )
 }
 

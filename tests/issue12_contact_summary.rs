@@ -4,7 +4,8 @@
 //!
 //! Two contacts: the example scene `cubic_quadratic_tangential.json`, and the graph
 //! `z = (x − 0.3y)²(1 + 0.2x)` laid on the plane `z = 0` (tangent along the line `x = 0.3y`)
-//! over an asymmetric domain.
+//! over an asymmetric domain. And a node (two branches crossing) is printed as a crossing, not
+//! as a contact curve.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -81,4 +82,29 @@ fn own_tangential_pair_prints_one_contact_curve() {
     let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("issue12_own_contact_scene.json");
     std::fs::write(&path, text).expect("scene written");
     check(&path, "own_contact");
+}
+
+/// The node of the equal cylinders and of Viviani's pair, certified: the contact line names a
+/// crossing of two branches (its start box is proven a branch point and nothing is traced from
+/// it), not a "tangential contact curve certified in 0 steps" as it did.
+#[test]
+fn a_node_is_printed_as_a_crossing_not_a_contact_curve() {
+    for name in ["cylinders.json", "viviani.json"] {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("scenes")
+            .join(name);
+        let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("issue12_node_{name}"));
+        let text = run_cli(&path, &out);
+        let contacts: Vec<&str> = text
+            .lines()
+            .filter(|l| l.trim_start().starts_with("contact "))
+            .collect();
+        assert_eq!(contacts.len(), 1, "{name}: {text}");
+        assert!(
+            contacts[0].contains("crossing of two branches")
+                && !contacts[0].contains("tangential contact curve"),
+            "{name}: {}",
+            contacts[0]
+        );
+    }
 }
