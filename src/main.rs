@@ -672,7 +672,8 @@ fn contact_line(k: usize, c: &CertifiedContact, folded: usize) -> String {
         return format!("  contact {k}: {what}, {cover}; {folded} singular event(s) there");
     }
     format!(
-        "  contact {k}: tangential contact curve, certified in {} steps, tube radius {:.3e}, \
+        "  contact {k}: tangential contact curve (the tangential field's solution from the \
+         event; touching is not provable), certified in {} steps, tube radius {:.3e}, \
          ends {} / {}, {cover}; {folded} singular event(s) on it",
         c.steps.len(),
         c.tube_radius,
