@@ -488,3 +488,68 @@ fn faces_computed_apart_are_joined_across_edges_shared_to_within_the_tolerance()
     }
     assert!(near_joins >= 10, "{near_joins} joins across near edges");
 }
+
+/// Four rational quarter-cylinder faces (NURBS of degree (2, 1), weights 1, √½, 1), each turned
+/// from the first by its own angle, so that neighbouring faces share their edge rows only to
+/// rounding; cut by an oblique plane: one closed ellipse, every join proven, at least one of them
+/// across a near edge, the edge within its tolerance of the closed form both ways.
+#[test]
+fn rational_faces_turned_apart_are_one_closed_curve() {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let weight = |m: usize| {
+        if m == 1 {
+            json!([h.next_down(), h.next_up()])
+        } else {
+            json!(1.0)
+        }
+    };
+    let faces: Vec<Value> = (0..4)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::FRAC_PI_2 + 0.3;
+            let (c, s) = (a.cos(), a.sin());
+            let (mut points, mut weights) = (Vec::new(), Vec::new());
+            for (m, (x, y)) in [(1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].into_iter().enumerate() {
+                for z in [-1.0, 1.0] {
+                    points.push(json!([x * c - y * s, x * s + y * c, z]));
+                    weights.push(weight(m));
+                }
+            }
+            json!({"kind": "nurbs", "degree": [2, 1],
+                   "knots": [[0.0, 0.0, 0.0, 1.0, 1.0, 1.0], [0.0, 0.0, 1.0, 1.0]],
+                   "points": points, "weights": weights})
+        })
+        .collect();
+    // The plane z = 0.2x + 0.15y + 0.2 over [-2, 2]².
+    let plane = json!({"kind": "bezier", "degree": [1, 1],
+        "points": [[-2.0, -2.0, -0.5], [-2.0, 2.0, 0.1], [2.0, -2.0, 0.3], [2.0, 2.0, 0.9]]});
+    let (scene, report) = run(json!({"surfaces": [faces, plane]}));
+    let what = "rational quarter cylinders turned apart";
+    closed_and_proven(what, &report);
+    let r = &report.result;
+    assert_eq!(r.curves.len(), 1, "{what}");
+    let near = r.curves[0]
+        .joins
+        .iter()
+        .filter(|j| j.edge == ssitrace::shell::edges::EdgeKind::NearEdge)
+        .count();
+    assert!(near >= 1, "{what}: no join across a near edge");
+    let ellipse = |t: f64| -> V3 { [t.cos(), t.sin(), 0.2 * t.cos() + 0.15 * t.sin() + 0.2] };
+    let truth: Vec<V3> = (0..4000)
+        .map(|m| ellipse(std::f64::consts::TAU * m as f64 / 4000.0))
+        .collect();
+    // Distance to the ellipse: to its chords 1e-7 apart round the point's own angle (their
+    // sagitta is about 1e-15).
+    let off = |x: &V3| {
+        let t = x[1].atan2(x[0]);
+        (-50..50)
+            .map(|m| {
+                let t0 = t + m as f64 * 1e-7;
+                to_segment(*x, ellipse(t0), ellipse(t0 + 1e-7))
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let edges = edges(what, &scene, &report);
+    assert_eq!(edges.len(), 1, "{what}");
+    assert!(edges[0].closed, "{what}");
+    check_edge(what, &edges[0], &scene.shells, &off, &truth);
+}
