@@ -186,7 +186,7 @@ pub(super) fn join_and_settle(
         }
     }
     // Across sides that agree only to within the required tolerance (`near.rs`).
-    let near_links = near::links(a, b, pairs);
+    let near_links = near::links(a, b, pairs, &links);
     let near = near::candidates(pairs, &sites, &near_links, &at_side, &by_pair);
     let near_boxes = near_candidates(near, &mut candidates);
     let mut poles = Vec::new();

@@ -17,7 +17,7 @@ use std::collections::HashMap;
 
 use inari::Interval;
 
-use super::edges::{near_edges, shared_edges, NearLink, PieceSide};
+use super::edges::{near_edges, EdgeLink, NearLink, PieceSide};
 use super::sites::{box_gap, marched_gap, EndSite};
 use super::{Face, PieceIntersection};
 
@@ -28,12 +28,21 @@ pub(super) type Verdict = Option<Result<[Interval; 3], &'static str>>;
 /// A near join candidate: the gap, the two sites and the verdict.
 pub(super) type NearCandidate = (f64, usize, usize, Verdict);
 
-/// The near links of both shells (sides matched within the required tolerance of the pairs).
-pub(super) fn links(a: &[Face], b: &[Face], pairs: &[PieceIntersection]) -> [Vec<NearLink>; 2] {
+/// The near links of both shells (sides matched within the required tolerance of the pairs;
+/// `exact`: each shell's exact links, [`shared_edges`](super::edges::shared_edges)).
+pub(super) fn links(
+    a: &[Face],
+    b: &[Face],
+    pairs: &[PieceIntersection],
+    exact: &[Vec<EdgeLink>; 2],
+) -> [Vec<NearLink>; 2] {
     let within = pairs
         .first()
         .map_or(0.0, |p| p.result.options.required_tolerance);
-    [a, b].map(|faces| near_edges(faces, &shared_edges(faces), within))
+    [
+        near_edges(a, &exact[0], within),
+        near_edges(b, &exact[1], within),
+    ]
 }
 
 /// The join candidates across near links (see the module documentation).
