@@ -45,7 +45,7 @@ use super::edges::{along_range, shared_edges, side_coordinate, EdgeKind, EdgeLin
 use super::near;
 use super::own_corner;
 use super::pole_cap::{self, PoleProof};
-use super::sites::{box_gap, certified_exit, end_site, marched_gap, patches, EndSite};
+use super::sites::{box_gap, certified_exit, end_site, marched_gap, patches, EndSite, SiteIndex};
 pub use super::sites::{BranchEnd, MARCH_JOIN_TOLERANCE, SIDE_TOLERANCE};
 use super::slivers;
 use super::{Face, PieceIntersection};
@@ -163,31 +163,19 @@ pub(super) fn join_and_settle(
             .or_default()
             .push(y);
     }
+    let index_sites = SiteIndex {
+        at_side: &at_side,
+        by_pair: &by_pair,
+    };
     let mut candidates = Vec::new();
-    for (x, s1) in sites.iter().enumerate() {
-        let from = &links[s1.surface];
-        let first = from.partition_point(|l| l.from < s1.side);
-        for link in from[first..].iter().take_while(|l| l.from == s1.side) {
-            let p1 = &pairs[s1.pair];
-            let (mut faces, mut pieces) = (p1.faces, p1.pieces);
-            faces[s1.surface] = link.to.face;
-            pieces[s1.surface] = link.to.piece;
-            let Some(&k2) = by_pair.get(&(faces, pieces)) else {
-                continue;
-            };
-            let Some(others) = at_side.get(&(k2, s1.surface, link.to)) else {
-                continue;
-            };
-            for &y in others.iter().filter(|&&y| y > x) {
-                if let Some(c) = candidate(a, b, pairs, s1, &sites[y], link) {
-                    candidates.push((c.0, x, y, c.1, link.kind, Region::None));
-                }
-            }
+    for (x, y, link) in index_sites.across(pairs, &sites, &links, |l| l) {
+        if let Some(c) = candidate(a, b, pairs, &sites[x], &sites[y], link) {
+            candidates.push((c.0, x, y, c.1, link.kind, Region::None));
         }
     }
     // Across sides that agree only to within the required tolerance (`near.rs`).
     let near_links = near::links(a, b, pairs, &links);
-    let near = near::candidates(pairs, &sites, &near_links, &at_side, &by_pair);
+    let near = near::candidates(pairs, &sites, &near_links, &index_sites);
     let near_boxes = near_candidates(near, &mut candidates);
     let mut poles = Vec::new();
     candidates.extend(pole_candidates(a, b, pairs, &sites, &links, &mut poles));

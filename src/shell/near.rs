@@ -13,12 +13,10 @@
 //! counts its diameter, as for a join across a corner. Candidates come from the same sites as
 //! the exact joins; without certificates the marched ends must agree as for an exact edge.
 
-use std::collections::HashMap;
-
 use inari::Interval;
 
-use super::edges::{near_edges, EdgeLink, NearLink, PieceSide};
-use super::sites::{box_gap, marched_gap, EndSite};
+use super::edges::{near_edges, EdgeLink, NearLink};
+use super::sites::{box_gap, marched_gap, EndSite, SiteIndex};
 use super::{Face, PieceIntersection};
 
 /// What a near join candidate's evidence is: `None` marched (the method does not certify),
@@ -50,32 +48,16 @@ pub(super) fn candidates(
     pairs: &[PieceIntersection],
     sites: &[EndSite<'_>],
     links: &[Vec<NearLink>; 2],
-    at_side: &HashMap<(usize, usize, PieceSide), Vec<usize>>,
-    by_pair: &HashMap<([usize; 2], [usize; 2]), usize>,
+    index: &SiteIndex<'_>,
 ) -> Vec<NearCandidate> {
-    let mut out = Vec::new();
-    for (x, s1) in sites.iter().enumerate() {
-        let from = &links[s1.surface];
-        let first = from.partition_point(|l| l.link.from < s1.side);
-        for near in from[first..].iter().take_while(|l| l.link.from == s1.side) {
-            let p1 = &pairs[s1.pair];
-            let (mut faces, mut pieces) = (p1.faces, p1.pieces);
-            faces[s1.surface] = near.link.to.face;
-            pieces[s1.surface] = near.link.to.piece;
-            let Some(&k2) = by_pair.get(&(faces, pieces)) else {
-                continue;
-            };
-            let Some(others) = at_side.get(&(k2, s1.surface, near.link.to)) else {
-                continue;
-            };
-            for &y in others.iter().filter(|&&y| y > x) {
-                if let Some((gap, verdict)) = candidate(pairs, s1, &sites[y], near.mismatch) {
-                    out.push((gap, x, y, verdict));
-                }
-            }
-        }
-    }
-    out
+    index
+        .across(pairs, sites, links, |l| &l.link)
+        .into_iter()
+        .filter_map(|(x, y, near)| {
+            let (gap, verdict) = candidate(pairs, &sites[x], &sites[y], near.mismatch)?;
+            Some((gap, x, y, verdict))
+        })
+        .collect()
 }
 
 /// Whether `s1` and `s2`, on sides within `mismatch` of each other, may be joined: the gap, the

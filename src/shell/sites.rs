@@ -1,9 +1,11 @@
 //! Branch ends on the sides of their pieces, and their proven exits: what the joins
 //! matches (and the corner joins at corners of the piece pair).
 
+use std::collections::HashMap;
+
 use inari::Interval;
 
-use super::edges::{side_coordinate, side_of, side_of_where, PieceSide};
+use super::edges::{side_coordinate, side_of, side_of_where, EdgeLink, PieceSide};
 use super::{Face, PieceIntersection};
 use crate::certify::{CertifiedBranch, CertifiedEnd};
 use crate::geometry::bezier::RationalBezierPatch;
@@ -434,4 +436,45 @@ pub(super) fn box_gap(x: &[Interval], y: &[Interval]) -> f64 {
         .map(|(a, b)| (a.inf() - b.sup()).max(b.inf() - a.sup()).max(0.0).powi(2))
         .sum::<f64>()
         .sqrt()
+}
+
+/// Sites on the two sides of a link, and where to find them: the sites on a side of a piece
+/// pair, by `(pair, surface, side)`, and the pairs by their faces and pieces.
+pub(super) struct SiteIndex<'s> {
+    pub(super) at_side: &'s HashMap<(usize, usize, PieceSide), Vec<usize>>,
+    pub(super) by_pair: &'s HashMap<([usize; 2], [usize; 2]), usize>,
+}
+
+impl SiteIndex<'_> {
+    /// Every `(x, y, link)`: site `x` on `link.from` (of `links`, sorted by `from`, for the
+    /// site's surface), site `y > x` on `link.to` in the piece pair that differs from `x`'s by
+    /// that side's piece only. `edge` gives a link's [`EdgeLink`].
+    pub(super) fn across<'l, L>(
+        &self,
+        pairs: &[PieceIntersection],
+        sites: &[EndSite<'_>],
+        links: &'l [Vec<L>; 2],
+        edge: impl Fn(&L) -> &EdgeLink,
+    ) -> Vec<(usize, usize, &'l L)> {
+        let mut out = Vec::new();
+        for (x, s1) in sites.iter().enumerate() {
+            let from = &links[s1.surface];
+            let first = from.partition_point(|l| edge(l).from < s1.side);
+            for l in from[first..].iter().take_while(|l| edge(l).from == s1.side) {
+                let to = edge(l).to;
+                let p1 = &pairs[s1.pair];
+                let (mut faces, mut pieces) = (p1.faces, p1.pieces);
+                faces[s1.surface] = to.face;
+                pieces[s1.surface] = to.piece;
+                let Some(&k2) = self.by_pair.get(&(faces, pieces)) else {
+                    continue;
+                };
+                let Some(others) = self.at_side.get(&(k2, s1.surface, to)) else {
+                    continue;
+                };
+                out.extend(others.iter().filter(|&&y| y > x).map(|&y| (x, y, l)));
+            }
+        }
+        out
+    }
 }
