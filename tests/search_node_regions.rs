@@ -13,6 +13,7 @@
 mod common;
 
 use common::rng::Rng;
+use common::spline::to_polyline;
 use ssitrace::geometry::{ParametricSurface, RationalBezierPatch};
 use ssitrace::march::MarchOptions;
 use ssitrace::search::start_points::SearchOptions;
@@ -196,24 +197,6 @@ fn cut(name: &str, sides: &[(usize, usize)], at: f64) -> [RationalBezierPatch; 2
     }
     let scene = ssitrace::io::scene::Scene::from_json_value(&v).unwrap();
     scene.surfaces
-}
-
-/// Distance from `x` to the polyline through `pts`.
-fn to_polyline(pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
-    let sub = |a: &[f64; 3], b: &[f64; 3]| -> [f64; 3] { std::array::from_fn(|k| a[k] - b[k]) };
-    let dot = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| a[k] * b[k]).sum::<f64>();
-    let seg = |a: &[f64; 3], b: &[f64; 3]| {
-        let (d, w) = (sub(b, a), sub(x, a));
-        let t = (dot(&w, &d) / dot(&d, &d).max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
-        let y: [f64; 3] = std::array::from_fn(|k| a[k] + t * d[k] - x[k]);
-        dot(&y, &y).sqrt()
-    };
-    if pts.len() == 1 {
-        return dot(&sub(&pts[0], x), &sub(&pts[0], x)).sqrt();
-    }
-    pts.windows(2)
-        .map(|w| seg(&w[0], &w[1]))
-        .fold(f64::MAX, f64::min)
 }
 
 /// The node scenes with a domain side moved onto the node (parameter 0 in both scenes), just

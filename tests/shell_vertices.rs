@@ -16,6 +16,7 @@ mod common;
 
 use common::rng::Rng;
 use common::shell_checks::{check_edge, check_edge_within, closed_and_proven, edges, run, SLACK};
+use common::spline::to_segment;
 use serde_json::{json, Value};
 use ssitrace::pipeline::ShellRunReport;
 
@@ -236,14 +237,6 @@ fn parts_or_absorbed(what: &str, report: &ShellRunReport) -> usize {
     absorbed
 }
 
-/// The distance from `x` to the segment `[a, b]`.
-fn to_segment(x: V3, a: V3, b: V3) -> f64 {
-    let d = sub(b, a);
-    let s = (dot(sub(x, a), d) / dot(d, d)).clamp(0.0, 1.0);
-    let y = sub(x, add(a, scale(s, d)));
-    dot(y, y).sqrt()
-}
-
 /// The polygon where the plane through `v` with normal `n` (model space) cuts the placed cube:
 /// its crossings of the twelve edges, ordered round the plane.
 fn polygon(cube: &Placed, v: V3, n: V3) -> Vec<V3> {
@@ -301,7 +294,7 @@ fn a_plane_through_a_box_corner_is_one_closed_curve() {
         let off = |x: &V3| {
             sides
                 .iter()
-                .map(|&(a, b)| to_segment(*x, a, b))
+                .map(|&(a, b)| to_segment(x, &a, &b))
                 .fold(f64::INFINITY, f64::min)
         };
         let truth: Vec<V3> = sides
@@ -473,7 +466,7 @@ fn faces_computed_apart_are_joined_across_edges_shared_to_within_the_tolerance()
             let off = |x: &V3| {
                 per_face
                     .iter()
-                    .flat_map(|p| p.windows(2).map(|w| to_segment(*x, w[0], w[1])))
+                    .flat_map(|p| p.windows(2).map(|w| to_segment(x, &w[0], &w[1])))
                     .fold(f64::INFINITY, f64::min)
             };
             let edges = edges(&what, &scene, &report);
@@ -544,7 +537,7 @@ fn rational_faces_turned_apart_are_one_closed_curve() {
         (-50..50)
             .map(|m| {
                 let t0 = t + m as f64 * 1e-7;
-                to_segment(*x, ellipse(t0), ellipse(t0 + 1e-7))
+                to_segment(x, &ellipse(t0), &ellipse(t0 + 1e-7))
             })
             .fold(f64::INFINITY, f64::min)
     };

@@ -8,6 +8,30 @@ pub(crate) fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
+/// The distance from `x` to the segment `[a, b]` (to `a` when the segment is a point).
+pub(crate) fn to_segment(x: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    let d: [f64; 3] = std::array::from_fn(|k| b[k] - a[k]);
+    let w: [f64; 3] = std::array::from_fn(|k| x[k] - a[k]);
+    let dd = d.iter().map(|v| v * v).sum::<f64>();
+    let s = if dd > 0.0 {
+        (w.iter().zip(&d).map(|(p, q)| p * q).sum::<f64>() / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let y: [f64; 3] = std::array::from_fn(|k| a[k] + s * d[k]);
+    dist3(x, &y)
+}
+
+/// The distance from `x` to the polyline through `pts` (to its point when it has one).
+pub(crate) fn to_polyline(pts: &[[f64; 3]], x: &[f64; 3]) -> f64 {
+    if pts.len() == 1 {
+        return dist3(&pts[0], x);
+    }
+    pts.windows(2)
+        .map(|w| to_segment(x, &w[0], &w[1]))
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// Dense parameters over a spline's range: `per_span` in every knot span.
 pub(crate) fn samples<const D: usize>(b: &BSpline<D>, per_span: usize) -> Vec<f64> {
     let mut ks: Vec<f64> = b.knots.clone();
