@@ -298,17 +298,20 @@ where
         }
         let here = p.point(start[0], start[1]);
         let here = [here.x, here.y, here.z];
-        if g.nodes_near(&here).next().is_some() {
-            // Only located crossings have arms to miss; a start near a point where the
-            // marcher merely stopped (a pole, a contact) is skipped.
-            if g.nodes_near(&here).all(|n| n.located && has_arcs(n)) {
-                near_nodes.push(on_curve);
-            } else {
-                g.out.stats.skipped_covered += 1;
-            }
-            continue;
+        // Near a node: whether all the nodes near are located crossings. Only those have arms
+        // to miss; a start near a point where the marcher merely stopped (a pole, a contact)
+        // is skipped.
+        let crossings = {
+            let mut near = g.nodes_near(&here).peekable();
+            near.peek()
+                .is_some()
+                .then(|| near.all(|n| n.located && has_arcs(n)))
+        };
+        match crossings {
+            Some(true) => near_nodes.push(on_curve),
+            Some(false) => g.out.stats.skipped_covered += 1,
+            None => trace_start(&mut g, p, q, start),
         }
-        trace_start(&mut g, p, q, start);
     }
     trace_node_exits(&mut g, p, q, floor, &scales);
     for start in &near_nodes {
