@@ -172,7 +172,8 @@ pub trait SignRule<T> {
     fn positive(&self, discriminant: T, b: &[T; 3]) -> bool;
 }
 
-/// Interval signs: a sign counts only when the enclosure excludes zero.
+/// Interval signs: a sign counts only when the enclosure excludes zero (and is not empty: an
+/// evaluation that divided by an exact zero proves nothing).
 #[derive(Debug, Clone, Copy)]
 pub struct Proven;
 
@@ -181,10 +182,10 @@ impl SignRule<Interval> for Proven {
         b.iter().all(|x| x.contains(0.0))
     }
     fn negative(&self, discriminant: Interval, _: &[Interval; 3]) -> bool {
-        discriminant.sup() < 0.0
+        !discriminant.is_empty() && discriminant.sup() < 0.0
     }
     fn positive(&self, discriminant: Interval, _: &[Interval; 3]) -> bool {
-        discriminant.inf() > 0.0
+        !discriminant.is_empty() && discriminant.inf() > 0.0
     }
 }
 

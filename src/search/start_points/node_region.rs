@@ -407,7 +407,7 @@ pub(super) fn graph_image(
     // as (C·J_P)·(xp − m_p), not C·(J_P·(xp − m_p)): the product C·J_P is nearly the tangent
     // map between the parameters, so the box maps to a box without wrapping.
     let k = krawczyk_image_n(xq, &cq, &f, &jac, &c);
-    Some(std::array::from_fn(|r| {
+    proper(std::array::from_fn(|r| {
         let mut acc = k[r];
         for col in 0..2 {
             let cj = point(c[r][0]) * jp[0][col] + point(c[r][1]) * jp[1][col];
@@ -415,6 +415,13 @@ pub(super) fn graph_image(
         }
         acc
     }))
+}
+
+/// The image, unless one of its intervals is empty: an evaluation divided by a weight that is
+/// exactly zero there (possible past a domain, where the boxes of a region on its side reach),
+/// which proves nothing. (An empty interval would pass every inclusion and disjointness test.)
+fn proper<const N: usize>(k: [Interval; N]) -> Option<[Interval; N]> {
+    k.iter().all(|x| !x.is_empty()).then_some(k)
 }
 
 /// What steps 2 and 3 proved about the critical points of `f` in the region.
@@ -455,7 +462,7 @@ fn critical_points(
         x = std::array::from_fn(|i| k[i].intersection(x[i]));
     }
     let c = contact_quadratic(p, q, &x);
-    if c.discriminant.inf() > 0.0 {
+    if sign(c.discriminant) == Some(1.0) {
         return Some(Critical::Settled);
     }
     match extremum_excludes_loop(p, q, &e[2], &c, &x)? {
@@ -464,9 +471,12 @@ fn critical_points(
     }
 }
 
-/// The sign of an interval that excludes zero.
+/// The sign of an interval that excludes zero (`None` for an empty one, whose bounds would
+/// pass either test).
 pub(super) fn sign(x: Interval) -> Option<f64> {
-    if x.inf() > 0.0 {
+    if x.is_empty() {
+        None
+    } else if x.inf() > 0.0 {
         Some(1.0)
     } else if x.sup() < 0.0 {
         Some(-1.0)
@@ -490,7 +500,7 @@ fn extremum_excludes_loop(
     c: &ContactQuadratic<Interval>,
     xhat: &[Interval; 4],
 ) -> Option<bool> {
-    if c.discriminant.sup() >= 0.0 {
+    if sign(c.discriminant) != Some(-1.0) {
         return None;
     }
     let [_, ps, pt] = p.first_order(xhat[0], xhat[1]);
@@ -635,7 +645,7 @@ pub(super) fn phi_image(
     );
     let c = Matrix4::from_fn(|r, k| jac[r][k].mid()).try_inverse()?;
     let c: [[f64; 4]; 4] = std::array::from_fn(|r| std::array::from_fn(|k| c[(r, k)]));
-    Some(krawczyk_image_n(x, &xm, &f, &jac, &c))
+    proper(krawczyk_image_n(x, &xm, &f, &jac, &c))
 }
 
 /// Searches the faces of `N_P` inside P's domain, and the ray from an extremum if one is given,

@@ -241,3 +241,15 @@ fn an_isolated_contact_is_settled_above_below_and_round_a_tiny_loop() {
         }
     }
 }
+
+/// An empty enclosure (an evaluation divided by a weight exactly zero, possible past a domain)
+/// has no sign and is no proof: its bounds (+∞, −∞) would pass every test.
+#[test]
+fn empty_enclosures_prove_nothing() {
+    use crate::pair::contact_quadratic::{Proven, SignRule};
+    assert_eq!(sign(Interval::EMPTY), None);
+    assert!(proper([Interval::EMPTY, point(1.0)]).is_none());
+    assert!(proper([point(1.0); 2]).is_some());
+    let b = [point(1.0); 3];
+    assert!(!Proven.positive(Interval::EMPTY, &b) && !Proven.negative(Interval::EMPTY, &b));
+}
